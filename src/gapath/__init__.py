@@ -1,0 +1,18 @@
+"""gapath: multi-objective path planning on grids for pymoo."""
+
+from gapath.errors import ConfigError, GapathError, MapError, NoPathError
+from gapath.workspace import Workspace, default_workspace, dense_workspace, random_workspace
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "ConfigError",
+    "GapathError",
+    "MapError",
+    "NoPathError",
+    "Workspace",
+    "default_workspace",
+    "dense_workspace",
+    "random_workspace",
+    "__version__",
+]
