@@ -1,0 +1,32 @@
+"""GA encodings of column-monotone paths.
+
+Every encoding turns a genome matrix ``X`` (N, n_var) into column profiles
+(see :mod:`gapath.encodings.base`) with ``decode``, turns paths back into
+genomes with ``encode``, and offers the seeds' edge-fixing as ``edge_fix``.
+"""
+
+from gapath.encodings.base import Frame, expand_profiles, profiles_of_paths, split_paths
+from gapath.encodings.integer import IntegerEncoding
+from gapath.errors import ConfigError
+
+ENCODINGS = {"integer": IntegerEncoding}
+
+
+def make_encoding(name: str, frame: Frame):
+    """The encoding called ``name`` over ``frame``.
+
+    Raises
+    ------
+    ConfigError
+        If ``name`` is not one of :data:`ENCODINGS`.
+    """
+    try:
+        cls = ENCODINGS[name]
+    except KeyError:
+        raise ConfigError(
+            f"unknown encoding {name!r}; expected one of {', '.join(ENCODINGS)}") from None
+    return cls(frame)
+
+
+__all__ = ["ENCODINGS", "Frame", "IntegerEncoding", "expand_profiles", "make_encoding",
+           "profiles_of_paths", "split_paths"]

@@ -1,0 +1,162 @@
+"""Integer encoding of column-monotone paths (Ahmed & Deb, section 2.3).
+
+A genome has one integer per column transition except the last (``n_cols - 1``
+genes). Gene 0 is the vertical move inside the start column (positive = up,
+towards smaller rows); gene ``k >= 1`` is the transition from column ``k-1``
+to column ``k``: ``0`` a horizontal step, ``y > 0`` a diagonal step up and
+``y - 1`` further cells up, ``y < 0`` the same downwards. Every gene is thus
+the signed row change between the exit rows of two consecutive columns.
+
+End-fixing: the transition into the goal column is not coded; one diagonal
+step towards the goal row (or a horizontal step when already on it), then
+vertical steps to the goal.
+
+Decoding clamps a move that would leave the grid at the edge, so any genome
+decodes to a valid path. The seeds' edge-fixing is a repair
+(:class:`gapath.operators.EdgeFixingRepair`) that replaces such a move by a
+row drawn with linear probability and writes the fixed gene back; after it,
+decoding never clamps.
+
+Examples
+--------
+>>> import numpy as np
+>>> from gapath import Workspace
+>>> from gapath.encodings.base import Frame
+>>> enc = IntegerEncoding(Frame.of(Workspace(np.zeros((4, 4), bool))))
+>>> entries, exits = enc.decode(np.array([[1, 1, 0]]))
+>>> exits.tolist()
+[[2, 1, 1, 0]]
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from gapath.encodings.base import Frame, profiles_of_paths
+from gapath.errors import ConfigError
+
+
+@numba.njit(cache=True)
+def _decode(X, start_row, goal_row, height):
+    n, n_var = X.shape
+    entries = np.empty((n, n_var + 1), np.int64)
+    exits = np.empty((n, n_var + 1), np.int64)
+    for i in range(n):
+        r = start_row
+        for k in range(n_var):
+            t = min(max(r - X[i, k], 0), height - 1)
+            entries[i, k] = r if k == 0 else r + np.sign(t - r)
+            exits[i, k] = t
+            r = t
+        entries[i, n_var] = r + np.sign(goal_row - r)
+        exits[i, n_var] = goal_row
+    return entries, exits
+
+
+@numba.njit(cache=True, inline="always")
+def _linear_draw(current, edge, u):
+    """A row between ``edge`` and ``current`` (excluded), probability growing
+    linearly from zero at ``current`` to its maximum at ``edge``."""
+    n = abs(edge - current)
+    if n == 0:
+        return current
+    target = u * (n * (n + 1) // 2)
+    m = 1
+    while m * (m + 1) // 2 < target and m < n:
+        m += 1
+    return current + m * (1 if edge > current else -1)
+
+
+@numba.njit(cache=True)
+def _edge_fix(X, U, start_row, height):
+    n, n_var = X.shape
+    for i in range(n):
+        r = start_row - X[i, 0]
+        for k in range(1, n_var):
+            t = r - X[i, k]
+            if t < 0:
+                t = _linear_draw(r, 0, U[i, k])
+                X[i, k] = r - t
+            elif t > height - 1:
+                t = _linear_draw(r, height - 1, U[i, k])
+                X[i, k] = r - t
+            r = t
+    return X
+
+
+class IntegerEncoding:
+    """Relative integer genes (the seeds' best scheme).
+
+    Parameters
+    ----------
+    frame : :class:`gapath.encodings.base.Frame` of the workspace.
+
+    Attributes
+    ----------
+    n_var : number of genes, ``n_cols - 1``.
+    xl, xu : integer bounds: gene 0 in ``[-(H-1-start_row), start_row]`` (only
+        moves that stay inside the start column), others in ``[-(H-1), H-1]``.
+    """
+
+    name = "integer"
+    vtype = int
+
+    def __init__(self, frame: Frame):
+        self.frame = frame
+        h = frame.height
+        sr = frame.start[0]
+        self.n_var = frame.n_cols - 1
+        self.xl = np.full(self.n_var, -(h - 1), dtype=np.int64)
+        self.xu = np.full(self.n_var, h - 1, dtype=np.int64)
+        self.xl[0] = -(h - 1 - sr)
+        self.xu[0] = sr
+
+    def _genes(self, X) -> np.ndarray:
+        X = np.atleast_2d(np.asarray(X))
+        if X.shape[1] != self.n_var:
+            raise ConfigError(f"integer genomes need {self.n_var} genes, got {X.shape[1]}")
+        return np.ascontiguousarray(np.rint(X).astype(np.int64))
+
+    def decode(self, X) -> tuple[np.ndarray, np.ndarray]:
+        """Column profiles ``(entries, exits)``, each ``(N, n_cols)``, of the
+        genomes ``X`` (N, n_var); values are rounded, moves past the grid
+        edge are clamped."""
+        f = self.frame
+        return _decode(self._genes(X), f.start[0], f.goal[0], f.height)
+
+    def encode(self, paths) -> np.ndarray:
+        """Genomes ``(N, n_var)`` of column-monotone paths (workspace cells).
+
+        Raises
+        ------
+        ConfigError
+            If a path is not column-monotone, or not representable (a
+            horizontal step followed by vertical steps, a diagonal followed
+            by vertical steps the other way, or an end that differs from the
+            end-fixing rule).
+        """
+        entries, exits = profiles_of_paths(self.frame, paths)
+        return self.encode_profiles(entries, exits)
+
+    def encode_profiles(self, entries, exits) -> np.ndarray:
+        sr = self.frame.start[0]
+        prev = np.concatenate([np.full((len(exits), 1), sr), exits[:, :-1]], axis=1)
+        expected = prev + np.sign(exits - prev)
+        expected[:, 0] = sr
+        bad = np.argwhere(entries != expected)
+        if len(bad):
+            i, k = bad[0]
+            raise ConfigError(
+                f"path {i} is not representable in the integer encoding at column {k}: "
+                f"it enters at row {entries[i, k]} where the encoding enters at row {expected[i, k]}")
+        return (prev - exits)[:, :-1].astype(np.int64)
+
+    def edge_fix(self, X, random_state: np.random.Generator) -> np.ndarray:
+        """The seeds' edge-fixing: a copy of ``X`` (rounded, within bounds)
+        in which every move that would leave the grid is replaced by a row
+        drawn with linear probability between the violated edge (highest)
+        and the current row (zero)."""
+        X = np.clip(self._genes(X), self.xl, self.xu)
+        U = random_state.random(X.shape)
+        return _edge_fix(X, U, self.frame.start[0], self.frame.height)
