@@ -124,7 +124,7 @@ class Workspace:
             if bad.any():
                 r, c = np.argwhere(bad)[0]
                 raise MapError(
-                    f"occupancy must be boolean (or 0/1), got {arr[r, c]!r} at (row {r}, col {c})")
+                    f"occupancy must be boolean (or 0/1), got {arr[r, c].item()!r} at (row {r}, col {c})")
             arr = arr.astype(bool)
         self._occ = np.ascontiguousarray(arr, dtype=np.bool_)
         self._occ.setflags(write=False)

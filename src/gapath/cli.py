@@ -1,0 +1,131 @@
+"""The ``gapath`` command line.
+
+``gapath solve MAP ...`` runs the seeds' NSGA-II on a map and writes
+``front.csv``, ``paths.json``, ``summary.json``, ``front.png`` and
+``paths.png``; ``gapath demo`` does so on the bundled scenario. Bad input
+prints one clear message and exits with status 2 (no traceback).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+from gapath.errors import ConfigError, GapathError
+
+
+def _cell(text: str) -> tuple[int, int]:
+    try:
+        r, c = (int(v) for v in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected ROW,COL (two integers), got {text!r}") from None
+    return r, c
+
+
+def _load(map_arg: str, start, goal, corner_cutting):
+    from gapath.workspace import default_workspace
+
+    kw = {} if corner_cutting is None else {"corner_cutting": corner_cutting}
+    if map_arg == "default":
+        ws = default_workspace()
+        changes = {k: v for k, v in (("start", start), ("goal", goal)) if v is not None}
+        return ws.replace(**changes, **kw) if changes or kw else ws
+    from gapath.loaders import load_map
+
+    return load_map(map_arg, start=start, goal=goal, **kw)
+
+
+def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str | None) -> None:
+    p.add_argument("--objectives", default="length,vulnerability",
+                   help="comma-separated objectives among length, vulnerability, smoothness "
+                        "(default: %(default)s)")
+    p.add_argument("--encoding", default="integer", help="genome encoding (default: %(default)s)")
+    p.add_argument("--constraints", choices=("penalty", "constraint"), default="penalty",
+                   help="obstacle handling (default: %(default)s)")
+    p.add_argument("--penalty", type=float, default=1000.0,
+                   help="penalty per interfering cell (default: %(default)s)")
+    p.add_argument("--tiebreak", choices=("smoothness", "none"), default="smoothness",
+                   help="tie-break inside a non-dominated rank (default: %(default)s)")
+    p.add_argument("--pop", type=int, default=pop, help="population size (default: %(default)s)")
+    p.add_argument("--gen", type=int, default=gen, help="generations (default: %(default)s)")
+    p.add_argument("--seed", type=int, default=1, help="random seed (default: %(default)s)")
+    p.add_argument("--out", default=out, help="output directory (default: %(default)s)")
+    p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
+    p.add_argument("--quiet", action="store_true", help="no progress bar or report")
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(
+        prog="gapath", description="Multi-objective grid path planning with pymoo.")
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("solve", help="run NSGA-II on a map and write its Pareto front")
+    p.add_argument("map", help="map file (.map, .yaml, .txt, .grid, .npy, .pgm, .png) "
+                               "or 'default' for the bundled 32x32 scenario")
+    p.add_argument("--start", type=_cell, help="start cell ROW,COL (default: bottom-left)")
+    p.add_argument("--goal", type=_cell, help="goal cell ROW,COL (default: top-right)")
+    cc = p.add_mutually_exclusive_group()
+    cc.add_argument("--corner-cutting", dest="corner_cutting", action="store_true", default=None,
+                    help="allow diagonal moves past blocked corners (the default)")
+    cc.add_argument("--no-corner-cutting", dest="corner_cutting", action="store_false",
+                    help="a diagonal move needs both orthogonal neighbours free (MovingAI)")
+    _add_run_options(p, pop=500, gen=500, out="gapath-out")
+
+    d = sub.add_parser("demo", help="the bundled scenario with the seeds' settings")
+    _add_run_options(d, pop=500, gen=500, out="gapath-demo")
+    return parser
+
+
+def _report(result, out_dir: Path) -> None:
+    front = result.front
+    print(f"{result.workspace!r}")
+    status = "interrupted after" if result.interrupted else "finished"
+    print(f"{status} {result.n_gen} generations, {result.n_eval} evaluations, "
+          f"{result.seconds:.1f} s; {len(front)} non-dominated feasible paths")
+    from gapath.plotting import marked_paths
+
+    for label, i in marked_paths(front).items():
+        values = ", ".join(f"{n}={v:.4f}" for n, v in zip(front.objectives, front.F[i]))
+        print(f"  {label:9s} {values}")
+    print(f"wrote {out_dir}/front.csv, paths.json, summary.json"
+          + ("" if result.settings.get("plots") is False else ", front.png, paths.png"))
+
+
+def _run(args, workspace) -> int:
+    from gapath.results import write_result
+    from gapath.solver import solve
+
+    result = solve(workspace, objectives=args.objectives, encoding=args.encoding,
+                   constraints=args.constraints, penalty=args.penalty, pop_size=args.pop,
+                   n_gen=args.gen, seed=args.seed,
+                   tiebreak=None if args.tiebreak == "none" else args.tiebreak,
+                   progress=not args.quiet)
+    out_dir = Path(args.out)
+    write_result(result, out_dir, plots=not args.no_plots)
+    if not args.quiet:
+        _report(result, out_dir)
+    return 130 if result.interrupted else 0
+
+
+def main(argv=None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        if args.command == "solve":
+            workspace = _load(args.map, args.start, args.goal, args.corner_cutting)
+        else:
+            from gapath.workspace import default_workspace
+
+            workspace = default_workspace()
+        return _run(args, workspace)
+    except GapathError as exc:
+        print(f"gapath: error: {exc}", file=sys.stderr)
+        return 2
+    except OSError as exc:
+        print(f"gapath: error: {exc}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,22 @@
+"""pymoo operators for grid paths: one operator per module."""
+
+from gapath.operators.crossover.discrete_sbx import DiscreteSBX
+from gapath.operators.duplicates import PathDuplicateElimination
+from gapath.operators.mutation.discrete_pm import DiscretePM
+from gapath.operators.repair.edge_fixing import EdgeFixingRepair
+from gapath.operators.selection.smoothness_tournament import (
+    SmoothnessTournament,
+    compare_rank_smoothness_crowding,
+)
+from gapath.operators.survival.rank_and_smoothness import RankAndSmoothnessSurvival, survival_order
+
+__all__ = [
+    "DiscretePM",
+    "DiscreteSBX",
+    "EdgeFixingRepair",
+    "PathDuplicateElimination",
+    "RankAndSmoothnessSurvival",
+    "SmoothnessTournament",
+    "compare_rank_smoothness_crowding",
+    "survival_order",
+]

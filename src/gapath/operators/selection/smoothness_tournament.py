@@ -1,0 +1,69 @@
+"""Vectorised binary tournament: feasibility, rank, smoothness, crowding."""
+
+from __future__ import annotations
+
+import numpy as np
+from pymoo.operators.selection.tournament import TournamentSelection
+
+from gapath.operators._columns import ColumnCache, column
+
+
+def tournament_keys(pop, tiebreak=True) -> list[tuple[np.ndarray, int]]:
+    """The comparison keys, most important first, as (values, sign) with
+    smaller ``sign * value`` better."""
+    keys = [(column(pop, "CV")[:, 0].astype(float), 1), (column(pop, "rank").astype(float), 1)]
+    if tiebreak:
+        smooth = column(pop, "smoothness")
+        if smooth is not None:
+            keys.append((smooth.astype(float), 1))
+    keys.append((column(pop, "crowding").astype(float), -1))
+    return keys
+
+
+def compare_rank_smoothness_crowding(pop, P, random_state=None, algorithm=None, tiebreak=True,
+                                     keys=None, **kwargs):
+    """Winners of binary tournaments ``P`` (n, 2), all at once.
+
+    Smaller constraint violation wins; between equals, smaller rank; then
+    (when ``tiebreak``) smaller smoothness; then larger crowding distance;
+    remaining ties are broken at random with ``random_state``.
+
+    Returns
+    -------
+    (n, 1) int array of winners.
+    """
+    if random_state is None:
+        random_state = algorithm.random_state if algorithm is not None else np.random.default_rng()
+    a, b = P[:, 0], P[:, 1]
+    if keys is None:
+        keys = tournament_keys(pop, tiebreak)
+    winner = np.full(len(P), -1)
+    for values, sign in keys:
+        undecided = winner < 0
+        da = sign * values[a]
+        db = sign * values[b]
+        winner[undecided & (da < db)] = a[undecided & (da < db)]
+        winner[undecided & (db < da)] = b[undecided & (db < da)]
+    undecided = winner < 0
+    coin = random_state.random(len(P)) < 0.5
+    winner[undecided] = np.where(coin, a, b)[undecided]
+    return winner[:, None]
+
+
+class SmoothnessTournament(TournamentSelection):
+    """Binary tournament of :func:`compare_rank_smoothness_crowding`.
+
+    Parameters
+    ----------
+    tiebreak : compare smoothness between equal ranks (default True).
+    """
+
+    def __init__(self, tiebreak: bool = True):
+        cache = ColumnCache()
+
+        def func_comp(pop, P, **kwargs):
+            keys = cache.get(pop, lambda p: tournament_keys(p, tiebreak))
+            return compare_rank_smoothness_crowding(pop, P, tiebreak=tiebreak, keys=keys, **kwargs)
+
+        super().__init__(func_comp=func_comp, pressure=2)
+        self.tiebreak = tiebreak

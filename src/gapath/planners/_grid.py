@@ -1,0 +1,277 @@
+"""Numba helpers shared by the grid planners (:mod:`.astar`, :mod:`.dstar_lite`).
+
+* the 8 moves in a fixed order (ties are broken the same way everywhere),
+* the move rule (inside the grid, target free, and with
+  ``corner_cutting=False`` both orthogonally adjacent cells free),
+* the octile distance and the other heuristics,
+* an *indexed* binary min-heap kept in preallocated arrays (cells and their
+  two keys in heap order, and ``pos[cell]``, the cell's slot), ordered by
+  ``(key1, key2, cell index)`` lexicographically, so ties are broken
+  deterministically,
+* input checks and the length/cost of a finished path.
+
+Everything here works in cell units; callers scale by ``cell_size``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numba
+import numpy as np
+
+from gapath.errors import ConfigError
+
+SQRT2 = math.sqrt(2.0)
+
+#: The 8 moves ``(dr, dc)``: E, NE, N, NW, W, SW, S, SE (counter-clockwise,
+#: row up = -1). Orthogonal moves have even indices.
+DR = np.array([0, -1, -1, -1, 0, 1, 1, 1], dtype=np.int64)
+DC = np.array([1, 1, 0, -1, -1, -1, 0, 1], dtype=np.int64)
+#: Length of each move in cell units.
+STEP = np.array([1.0, SQRT2, 1.0, SQRT2, 1.0, SQRT2, 1.0, SQRT2])
+
+
+#: Heuristic codes of the kernels.
+HEURISTICS = {"octile": 0, "euclidean": 1, "chebyshev": 2, "zero": 3}
+
+
+# ---------------------------------------------------------------------------
+# moves and distances
+# ---------------------------------------------------------------------------
+
+@numba.njit(cache=True, inline="always")
+def can_step(occ, r, c, dr, dc, corner_cutting):
+    """True if the move ``(r, c) -> (r + dr, c + dc)`` is allowed.
+
+    The target must be inside the grid and free; a diagonal move with
+    ``corner_cutting=False`` also needs both orthogonally adjacent cells
+    ``(r + dr, c)`` and ``(r, c + dc)`` free. The source is not checked.
+    """
+    h, w = occ.shape
+    r2 = r + dr
+    c2 = c + dc
+    if r2 < 0 or r2 >= h or c2 < 0 or c2 >= w:
+        return False
+    if occ[r2, c2]:
+        return False
+    if dr != 0 and dc != 0 and not corner_cutting:
+        if occ[r2, c] or occ[r, c2]:
+            return False
+    return True
+
+
+@numba.njit(cache=True, inline="always")
+def octile(r1, c1, r2, c2):
+    """Octile distance: the 8-connected shortest length on an empty grid."""
+    dr = abs(r1 - r2)
+    dc = abs(c1 - c2)
+    if dr < dc:
+        return dc + (SQRT2 - 1.0) * dr
+    return dr + (SQRT2 - 1.0) * dc
+
+
+@numba.njit(cache=True, inline="always")
+def heuristic(kind, r1, c1, r2, c2):
+    """Heuristic code ``kind`` (see :data:`HEURISTICS`) between two cells."""
+    if kind == 0:
+        return octile(r1, c1, r2, c2)
+    dr = abs(r1 - r2)
+    dc = abs(c1 - c2)
+    if kind == 1:
+        return math.sqrt(dr * dr + dc * dc)
+    if kind == 2:
+        return float(max(dr, dc))
+    return 0.0
+
+
+# ---------------------------------------------------------------------------
+# indexed binary heap on (key1, key2, node)
+# ---------------------------------------------------------------------------
+# The heap is three arrays in heap order -- ``hnode`` (cell index), ``hk1``,
+# ``hk2`` (its keys) -- so that sifting reads contiguous memory, plus
+# ``pos[node]``, the node's slot (callers mark nodes that are not in the heap
+# with negative values; pop and remove set -1). Keys compare
+# lexicographically, then the smaller node index wins: ties are deterministic.
+
+@numba.njit(cache=True, inline="always")
+def _before(a1, a2, an, b1, b2, bn):
+    if a1 != b1:
+        return a1 < b1
+    if a2 != b2:
+        return a2 < b2
+    return an < bn
+
+
+@numba.njit(cache=True)
+def heap_sift_up(hnode, hk1, hk2, pos, i):
+    node = hnode[i]
+    k1 = hk1[i]
+    k2 = hk2[i]
+    while i > 0:
+        parent = (i - 1) >> 1
+        if not _before(k1, k2, node, hk1[parent], hk2[parent], hnode[parent]):
+            break
+        hnode[i] = hnode[parent]
+        hk1[i] = hk1[parent]
+        hk2[i] = hk2[parent]
+        pos[hnode[i]] = i
+        i = parent
+    hnode[i] = node
+    hk1[i] = k1
+    hk2[i] = k2
+    pos[node] = i
+
+
+@numba.njit(cache=True)
+def heap_sift_down(hnode, hk1, hk2, pos, i, size):
+    node = hnode[i]
+    k1 = hk1[i]
+    k2 = hk2[i]
+    while True:
+        child = 2 * i + 1
+        if child >= size:
+            break
+        right = child + 1
+        if right < size and _before(hk1[right], hk2[right], hnode[right],
+                                    hk1[child], hk2[child], hnode[child]):
+            child = right
+        if not _before(hk1[child], hk2[child], hnode[child], k1, k2, node):
+            break
+        hnode[i] = hnode[child]
+        hk1[i] = hk1[child]
+        hk2[i] = hk2[child]
+        pos[hnode[i]] = i
+        i = child
+    hnode[i] = node
+    hk1[i] = k1
+    hk2[i] = k2
+    pos[node] = i
+
+
+@numba.njit(cache=True)
+def heap_push(hnode, hk1, hk2, pos, size, node, k1, k2):
+    """Insert ``node`` with key ``(k1, k2)``; return the new size."""
+    hnode[size] = node
+    hk1[size] = k1
+    hk2[size] = k2
+    heap_sift_up(hnode, hk1, hk2, pos, size)
+    return size + 1
+
+
+@numba.njit(cache=True)
+def heap_pop(hnode, hk1, hk2, pos, size):
+    """Remove the smallest node; return ``(node, new size)``."""
+    top = hnode[0]
+    pos[top] = -1
+    size -= 1
+    if size > 0:
+        hnode[0] = hnode[size]
+        hk1[0] = hk1[size]
+        hk2[0] = hk2[size]
+        heap_sift_down(hnode, hk1, hk2, pos, 0, size)
+    return top, size
+
+
+@numba.njit(cache=True)
+def heap_update(hnode, hk1, hk2, pos, size, node, k1, k2):
+    """Give ``node`` (in the heap) the key ``(k1, k2)``."""
+    i = pos[node]
+    hk1[i] = k1
+    hk2[i] = k2
+    heap_sift_up(hnode, hk1, hk2, pos, i)
+    heap_sift_down(hnode, hk1, hk2, pos, pos[node], size)
+
+
+@numba.njit(cache=True)
+def heap_decrease(hnode, hk1, hk2, pos, node, k1, k2):
+    """Give ``node`` (in the heap) a key that is not larger than its old one."""
+    i = pos[node]
+    hk1[i] = k1
+    hk2[i] = k2
+    heap_sift_up(hnode, hk1, hk2, pos, i)
+
+
+@numba.njit(cache=True)
+def heap_remove(hnode, hk1, hk2, pos, size, node):
+    """Remove ``node`` (in the heap); return the new size."""
+    i = pos[node]
+    pos[node] = -1
+    size -= 1
+    if i < size:
+        hnode[i] = hnode[size]
+        hk1[i] = hk1[size]
+        hk2[i] = hk2[size]
+        moved = hnode[i]
+        pos[moved] = i
+        heap_sift_up(hnode, hk1, hk2, pos, i)
+        heap_sift_down(hnode, hk1, hk2, pos, pos[moved], size)
+    return size
+
+
+# ---------------------------------------------------------------------------
+# finished paths
+# ---------------------------------------------------------------------------
+
+@numba.njit(cache=True)
+def step_counts(path):
+    """``(n_straight, n_diagonal)`` of a path of 8-adjacent cells."""
+    n_straight = 0
+    n_diagonal = 0
+    for i in range(1, path.shape[0]):
+        if path[i, 0] != path[i - 1, 0] and path[i, 1] != path[i - 1, 1]:
+            n_diagonal += 1
+        else:
+            n_straight += 1
+    return n_straight, n_diagonal
+
+
+@numba.njit(cache=True)
+def layer_path_cost(path, cost):
+    """Cost of a path under a cost layer, in cell units, summed from the
+    start: each step costs its length times ``1 + (cost[a] + cost[b]) / 2``."""
+    total = 0.0
+    for i in range(1, path.shape[0]):
+        r0, c0 = path[i - 1, 0], path[i - 1, 1]
+        r1, c1 = path[i, 0], path[i, 1]
+        step = SQRT2 if (r0 != r1 and c0 != c1) else 1.0
+        total += step * (1.0 + 0.5 * (cost[r0, c0] + cost[r1, c1]))
+    return total
+
+
+def path_length(path: np.ndarray, cell_size: float) -> float:
+    """Euclidean length from the integer step counts (SPEC), so that paths
+    with the same counts get bit-identical lengths."""
+    n_straight, n_diagonal = step_counts(path)
+    return (n_straight + SQRT2 * n_diagonal) * cell_size
+
+
+# ---------------------------------------------------------------------------
+# input checks
+# ---------------------------------------------------------------------------
+
+def check_cell(value, name: str, occ: np.ndarray) -> tuple[int, int]:
+    """``value`` as a ``(row, col)`` tuple of a free cell of ``occ``.
+
+    Raises
+    ------
+    ConfigError
+        If it is not a pair of integers, is outside the grid or is on an
+        obstacle.
+    """
+    try:
+        vals = [v for v in value]
+        if len(vals) != 2:
+            raise ValueError
+        r, c = (int(v) for v in vals)
+        if any(isinstance(v, (bool, np.bool_)) or float(v) != int(v) for v in vals):
+            raise ValueError
+    except (TypeError, ValueError, OverflowError):
+        raise ConfigError(f"{name} must be a (row, col) pair of integers, got {value!r}") from None
+    h, w = occ.shape
+    if not (0 <= r < h and 0 <= c < w):
+        raise ConfigError(
+            f"{name} {(r, c)} is outside the {h}x{w} grid (rows 0..{h - 1}, cols 0..{w - 1})")
+    if occ[r, c]:
+        raise ConfigError(f"{name} {(r, c)} is on an obstacle")
+    return r, c

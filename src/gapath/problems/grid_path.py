@@ -1,0 +1,125 @@
+"""The grid path problem as a vectorised pymoo ``Problem``."""
+
+from __future__ import annotations
+
+import numpy as np
+from pymoo.core.problem import Problem
+
+from gapath.encodings import expand_profiles, make_encoding, split_paths
+from gapath.encodings.base import Frame
+from gapath.errors import ConfigError
+from gapath.objectives import INTERFERING, OBJECTIVES, SMOOTHNESS, objective_index
+
+#: Metrics that may be objectives (``interfering`` is the constraint).
+OBJECTIVE_NAMES = ("length", "vulnerability", "smoothness")
+CONSTRAINT_MODES = ("penalty", "constraint")
+
+
+class GridPathProblem(Problem):
+    """Multi-objective path planning over column-monotone paths.
+
+    Each row of ``X`` is a genome of the chosen encoding; evaluation decodes
+    the whole population at once and runs the numba objective kernel (no
+    per-individual Python code).
+
+    Parameters
+    ----------
+    workspace : :class:`gapath.Workspace`.
+    objectives : names among ``length``, ``vulnerability``, ``smoothness``
+        (a sequence or a comma-separated string).
+    encoding : ``"integer"`` (more in :data:`gapath.encodings.ENCODINGS`).
+    constraints : ``"penalty"`` (the seeds' default: every objective gets
+        ``penalty * interfering`` added) or ``"constraint"`` (``interfering``
+        is returned as the inequality constraint ``G``; feasible when 0).
+    penalty : penalty per interfering cell (default 1000).
+
+    Outputs
+    -------
+    ``F`` (N, n_obj); ``G`` (N, 1) in constraint mode; per individual also
+    ``smoothness`` (total turn, radians) and ``interfering`` (count), kept by
+    pymoo on the individuals (``pop.get("smoothness")``).
+
+    Raises
+    ------
+    ConfigError
+        On an unknown objective, encoding or constraint mode, or a negative
+        penalty.
+
+    Examples
+    --------
+    >>> from gapath import default_workspace
+    >>> problem = GridPathProblem(default_workspace())
+    >>> problem.n_var, problem.n_obj
+    (31, 2)
+    """
+
+    def __init__(self, workspace, objectives=("length", "vulnerability"), encoding="integer",
+                 constraints="penalty", penalty=1000.0, **kwargs):
+        names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
+        names = [n.strip() for n in names]
+        for n in names:
+            if n not in OBJECTIVE_NAMES:
+                raise ConfigError(
+                    f"unknown objective {n!r}; expected some of {', '.join(OBJECTIVE_NAMES)}")
+        self.objectives = tuple(names)
+        self._obj_idx = objective_index(self.objectives)
+        if constraints not in CONSTRAINT_MODES:
+            raise ConfigError(
+                f"unknown constraint handling {constraints!r}; expected one of {', '.join(CONSTRAINT_MODES)}")
+        try:
+            penalty = float(penalty)
+        except (TypeError, ValueError):
+            raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}") from None
+        if not np.isfinite(penalty) or penalty < 0:
+            raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}")
+        self.workspace = workspace
+        self.frame = Frame.of(workspace)
+        self.encoding = make_encoding(encoding, self.frame)
+        self.constraints = constraints
+        self.penalty = penalty
+        super().__init__(n_var=self.encoding.n_var, n_obj=len(self.objectives),
+                         n_ieq_constr=1 if constraints == "constraint" else 0,
+                         xl=self.encoding.xl, xu=self.encoding.xu,
+                         vtype=self.encoding.vtype, **kwargs)
+
+    # -- evaluation --------------------------------------------------------
+    def metrics(self, X) -> np.ndarray:
+        """All per-path metrics ``(N, 4)`` in :data:`gapath.objectives.OBJECTIVES`
+        order (length, vulnerability, smoothness, interfering), unpenalised."""
+        entries, exits = self.encoding.decode(X)
+        return self.frame.evaluate(entries, exits)
+
+    def _evaluate(self, X, out, *args, **kwargs):
+        M = self.metrics(X)
+        F = M[:, self._obj_idx]
+        interfering = M[:, INTERFERING]
+        if self.constraints == "penalty":
+            F = F + self.penalty * interfering[:, None]
+        else:
+            out["G"] = interfering[:, None]
+        out["F"] = F
+        out["smoothness"] = M[:, SMOOTHNESS]
+        out["interfering"] = interfering
+
+    # -- genomes <-> paths ---------------------------------------------------
+    def decode(self, X) -> list[np.ndarray]:
+        """The paths ``[(m_i, 2) int arrays]`` (workspace cells) of genomes
+        ``X`` (one genome or a matrix)."""
+        entries, exits = self.encoding.decode(X)
+        return split_paths(*expand_profiles(self.frame, entries, exits))
+
+    def encode(self, paths) -> np.ndarray:
+        """Genomes of column-monotone paths (see the encoding's ``encode``)."""
+        return self.encoding.encode(paths)
+
+    def objective_values(self, metrics: np.ndarray) -> np.ndarray:
+        """The unpenalised objective columns of a ``metrics`` matrix."""
+        return metrics[:, self._obj_idx]
+
+    def __repr__(self) -> str:
+        return (f"GridPathProblem({self.workspace.name!r}, objectives={self.objectives}, "
+                f"encoding={self.encoding.name!r}, constraints={self.constraints!r}, "
+                f"penalty={self.penalty:g}, n_var={self.n_var})")
+
+
+__all__ = ["GridPathProblem", "OBJECTIVES", "OBJECTIVE_NAMES"]

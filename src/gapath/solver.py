@@ -1,0 +1,116 @@
+"""One GA run on a workspace, from settings to a front (the CLI's engine)."""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+from pymoo.optimize import minimize
+
+from gapath.algorithms import paper_nsga2
+from gapath.errors import ConfigError
+from gapath.front import PathFront, path_front
+from gapath.problems import GridPathProblem
+from gapath.progress import Callbacks, ProgressBar
+
+
+@dataclass(eq=False)
+class SolveResult:
+    """What :func:`solve` returns.
+
+    Attributes
+    ----------
+    workspace, problem : what was solved.
+    front : the feasible non-dominated paths (:class:`gapath.front.PathFront`).
+    settings : the run's settings (JSON-serialisable).
+    seconds : wall time of the optimisation.
+    n_eval : evaluations made.
+    n_gen : generations completed.
+    interrupted : True when the run was stopped (Ctrl-C) and ``front`` is
+        that of the last complete generation.
+    """
+
+    workspace: object
+    problem: GridPathProblem
+    front: PathFront
+    settings: dict
+    seconds: float
+    n_eval: int
+    n_gen: int
+    interrupted: bool = False
+    pymoo_result: object = field(default=None, repr=False)
+
+
+def _positive_int(value, name):
+    try:
+        v = int(value)
+        if v != float(value):
+            raise ValueError
+    except (TypeError, ValueError):
+        raise ConfigError(f"{name} must be a positive integer, got {value!r}") from None
+    if v <= 0:
+        raise ConfigError(f"{name} must be a positive integer, got {value!r}")
+    return v
+
+
+def solve(workspace, *, objectives=("length", "vulnerability"), encoding="integer",
+          constraints="penalty", penalty=1000.0, pop_size=500, n_gen=500, seed=1,
+          tiebreak="smoothness", progress=False, callback=None) -> SolveResult:
+    """Run the seeds' NSGA-II on ``workspace`` and return its front.
+
+    Parameters
+    ----------
+    workspace : :class:`gapath.Workspace`.
+    objectives, encoding, constraints, penalty : see
+        :class:`gapath.problems.GridPathProblem`.
+    pop_size, n_gen : population size and generations (seeds: 500 x 500).
+    seed : random seed; the same seed gives the same front, bit for bit.
+    tiebreak : ``"smoothness"`` or ``None`` (see :func:`gapath.algorithms.paper_nsga2`).
+    progress : show a live progress bar on stderr.
+    callback : an extra pymoo ``Callback`` notified every generation.
+
+    Raises
+    ------
+    ConfigError
+        On invalid settings.
+
+    Examples
+    --------
+    >>> from gapath import default_workspace
+    >>> r = solve(default_workspace(), pop_size=20, n_gen=3)
+    >>> r.n_gen
+    3
+    """
+    pop_size = _positive_int(pop_size, "pop_size")
+    n_gen = _positive_int(n_gen, "n_gen")
+    seed = int(seed)
+    problem = GridPathProblem(workspace, objectives=objectives, encoding=encoding,
+                              constraints=constraints, penalty=penalty)
+    algorithm = paper_nsga2(pop_size, tiebreak=tiebreak)
+    bar = ProgressBar(n_gen, disable=not progress)
+    callbacks = Callbacks(bar) if callback is None else Callbacks(bar, callback)
+
+    settings = dict(map=workspace.name, shape=list(workspace.shape), start=list(workspace.start),
+                    goal=list(workspace.goal), cell_size=workspace.cell_size,
+                    corner_cutting=workspace.corner_cutting, objectives=list(problem.objectives),
+                    encoding=encoding, constraints=constraints, penalty=problem.penalty,
+                    pop_size=pop_size, n_gen=n_gen, seed=seed, tiebreak=tiebreak,
+                    algorithm="paper_nsga2")
+    t0 = time.perf_counter()
+    interrupted = False
+    res = None
+    try:
+        res = minimize(problem, algorithm, ("n_gen", n_gen), seed=seed, callback=callbacks,
+                       copy_algorithm=False)
+        pop = res.pop
+    except KeyboardInterrupt:
+        interrupted = True
+        pop = algorithm.pop
+    finally:
+        bar.close()
+    seconds = time.perf_counter() - t0
+    X = np.empty((0, problem.n_var)) if pop is None else pop.get("X")
+    front = path_front(problem, X)
+    return SolveResult(workspace, problem, front, settings, seconds,
+                       int(algorithm.evaluator.n_eval), bar.last_gen, interrupted, res)

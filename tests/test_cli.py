@@ -1,0 +1,102 @@
+import csv
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from gapath.cli import main
+from gapath.objectives import evaluate_path
+from gapath.loaders import load_text
+
+
+@pytest.fixture
+def text_map(tmp_path):
+    rows = ["..........",
+            "...#......",
+            "......#...",
+            "..#.......",
+            ".....#..#.",
+            ".#........",
+            "....#.....",
+            ".........."]
+    p = tmp_path / "small.txt"
+    p.write_text("\n".join(rows) + "\n")
+    return p
+
+
+def test_solve_writes_all_outputs(text_map, tmp_path, capsys):
+    out = tmp_path / "run"
+    code = main(["solve", str(text_map), "--pop", "30", "--gen", "10", "--seed", "2",
+                 "--out", str(out)])
+    assert code == 0
+    for name in ("front.csv", "paths.json", "summary.json", "front.png", "paths.png"):
+        assert (out / name).stat().st_size > 0, name
+    rows = list(csv.reader((out / "front.csv").open()))
+    assert rows[0] == ["length", "vulnerability"]
+    records = json.loads((out / "paths.json").read_text())
+    assert len(records) == len(rows) - 1 >= 1
+    ws = load_text(text_map)
+    for rec, row in zip(records, rows[1:]):
+        m = evaluate_path(ws, rec["path"])
+        assert m["interfering"] == 0
+        assert rec["objectives"]["length"] == pytest.approx(m["length"], rel=1e-12)
+        assert float(row[1]) == pytest.approx(m["vulnerability"], rel=1e-12)
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["settings"]["pop_size"] == 30 and summary["settings"]["seed"] == 2
+    assert summary["evaluations"] >= 30 * 10
+    assert {"gapath", "pymoo", "numpy", "numba", "python"} <= set(summary["versions"])
+    assert "shortest" in capsys.readouterr().out
+
+
+def test_solve_is_reproducible(text_map, tmp_path):
+    for d in ("a", "b"):
+        assert main(["solve", str(text_map), "--pop", "20", "--gen", "6", "--out",
+                     str(tmp_path / d), "--quiet", "--no-plots"]) == 0
+    for name in ("front.csv", "paths.json"):
+        assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes()
+
+
+def test_solve_three_objectives_and_start_goal(text_map, tmp_path):
+    out = tmp_path / "three"
+    assert main(["solve", str(text_map), "--objectives", "length,vulnerability,smoothness",
+                 "--start", "7,1", "--goal", "0,8", "--tiebreak", "none", "--constraints",
+                 "constraint", "--pop", "20", "--gen", "5", "--out", str(out), "--quiet"]) == 0
+    rows = list(csv.reader((out / "front.csv").open()))
+    assert rows[0] == ["length", "vulnerability", "smoothness"]
+    rec = json.loads((out / "paths.json").read_text())[0]
+    assert rec["path"][0] == [7, 1] and rec["path"][-1] == [0, 8]
+
+
+@pytest.mark.parametrize("args,message", [
+    (["solve", "missing.map"], "missing.map"),
+    (["solve", "{map}", "--start", "9,0"], "start (9, 0) is outside the 8x10 grid"),
+    (["solve", "{map}", "--goal", "1,3"], "goal (1, 3) is on an obstacle"),
+    (["solve", "{map}", "--objectives", "length,speed"], "unknown objective 'speed'"),
+    (["solve", "{map}", "--pop", "0"], "pop_size must be a positive integer"),
+    (["solve", "{map}", "--gen", "-3"], "n_gen must be a positive integer"),
+    (["solve", "{map}", "--encoding", "gray"], "unknown encoding 'gray'"),
+    (["solve", "{bad}"], "line 2"),
+])
+def test_bad_input_exits_2_with_a_clear_message(args, message, text_map, tmp_path, capsys):
+    bad = tmp_path / "bad.txt"
+    bad.write_text("....\n..x.\n....\n")
+    args = [a.format(map=text_map, bad=bad) for a in args]
+    assert main(args + ["--out", str(tmp_path / "o"), "--quiet"]) == 2
+    err = capsys.readouterr().err
+    assert message in err
+    assert "Traceback" not in err
+
+
+def test_cli_process_has_no_traceback(tmp_path):
+    bad = tmp_path / "ragged.map"
+    bad.write_text("type octile\nheight 2\nwidth 3\nmap\n...\n..\n")
+    proc = subprocess.run([sys.executable, "-m", "gapath.cli", "solve", str(bad)],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2
+    assert "ragged.map" in proc.stderr and "line 6" in proc.stderr
+    assert "Traceback" not in proc.stderr
+    proc = subprocess.run([sys.executable, "-m", "gapath.cli", "solve", "default", "--start", "x"],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2 and "ROW,COL" in proc.stderr
