@@ -74,6 +74,10 @@ def build_parser() -> argparse.ArgumentParser:
 
     d = sub.add_parser("demo", help="the bundled scenario with the seeds' settings")
     _add_run_options(d, pop=500, gen=500, out="gapath-demo")
+
+    from gapath.commands import register_all
+
+    register_all(sub)
     return parser
 
 
@@ -112,6 +116,8 @@ def main(argv=None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
+        if getattr(args, "func", None) is not None:
+            return args.func(args)
         if args.command == "solve":
             workspace = _load(args.map, args.start, args.goal, args.corner_cutting)
         else:
