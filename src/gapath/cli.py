@@ -47,6 +47,10 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
                    help="penalty per interfering cell (default: %(default)s)")
     p.add_argument("--tiebreak", choices=("smoothness", "none"), default="smoothness",
                    help="tie-break inside a non-dominated rank (default: %(default)s)")
+    p.add_argument("--seed-from", choices=("weighted", "exact", "none"), default="weighted",
+                   help="initial population: shortest, safest and weighted-sum monotone paths "
+                        "plus random ones (weighted), the exact monotone front (exact), or all "
+                        "random as in the seeds' protocol (none) (default: %(default)s)")
     p.add_argument("--pop", type=int, default=pop, help="population size (default: %(default)s)")
     p.add_argument("--gen", type=int, default=gen, help="generations (default: %(default)s)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default: %(default)s)")
@@ -104,7 +108,7 @@ def _run(args, workspace) -> int:
                    constraints=args.constraints, penalty=args.penalty, pop_size=args.pop,
                    n_gen=args.gen, seed=args.seed,
                    tiebreak=None if args.tiebreak == "none" else args.tiebreak,
-                   progress=not args.quiet)
+                   seed_from=args.seed_from, progress=not args.quiet)
     out_dir = Path(args.out)
     write_result(result, out_dir, plots=not args.no_plots)
     if not args.quiet:

@@ -11,6 +11,7 @@ from pymoo.optimize import minimize
 from gapath.algorithms import paper_nsga2
 from gapath.errors import ConfigError
 from gapath.front import PathFront, path_front
+from gapath.operators import PlannerSampling
 from gapath.problems import GridPathProblem
 from gapath.progress import Callbacks, ProgressBar
 
@@ -56,7 +57,8 @@ def _positive_int(value, name):
 
 def solve(workspace, *, objectives=("length", "vulnerability"), encoding="integer",
           constraints="penalty", penalty=1000.0, pop_size=500, n_gen=500, seed=1,
-          tiebreak="smoothness", progress=False, callback=None) -> SolveResult:
+          tiebreak="smoothness", seed_from="weighted", progress=False,
+          callback=None) -> SolveResult:
     """Run the seeds' NSGA-II on ``workspace`` and return its front.
 
     Parameters
@@ -67,6 +69,10 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     pop_size, n_gen : population size and generations (seeds: 500 x 500).
     seed : random seed; the same seed gives the same front, bit for bit.
     tiebreak : ``"smoothness"`` or ``None`` (see :func:`gapath.algorithms.paper_nsga2`).
+    seed_from : initial population: ``"weighted"`` (default: the shortest,
+        the safest and weighted-sum optimal monotone paths, the rest random),
+        ``"exact"`` (the exact monotone front) or ``"none"`` (all random: the
+        seeds' protocol). See :class:`gapath.operators.PlannerSampling`.
     progress : show a live progress bar on stderr.
     callback : an extra pymoo ``Callback`` notified every generation.
 
@@ -87,7 +93,8 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     seed = int(seed)
     problem = GridPathProblem(workspace, objectives=objectives, encoding=encoding,
                               constraints=constraints, penalty=penalty)
-    algorithm = paper_nsga2(pop_size, tiebreak=tiebreak)
+    algorithm = paper_nsga2(pop_size, tiebreak=tiebreak,
+                            sampling=None if seed_from == "none" else PlannerSampling(seed_from))
     bar = ProgressBar(n_gen, disable=not progress)
     callbacks = Callbacks(bar) if callback is None else Callbacks(bar, callback)
 
@@ -96,7 +103,7 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
                     corner_cutting=workspace.corner_cutting, objectives=list(problem.objectives),
                     encoding=encoding, constraints=constraints, penalty=problem.penalty,
                     pop_size=pop_size, n_gen=n_gen, seed=seed, tiebreak=tiebreak,
-                    algorithm="paper_nsga2")
+                    seed_from=seed_from, algorithm="paper_nsga2")
     t0 = time.perf_counter()
     interrupted = False
     res = None

@@ -5,11 +5,16 @@ Every encoding turns a genome matrix ``X`` (N, n_var) into column profiles
 genomes with ``encode``, and offers the seeds' edge-fixing as ``edge_fix``.
 """
 
+from gapath.encodings.absolute import AbsoluteEncoding
 from gapath.encodings.base import Frame, expand_profiles, profiles_of_paths, split_paths
+from gapath.encodings.binary import BinaryEncoding
 from gapath.encodings.integer import IntegerEncoding
+from gapath.encodings.mixed import MixedEncoding
 from gapath.errors import ConfigError
 
-ENCODINGS = {"integer": IntegerEncoding}
+#: Encoding classes by name (the seeds' four schemes, section 2).
+ENCODINGS = {"integer": IntegerEncoding, "binary": BinaryEncoding, "mixed": MixedEncoding,
+             "absolute": AbsoluteEncoding}
 
 
 def make_encoding(name: str, frame: Frame):
@@ -28,5 +33,5 @@ def make_encoding(name: str, frame: Frame):
     return cls(frame)
 
 
-__all__ = ["ENCODINGS", "Frame", "IntegerEncoding", "expand_profiles", "make_encoding",
-           "profiles_of_paths", "split_paths"]
+__all__ = ["ENCODINGS", "AbsoluteEncoding", "BinaryEncoding", "Frame", "IntegerEncoding",
+           "MixedEncoding", "expand_profiles", "make_encoding", "profiles_of_paths", "split_paths"]

@@ -4,6 +4,7 @@ from gapath.operators.crossover.discrete_sbx import DiscreteSBX
 from gapath.operators.duplicates import PathDuplicateElimination
 from gapath.operators.mutation.discrete_pm import DiscretePM
 from gapath.operators.repair.edge_fixing import EdgeFixingRepair
+from gapath.operators.sampling.planner_sampling import PlannerSampling
 from gapath.operators.selection.smoothness_tournament import (
     SmoothnessTournament,
     compare_rank_smoothness_crowding,
@@ -15,6 +16,7 @@ __all__ = [
     "DiscreteSBX",
     "EdgeFixingRepair",
     "PathDuplicateElimination",
+    "PlannerSampling",
     "RankAndSmoothnessSurvival",
     "SmoothnessTournament",
     "compare_rank_smoothness_crowding",

@@ -1,0 +1,118 @@
+"""Seeding a GA population with planner paths."""
+
+from __future__ import annotations
+
+import numpy as np
+from pymoo.core.sampling import Sampling
+from pymoo.operators.sampling.rnd import IntegerRandomSampling
+
+from gapath.errors import ConfigError, NoPathError
+from gapath.operators.duplicates import duplicate_mask
+
+#: What :class:`PlannerSampling` can seed from.
+SEED_SOURCES = ("weighted", "exact", "none")
+
+
+def planner_paths(workspace, source: str, objectives=("length", "vulnerability"),
+                  n_weights: int = 9) -> list[np.ndarray]:
+    """Seed paths for ``source``:
+
+    * ``"weighted"``: the shortest, the safest and weighted-sum optimal
+      column-monotone paths (:func:`gapath.planners.weighted_sum.weighted_sum_paths`);
+    * ``"exact"``: every path of the exact monotone front for ``objectives``;
+    * ``"none"``: no paths.
+
+    A workspace without a feasible column-monotone path gives no seeds.
+    """
+    if source not in SEED_SOURCES:
+        raise ConfigError(f"unknown seed source {source!r}; expected one of {', '.join(SEED_SOURCES)}")
+    try:
+        if source == "weighted":
+            from gapath.planners.weighted_sum import weighted_sum_paths
+
+            return weighted_sum_paths(workspace, n_weights)
+        if source == "exact":
+            from gapath.planners.exact import monotone_front
+
+            return list(monotone_front(workspace, objectives).paths)
+    except NoPathError:
+        pass
+    return []
+
+
+class PlannerSampling(Sampling):
+    """Initial population from planner paths, the rest random, all distinct.
+
+    The planner paths are encoded into the problem's encoding (at most
+    ``max_share`` of the population); the remaining individuals are drawn
+    at random, edge-fixed with pymoo's ``random_state`` and kept only if
+    they decode to a path not yet in the population, so duplicate
+    elimination never shrinks the population below its size.
+
+    Parameters
+    ----------
+    source : ``"weighted"`` (default), ``"exact"`` or ``"none"``
+        (see :func:`planner_paths`).
+    n_weights : number of weighted-sum paths for ``"weighted"``.
+    max_share : largest share of the population taken by planner paths.
+    random : the sampling of the random part (default: uniform integers in
+        the problem's bounds).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gapath import default_workspace
+    >>> from gapath.problems import GridPathProblem
+    >>> p = GridPathProblem(default_workspace())
+    >>> X = PlannerSampling()._do(p, 50, random_state=np.random.default_rng(1))
+    >>> X.shape
+    (50, 31)
+    """
+
+    def __init__(self, source: str = "weighted", n_weights: int = 9, max_share: float = 0.5,
+                 random: Sampling | None = None):
+        super().__init__()
+        if source not in SEED_SOURCES:
+            raise ConfigError(f"unknown seed source {source!r}; expected one of {', '.join(SEED_SOURCES)}")
+        self.source = source
+        self.n_weights = n_weights
+        self.max_share = max_share
+        self.random = random
+
+    def _random_sampling(self, problem) -> Sampling:
+        if self.random is not None:
+            return self.random
+        try:
+            from gapath.operators.defaults import default_operators
+
+            return default_operators(problem.encoding.name)["sampling"]
+        except (ImportError, KeyError):
+            return IntegerRandomSampling()
+
+    def _do(self, problem, n_samples, random_state=None, **kwargs):
+        if random_state is None:
+            random_state = np.random.default_rng()
+        encoding = problem.encoding
+        paths = planner_paths(problem.workspace, self.source, problem.objectives, self.n_weights)
+        X = np.empty((0, problem.n_var), dtype=np.int64)
+        if paths:
+            X = encoding.encode(paths)
+            X = X[: max(1, int(self.max_share * n_samples))]
+        X = X.astype(np.int64)
+
+        def keys(A):
+            entries, exits = encoding.decode(A)
+            return np.concatenate([entries, exits], axis=1)
+
+        X = X[~duplicate_mask(keys(X))] if len(X) else X
+        sampling = self._random_sampling(problem)
+        for _ in range(100):
+            missing = n_samples - len(X)
+            if missing <= 0:
+                break
+            R = sampling._do(problem, 2 * missing, random_state=random_state)
+            R = encoding.edge_fix(R, random_state).astype(X.dtype)
+            R = R[~duplicate_mask(keys(R), keys(X) if len(X) else None)]
+            R = R[~duplicate_mask(keys(R))][:missing]
+            X = np.concatenate([X, R])
+        return X
