@@ -100,3 +100,36 @@ def test_cli_process_has_no_traceback(tmp_path):
     proc = subprocess.run([sys.executable, "-m", "gapath.cli", "solve", "default", "--start", "x"],
                           capture_output=True, text=True)
     assert proc.returncode == 2 and "ROW,COL" in proc.stderr
+
+
+def test_exact_command_and_reference(text_map, tmp_path, capsys):
+    ex = tmp_path / "exact"
+    assert main(["exact", str(text_map), "--out", str(ex), "--quiet"]) == 0
+    rows = list(csv.reader((ex / "front.csv").open()))
+    assert rows[0] == ["length", "vulnerability"] and len(rows) > 1
+    assert (ex / "paths.png").exists()
+    ws = load_text(text_map)
+    for rec in json.loads((ex / "paths.json").read_text()):
+        assert evaluate_path(ws, rec["path"])["interfering"] == 0
+    run = tmp_path / "run"
+    assert main(["solve", str(text_map), "--pop", "40", "--gen", "10", "--out", str(run),
+                 "--reference", str(ex / "front.csv"), "--quiet", "--no-plots"]) == 0
+    q = json.loads((run / "summary.json").read_text())["quality"]
+    assert 0.0 < q["hv_ratio"] <= 1.0 + 1e-9
+    assert q["reference_size"] == len(rows) - 1
+    assert main(["solve", str(text_map), "--pop", "40", "--gen", "5", "--out", str(run),
+                 "--reference", "monotone", "--quiet", "--no-plots"]) == 0
+    q2 = json.loads((run / "summary.json").read_text())["quality"]
+    assert q2["reference"] == "monotone" and q2["reference_size"] == q["reference_size"]
+
+
+def test_reference_file_errors(text_map, tmp_path, capsys):
+    bad = tmp_path / "front.csv"
+    bad.write_text("length,smoothness\n1,2\n")
+    assert main(["solve", str(text_map), "--pop", "10", "--gen", "2", "--out", str(tmp_path / "o"),
+                 "--reference", str(bad), "--quiet", "--no-plots"]) == 2
+    assert "reference front has objectives" in capsys.readouterr().err
+    bad.write_text("length,vulnerability\n1,x\n")
+    assert main(["solve", str(text_map), "--pop", "10", "--gen", "2", "--out", str(tmp_path / "o"),
+                 "--reference", str(bad), "--quiet", "--no-plots"]) == 2
+    assert "line 2" in capsys.readouterr().err

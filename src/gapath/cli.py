@@ -55,6 +55,10 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
     p.add_argument("--gen", type=int, default=gen, help="generations (default: %(default)s)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default: %(default)s)")
     p.add_argument("--out", default=out, help="output directory (default: %(default)s)")
+    p.add_argument("--reference", metavar="monotone|free|FILE",
+                   help="judge the front against the exact monotone front, the exact free front "
+                        "or a front.csv: adds hypervolume ratio, IGD+ and the share of reference "
+                        "points found to summary.json")
     p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
     p.add_argument("--quiet", action="store_true", help="no progress bar or report")
 
@@ -109,10 +113,20 @@ def _run(args, workspace) -> int:
                    n_gen=args.gen, seed=args.seed,
                    tiebreak=None if args.tiebreak == "none" else args.tiebreak,
                    seed_from=args.seed_from, progress=not args.quiet)
+    extra = {}
+    if args.reference:
+        from gapath.reference import front_quality, reference_front
+
+        ref = reference_front(workspace, result.problem.objectives, args.reference)
+        extra["quality"] = {"reference": str(args.reference), **front_quality(result.front.F, ref)}
     out_dir = Path(args.out)
-    write_result(result, out_dir, plots=not args.no_plots)
+    write_result(result, out_dir, plots=not args.no_plots, extra=extra)
     if not args.quiet:
         _report(result, out_dir)
+        if extra:
+            q = extra["quality"]
+            print(f"against the {q['reference']} reference: hv ratio {q['hv_ratio']:.4f}, "
+                  f"IGD+ {q['igd_plus']:.4g}, {q['reference_points_found']:.0%} of its points found")
     return 130 if result.interrupted else 0
 
 

@@ -85,6 +85,9 @@ def run_summary(result) -> dict:
     }
 
 
-def write_result(result, out_dir, *, plots: bool = True) -> None:
-    """All outputs of a :class:`gapath.solver.SolveResult`."""
-    write_front(out_dir, result.workspace, result.front, run_summary(result), plots=plots)
+def write_result(result, out_dir, *, plots: bool = True, extra: dict | None = None) -> None:
+    """All outputs of a :class:`gapath.solver.SolveResult`; ``extra`` entries
+    are added to ``summary.json`` (e.g. ``quality`` against a reference)."""
+    summary = run_summary(result)
+    summary.update(extra or {})
+    write_front(out_dir, result.workspace, result.front, summary, plots=plots)
