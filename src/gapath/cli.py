@@ -41,8 +41,10 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
                    help="comma-separated objectives among length, vulnerability, smoothness "
                         "(default: %(default)s)")
     p.add_argument("--encoding", default="integer", help="genome encoding (default: %(default)s)")
-    p.add_argument("--constraints", choices=("penalty", "constraint"), default="penalty",
-                   help="obstacle handling (default: %(default)s)")
+    p.add_argument("--constraints", choices=("penalty", "constraint"), default=None,
+                   help="obstacle handling (default: penalty; constraint for one objective)")
+    p.add_argument("--sbx-eta", type=float, default=None,
+                   help="SBX distribution index (default: 10; 2 for one objective)")
     p.add_argument("--penalty", type=float, default=1000.0,
                    help="penalty per interfering cell (default: %(default)s)")
     p.add_argument("--tiebreak", choices=("smoothness", "none"), default="smoothness",
@@ -54,6 +56,9 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
     p.add_argument("--pop", type=int, default=pop, help="population size (default: %(default)s)")
     p.add_argument("--gen", type=int, default=gen, help="generations (default: %(default)s)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default: %(default)s)")
+    p.add_argument("--runs", type=int, default=1,
+                   help="independent runs with seeds SEED..SEED+RUNS-1, each written to "
+                        "OUT/runs/<seed>/, their merged front to OUT (default: %(default)s)")
     p.add_argument("--out", default=out, help="output directory (default: %(default)s)")
     p.add_argument("--reference", metavar="monotone|free|FILE",
                    help="judge the front against the exact monotone front, the exact free front "
@@ -104,30 +109,70 @@ def _report(result, out_dir: Path) -> None:
           + ("" if result.settings.get("plots") is False else ", front.png, paths.png"))
 
 
+def _quality(args, workspace, objectives, F) -> dict:
+    if not args.reference:
+        return {}
+    from gapath.reference import front_quality, reference_front
+
+    ref = reference_front(workspace, objectives, args.reference)
+    return {"quality": {"reference": str(args.reference), **front_quality(F, ref)}}
+
+
+def _print_quality(extra: dict) -> None:
+    if extra:
+        q = extra["quality"]
+        print(f"against the {q['reference']} reference: hv ratio {q['hv_ratio']:.4f}, "
+              f"IGD+ {q['igd_plus']:.4g}, {q['reference_points_found']:.0%} of its points found")
+
+
 def _run(args, workspace) -> int:
     from gapath.results import write_result
     from gapath.solver import solve
 
-    result = solve(workspace, objectives=args.objectives, encoding=args.encoding,
-                   constraints=args.constraints, penalty=args.penalty, pop_size=args.pop,
-                   n_gen=args.gen, seed=args.seed,
-                   tiebreak=None if args.tiebreak == "none" else args.tiebreak,
-                   seed_from=args.seed_from, progress=not args.quiet)
-    extra = {}
-    if args.reference:
-        from gapath.reference import front_quality, reference_front
-
-        ref = reference_front(workspace, result.problem.objectives, args.reference)
-        extra["quality"] = {"reference": str(args.reference), **front_quality(result.front.F, ref)}
+    kwargs = dict(objectives=args.objectives, encoding=args.encoding, constraints=args.constraints,
+                  penalty=args.penalty, pop_size=args.pop, n_gen=args.gen,
+                  tiebreak=None if args.tiebreak == "none" else args.tiebreak,
+                  sbx_eta=args.sbx_eta, seed_from=args.seed_from, progress=not args.quiet)
     out_dir = Path(args.out)
+    if args.runs != 1:
+        return _multirun(args, workspace, kwargs, out_dir)
+    result = solve(workspace, seed=args.seed, **kwargs)
+    extra = _quality(args, workspace, result.problem.objectives, result.front.F)
     write_result(result, out_dir, plots=not args.no_plots, extra=extra)
     if not args.quiet:
         _report(result, out_dir)
-        if extra:
-            q = extra["quality"]
-            print(f"against the {q['reference']} reference: hv ratio {q['hv_ratio']:.4f}, "
-                  f"IGD+ {q['igd_plus']:.4g}, {q['reference_points_found']:.0%} of its points found")
+        _print_quality(extra)
     return 130 if result.interrupted else 0
+
+
+def _multirun(args, workspace, kwargs, out_dir: Path) -> int:
+    from gapath.experiments import multirun
+    from gapath.results import versions, write_front, write_result
+
+    def write_run(r):
+        write_result(r, out_dir / "runs" / str(r.settings["seed"]), plots=not args.no_plots)
+        if not args.quiet:
+            print(f"run {r.settings['seed']}: {len(r.front)} paths, {r.seconds:.1f} s", flush=True)
+
+    m = multirun(workspace, runs=args.runs, seed=args.seed, on_run=write_run, **kwargs)
+    extra = _quality(args, workspace, m.runs[0].problem.objectives, m.front.F)
+    summary = {
+        "settings": {**m.runs[0].settings, "seed": m.seeds[0], "runs": args.runs},
+        "seeds": m.seeds,
+        "versions": versions(),
+        "wall_time_s": round(sum(r.seconds for r in m.runs), 3),
+        "evaluations": sum(r.n_eval for r in m.runs),
+        "interrupted": m.interrupted,
+        "front_size": len(m.front),
+        "run_front_sizes": [len(r.front) for r in m.runs],
+        **extra,
+    }
+    write_front(out_dir, workspace, m.front, summary, plots=not args.no_plots)
+    if not args.quiet:
+        print(f"merged front of {len(m.runs)} runs: {len(m.front)} paths; wrote {out_dir}/front.csv, "
+              f"paths.json, summary.json and {out_dir}/runs/<seed>/")
+        _print_quality(extra)
+    return 130 if m.interrupted else 0
 
 
 def main(argv=None) -> int:

@@ -55,9 +55,27 @@ def _positive_int(value, name):
     return v
 
 
+def objective_mode(objectives, constraints=None, sbx_eta=None, tiebreak="smoothness") -> dict:
+    """The seeds' settings for the objective mode of ``objectives``.
+
+    * two objectives: penalty handling, SBX eta 10, smoothness tie-break;
+    * three objectives: the same with plain rank and crowding (pass
+      ``tiebreak=None``);
+    * one objective (length or vulnerability): ``interfering`` as a
+      constraint and SBX eta 2 (the seeds' single-objective comparison).
+
+    Explicit values win over the mode's defaults.
+    """
+    names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
+    single = len([n for n in names if n.strip()]) == 1
+    return dict(constraints=constraints or ("constraint" if single else "penalty"),
+                sbx_eta=sbx_eta if sbx_eta is not None else (2.0 if single else 10.0),
+                tiebreak=tiebreak)
+
+
 def solve(workspace, *, objectives=("length", "vulnerability"), encoding="integer",
-          constraints="penalty", penalty=1000.0, pop_size=500, n_gen=500, seed=1,
-          tiebreak="smoothness", seed_from="weighted", progress=False,
+          constraints=None, penalty=1000.0, pop_size=500, n_gen=500, seed=1,
+          tiebreak="smoothness", sbx_eta=None, seed_from="weighted", progress=False,
           callback=None) -> SolveResult:
     """Run the seeds' NSGA-II on ``workspace`` and return its front.
 
@@ -65,10 +83,13 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     ----------
     workspace : :class:`gapath.Workspace`.
     objectives, encoding, constraints, penalty : see
-        :class:`gapath.problems.GridPathProblem`.
+        :class:`gapath.problems.GridPathProblem`; ``constraints`` defaults
+        by objective mode (:func:`objective_mode`).
     pop_size, n_gen : population size and generations (seeds: 500 x 500).
     seed : random seed; the same seed gives the same front, bit for bit.
     tiebreak : ``"smoothness"`` or ``None`` (see :func:`gapath.algorithms.paper_nsga2`).
+    sbx_eta : SBX distribution index (default by objective mode: 10, or 2
+        for a single objective).
     seed_from : initial population: ``"weighted"`` (default: the shortest,
         the safest and weighted-sum optimal monotone paths, the rest random),
         ``"exact"`` (the exact monotone front) or ``"none"`` (all random: the
@@ -91,9 +112,11 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     pop_size = _positive_int(pop_size, "pop_size")
     n_gen = _positive_int(n_gen, "n_gen")
     seed = int(seed)
+    mode = objective_mode(objectives, constraints, sbx_eta, tiebreak)
+    constraints, sbx_eta = mode["constraints"], mode["sbx_eta"]
     problem = GridPathProblem(workspace, objectives=objectives, encoding=encoding,
                               constraints=constraints, penalty=penalty)
-    algorithm = paper_nsga2(pop_size, tiebreak=tiebreak,
+    algorithm = paper_nsga2(pop_size, tiebreak=tiebreak, sbx_eta=sbx_eta,
                             sampling=None if seed_from == "none" else PlannerSampling(seed_from))
     bar = ProgressBar(n_gen, disable=not progress)
     callbacks = Callbacks(bar) if callback is None else Callbacks(bar, callback)
@@ -102,7 +125,7 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
                     goal=list(workspace.goal), cell_size=workspace.cell_size,
                     corner_cutting=workspace.corner_cutting, objectives=list(problem.objectives),
                     encoding=encoding, constraints=constraints, penalty=problem.penalty,
-                    pop_size=pop_size, n_gen=n_gen, seed=seed, tiebreak=tiebreak,
+                    pop_size=pop_size, n_gen=n_gen, seed=seed, tiebreak=tiebreak, sbx_eta=sbx_eta,
                     seed_from=seed_from, algorithm="paper_nsga2")
     t0 = time.perf_counter()
     interrupted = False
