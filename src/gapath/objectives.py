@@ -152,39 +152,42 @@ def evaluate_profiles(entries, exits, col0, occ, potential, cell_size, corner_cu
         eighths = 0
         interf = 0
         vul = 0.0
-        prev_dir = -1
+        prev_dir = -1  # heading of the last step, in eighths (0 east, 2 up)
+        pr = entries[i, 0]  # exit row of the previous column
         for k in range(n_cols):
             c = col0 + k
             a = entries[i, k]
             b = exits[i, k]
-            if k > 0:
-                pr = exits[i, k - 1]
-                dr = a - pr
-                if dr != 0:
+            if k > 0:  # the step into column k
+                if a != pr:
                     n_diag += 1
+                    d = 1 if a < pr else 7
                     if not corner_cutting and (occ[pr, c] or occ[a, c - 1]):
                         interf += 1
                 else:
                     n_straight += 1
-                d = _DIR[dr + 1, 2]
+                    d = 0
                 if prev_dir >= 0:
                     eighths += _turn(prev_dir, d)
                 prev_dir = d
-            s = 1 if b >= a else -1
-            r = a
-            while True:
-                vul += potential[r, c]
-                if occ[r, c]:
-                    interf += 1
-                if r == b:
-                    break
-                r += s
-            if b != a:
+            if b == a:
+                vul += potential[a, c]
+                interf += occ[a, c]
+            else:  # the vertical run a..b
+                s = 1 if b > a else -1
+                r = a
+                while True:
+                    vul += potential[r, c]
+                    interf += occ[r, c]
+                    if r == b:
+                        break
+                    r += s
                 n_straight += abs(b - a)
-                d = 2 if s < 0 else 6
+                d = 6 if s > 0 else 2
                 if prev_dir >= 0:
                     eighths += _turn(prev_dir, d)
                 prev_dir = d
+            pr = b
         out[i, 0] = (n_straight + SQRT2 * n_diag) * cell_size
         out[i, 1] = vul
         out[i, 2] = eighths * QUARTER_PI
