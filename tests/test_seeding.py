@@ -101,3 +101,16 @@ def test_seeded_solve_reaches_the_exact_extremes():
     assert r.settings["seed_from"] == "weighted"
     np.testing.assert_allclose(r.front.F[0], exact.F[0], rtol=1e-9)
     np.testing.assert_allclose(r.front.F[-1], exact.F[-1], rtol=1e-9)
+
+
+@pytest.mark.parametrize("encoding", ["integer", "binary", "mixed", "absolute"])
+def test_seeded_solve_with_every_encoding(encoding):
+    from gapath.solver import solve
+
+    ws = random_workspace((12, 12), 30, seed=5)
+    exact = monotone_front(ws)
+    r = solve(ws, encoding=encoding, pop_size=30, n_gen=4, seed=1)
+    assert r.problem.encoding.name == encoding
+    np.testing.assert_allclose(r.front.F[0], exact.F[0], rtol=1e-9)  # the seeded shortest path
+    X = PlannerSampling()._do(r.problem, 30, random_state=np.random.default_rng(0))
+    assert X.dtype == (np.bool_ if encoding == "binary" else np.int64)

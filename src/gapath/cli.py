@@ -40,7 +40,8 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
     p.add_argument("--objectives", default="length,vulnerability",
                    help="comma-separated objectives among length, vulnerability, smoothness "
                         "(default: %(default)s)")
-    p.add_argument("--encoding", default="integer", help="genome encoding (default: %(default)s)")
+    p.add_argument("--encoding", default="integer",
+                   help="genome encoding: integer, binary, mixed or absolute (default: %(default)s)")
     p.add_argument("--constraints", choices=("penalty", "constraint"), default=None,
                    help="obstacle handling (default: penalty; constraint for one objective)")
     p.add_argument("--sbx-eta", type=float, default=None,

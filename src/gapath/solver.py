@@ -116,7 +116,7 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     constraints, sbx_eta = mode["constraints"], mode["sbx_eta"]
     problem = GridPathProblem(workspace, objectives=objectives, encoding=encoding,
                               constraints=constraints, penalty=penalty)
-    algorithm = paper_nsga2(pop_size, tiebreak=tiebreak, sbx_eta=sbx_eta,
+    algorithm = paper_nsga2(pop_size, encoding=encoding, tiebreak=tiebreak, sbx_eta=sbx_eta,
                             sampling=None if seed_from == "none" else PlannerSampling(seed_from))
     bar = ProgressBar(n_gen, disable=not progress)
     callbacks = Callbacks(bar) if callback is None else Callbacks(bar, callback)

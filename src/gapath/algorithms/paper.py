@@ -3,52 +3,82 @@
 from __future__ import annotations
 
 from pymoo.algorithms.moo.nsga2 import NSGA2
-from pymoo.operators.sampling.rnd import IntegerRandomSampling
 
+from gapath.encodings import ENCODINGS
 from gapath.errors import ConfigError
 from gapath.operators import (
-    DiscretePM,
-    DiscreteSBX,
     EdgeFixingRepair,
     PathDuplicateElimination,
     RankAndSmoothnessSurvival,
     SmoothnessTournament,
+    default_operators,
 )
 
 
 class PathNSGA2(NSGA2):
     """pymoo's NSGA2 whose duplicate elimination compares decoded paths.
 
-    The only change to :class:`pymoo.algorithms.moo.nsga2.NSGA2` is that, on
-    setup, a :class:`gapath.operators.PathDuplicateElimination` is bound to
-    the problem so it can decode genomes; everything else (mating, survival,
-    termination, callbacks, output) is pymoo's.
+    The changes to :class:`pymoo.algorithms.moo.nsga2.NSGA2`: on setup, a
+    :class:`gapath.operators.PathDuplicateElimination` is bound to the
+    problem so it can decode genomes, and, when the algorithm was
+    configured for an encoding, the problem must use that encoding;
+    everything else (mating, survival, termination, callbacks, output) is
+    pymoo's.
+
+    Parameters
+    ----------
+    encoding : name of the encoding the operators were chosen for, or
+        ``None`` (no check).
+    **kwargs : passed to :class:`pymoo.algorithms.moo.nsga2.NSGA2`.
+
+    Raises
+    ------
+    ConfigError
+        On setup, if the problem's encoding is not ``encoding``.
     """
 
+    def __init__(self, *, encoding: str | None = None, **kwargs):
+        super().__init__(**kwargs)
+        self.encoding_name = encoding
+
     def _setup(self, problem, **kwargs):
+        used = getattr(getattr(problem, "encoding", None), "name", None)
+        if self.encoding_name is not None and used is not None and used != self.encoding_name:
+            raise ConfigError(
+                f"paper_nsga2 was configured for the {self.encoding_name!r} encoding but the "
+                f"problem uses {used!r}; pass paper_nsga2(..., encoding={used!r})")
         super()._setup(problem, **kwargs)
         if isinstance(self.eliminate_duplicates, PathDuplicateElimination):
             self.eliminate_duplicates.bind(problem)
 
 
-def paper_nsga2(pop_size: int = 500, *, tiebreak: str | None = "smoothness",
-                sbx_prob: float = 0.9, sbx_eta: float = 10, pm_eta: float = 20,
-                pm_prob_var: float | None = None, sampling=None, **kwargs) -> PathNSGA2:
-    """NSGA-II with the seeds' settings (Ahmed & Deb 2013, section 5.2).
+def paper_nsga2(pop_size: int = 500, *, encoding: str = "integer",
+                tiebreak: str | None = "smoothness", sbx_prob: float = 0.9,
+                sbx_eta: float = 10, pm_eta: float = 20, pm_prob_var: float | None = None,
+                sampling=None, **kwargs) -> PathNSGA2:
+    """NSGA-II with the seeds' settings (Ahmed & Deb 2013, sections 2 and 5.2).
 
-    Discrete SBX (prob 0.9, eta 10), discrete polynomial mutation (eta 20,
-    per-gene probability 1/n for an n-column path), the seeds' edge-fixing
-    repair, a binary tournament on (feasibility, rank, smoothness, crowding),
-    rank-and-smoothness survival and duplicate elimination by decoded path.
+    The encoding's operators from :func:`gapath.operators.default_operators`
+    (integer and absolute: discrete SBX, prob 0.9, eta 10, and discrete
+    polynomial mutation, eta 20, per-gene probability 1/n for an n-column
+    path; binary: two-point crossover and a bit-flip whose rate decays to a
+    fifth; mixed: single-point and discrete SBX, bit-flip and discrete PM),
+    the seeds' edge-fixing repair, a binary tournament on (feasibility,
+    rank, smoothness, crowding), rank-and-smoothness survival and duplicate
+    elimination by decoded path.
 
     Parameters
     ----------
     pop_size : population size (seeds: 500).
+    encoding : the problem's encoding (``"integer"``, ``"binary"``,
+        ``"mixed"`` or ``"absolute"``); the problem given to ``minimize``
+        must use the same one.
     tiebreak : ``"smoothness"`` (seeds' two-objective mode) or ``None``
         (plain rank and crowding, e.g. for three objectives).
-    sbx_prob, sbx_eta, pm_eta, pm_prob_var : operator settings.
+    sbx_prob, sbx_eta, pm_eta, pm_prob_var : operator settings (see
+        :func:`gapath.operators.default_operators`).
     sampling : initial population: a pymoo ``Sampling``, an array of genomes
-        or a ``Population`` (default: uniform random integers).
+        or a ``Population`` (default: the encoding's uniform random sampling).
     **kwargs : passed to :class:`pymoo.algorithms.moo.nsga2.NSGA2`.
 
     Returns
@@ -59,7 +89,8 @@ def paper_nsga2(pop_size: int = 500, *, tiebreak: str | None = "smoothness",
     Raises
     ------
     ConfigError
-        On a population size below 2 or an unknown tie-break.
+        On a population size below 2, an unknown encoding or tie-break; on
+        setup (``minimize``), if the problem uses another encoding.
 
     Examples
     --------
@@ -69,6 +100,10 @@ def paper_nsga2(pop_size: int = 500, *, tiebreak: str | None = "smoothness",
     >>> res = minimize(GridPathProblem(default_workspace()), paper_nsga2(20), ("n_gen", 2), seed=1)
     >>> res.F.shape[1]
     2
+    >>> p = GridPathProblem(default_workspace(), encoding="binary")
+    >>> res = minimize(p, paper_nsga2(20, encoding="binary"), ("n_gen", 2), seed=1)
+    >>> res.pop.get("X").dtype
+    dtype('bool')
     """
     try:
         pop_size = int(pop_size)
@@ -78,12 +113,17 @@ def paper_nsga2(pop_size: int = 500, *, tiebreak: str | None = "smoothness",
         raise ConfigError(f"pop_size must be an integer >= 2, got {pop_size!r}")
     if tiebreak not in ("smoothness", None):
         raise ConfigError(f"tiebreak must be 'smoothness' or None, got {tiebreak!r}")
+    if encoding not in ENCODINGS:
+        raise ConfigError(f"unknown encoding {encoding!r}; expected one of {', '.join(ENCODINGS)}")
+    ops = default_operators(encoding, sbx_prob=sbx_prob, sbx_eta=sbx_eta, pm_eta=pm_eta,
+                            pm_prob_var=pm_prob_var)
     return PathNSGA2(
+        encoding=encoding,
         pop_size=pop_size,
-        sampling=IntegerRandomSampling() if sampling is None else sampling,
+        sampling=ops["sampling"] if sampling is None else sampling,
         selection=SmoothnessTournament(tiebreak=tiebreak is not None),
-        crossover=DiscreteSBX(prob=sbx_prob, eta=sbx_eta),
-        mutation=DiscretePM(eta=pm_eta, prob_var=pm_prob_var),
+        crossover=ops["crossover"],
+        mutation=ops["mutation"],
         survival=RankAndSmoothnessSurvival(tiebreak=tiebreak),
         repair=EdgeFixingRepair(),
         eliminate_duplicates=PathDuplicateElimination(),

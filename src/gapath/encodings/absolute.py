@@ -48,6 +48,14 @@ class AbsoluteEncoding:
     ----------
     n_var : number of genes, ``n_cols - 1``.
     xl, xu : 0 and ``H - 1``.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gapath import Workspace
+    >>> enc = AbsoluteEncoding(Frame.of(Workspace(np.zeros((4, 4), bool))))
+    >>> enc.decode(np.array([[2, 1, 1]]))[1].tolist()
+    [[2, 1, 1, 0]]
     """
 
     name = "absolute"

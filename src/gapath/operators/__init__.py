@@ -1,8 +1,12 @@
 """pymoo operators for grid paths: one operator per module."""
 
 from gapath.operators.crossover.discrete_sbx import DiscreteSBX
+from gapath.operators.crossover.mixed_crossover import MixedCrossover
+from gapath.operators.defaults import default_operators
 from gapath.operators.duplicates import PathDuplicateElimination
+from gapath.operators.mutation.decaying_bitflip import DecayingBitflipMutation
 from gapath.operators.mutation.discrete_pm import DiscretePM
+from gapath.operators.mutation.mixed_mutation import MixedMutation
 from gapath.operators.repair.edge_fixing import EdgeFixingRepair
 from gapath.operators.sampling.planner_sampling import PlannerSampling
 from gapath.operators.selection.smoothness_tournament import (
@@ -12,13 +16,17 @@ from gapath.operators.selection.smoothness_tournament import (
 from gapath.operators.survival.rank_and_smoothness import RankAndSmoothnessSurvival, survival_order
 
 __all__ = [
+    "DecayingBitflipMutation",
     "DiscretePM",
     "DiscreteSBX",
     "EdgeFixingRepair",
+    "MixedCrossover",
+    "MixedMutation",
     "PathDuplicateElimination",
     "PlannerSampling",
     "RankAndSmoothnessSurvival",
     "SmoothnessTournament",
     "compare_rank_smoothness_crowding",
+    "default_operators",
     "survival_order",
 ]

@@ -26,12 +26,20 @@ class GridPathProblem(Problem):
     ----------
     workspace : :class:`gapath.Workspace`.
     objectives : names among ``length``, ``vulnerability``, ``smoothness``
-        (a sequence or a comma-separated string).
-    encoding : ``"integer"`` (more in :data:`gapath.encodings.ENCODINGS`).
+        (a sequence or a comma-separated string) and, with ``costmap``, the
+        costmap's layer objectives (``elevation``, ``solar``, ``risk``, user
+        layers; see :mod:`gapath.costmap`).
+    encoding : ``"integer"`` (default), ``"binary"``, ``"mixed"`` or
+        ``"absolute"`` (see :data:`gapath.encodings.ENCODINGS`).
     constraints : ``"penalty"`` (the seeds' default: every objective gets
         ``penalty * interfering`` added) or ``"constraint"`` (``interfering``
         is returned as the inequality constraint ``G``; feasible when 0).
     penalty : penalty per interfering cell (default 1000).
+    costmap : :class:`gapath.costmap.Costmap`, optional. Its layer objectives
+        are computed by :func:`gapath.costmap.evaluate_layer_profiles` over
+        the decoded column profiles (mean over the path's cells for cell
+        layers, sum over the steps for ``solar``); they get the same penalty
+        as the other objectives.
 
     Outputs
     -------
@@ -54,15 +62,26 @@ class GridPathProblem(Problem):
     """
 
     def __init__(self, workspace, objectives=("length", "vulnerability"), encoding="integer",
-                 constraints="penalty", penalty=1000.0, **kwargs):
+                 constraints="penalty", penalty=1000.0, costmap=None, **kwargs):
         names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
         names = [n.strip() for n in names]
+        layer_names = () if costmap is None else costmap.objective_names
         for n in names:
-            if n not in OBJECTIVE_NAMES:
+            if n not in OBJECTIVE_NAMES and n not in layer_names:
+                expected = OBJECTIVE_NAMES + tuple(x for x in layer_names if x not in OBJECTIVE_NAMES)
                 raise ConfigError(
-                    f"unknown objective {n!r}; expected some of {', '.join(OBJECTIVE_NAMES)}")
+                    f"unknown objective {n!r}; expected some of {', '.join(expected)}")
         self.objectives = tuple(names)
-        self._obj_idx = objective_index(self.objectives)
+        # layer objectives: metrics columns 4, 5, ... (after OBJECTIVES)
+        self.layer_objectives = tuple(n for n in names if n not in OBJECTIVE_NAMES)
+        base = [n for n in names if n in OBJECTIVE_NAMES]
+        if base or not names:
+            objective_index(base)                    # "at least one", "given twice"
+        if len(set(self.layer_objectives)) != len(self.layer_objectives):
+            dup = next(n for n in self.layer_objectives if names.count(n) > 1)
+            raise ConfigError(f"objective {dup!r} is given twice")
+        self._obj_idx = [OBJECTIVES.index(n) if n in OBJECTIVE_NAMES
+                         else len(OBJECTIVES) + self.layer_objectives.index(n) for n in names]
         if constraints not in CONSTRAINT_MODES:
             raise ConfigError(
                 f"unknown constraint handling {constraints!r}; expected one of {', '.join(CONSTRAINT_MODES)}")
@@ -74,6 +93,9 @@ class GridPathProblem(Problem):
             raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}")
         self.workspace = workspace
         self.frame = Frame.of(workspace)
+        self.costmap = costmap
+        self._layers = (costmap.profile_evaluator(self.frame, self.layer_objectives)
+                        if self.layer_objectives else None)
         self.encoding = make_encoding(encoding, self.frame)
         self.constraints = constraints
         self.penalty = penalty
@@ -85,9 +107,14 @@ class GridPathProblem(Problem):
     # -- evaluation --------------------------------------------------------
     def metrics(self, X) -> np.ndarray:
         """All per-path metrics ``(N, 4)`` in :data:`gapath.objectives.OBJECTIVES`
-        order (length, vulnerability, smoothness, interfering), unpenalised."""
+        order (length, vulnerability, smoothness, interfering), unpenalised;
+        with layer objectives, ``(N, 4 + k)``: their values follow, in the
+        order of :attr:`layer_objectives`."""
         entries, exits = self.encoding.decode(X)
-        return self.frame.evaluate(entries, exits)
+        M = self.frame.evaluate(entries, exits)
+        if self._layers is not None:
+            M = np.hstack([M, self._layers(entries, exits)])
+        return M
 
     def _evaluate(self, X, out, *args, **kwargs):
         M = self.metrics(X)

@@ -94,11 +94,11 @@ class PlannerSampling(Sampling):
             random_state = np.random.default_rng()
         encoding = problem.encoding
         paths = planner_paths(problem.workspace, self.source, problem.objectives, self.n_weights)
-        X = np.empty((0, problem.n_var), dtype=np.int64)
+        dtype = np.bool_ if encoding.vtype is bool else np.int64
+        X = np.empty((0, problem.n_var), dtype=dtype)
         if paths:
-            X = encoding.encode(paths)
+            X = encoding.encode(paths).astype(dtype)
             X = X[: max(1, int(self.max_share * n_samples))]
-        X = X.astype(np.int64)
 
         def keys(A):
             entries, exits = encoding.decode(A)
