@@ -61,7 +61,7 @@ def test_weighted_sum_errors():
         weighted_sum_path(Workspace(np.zeros((3, 3), bool)), -1.0, 1.0)
 
 
-@pytest.mark.parametrize("source", ["weighted", "exact", "none"])
+@pytest.mark.parametrize("source", ["weighted", "exact", "astar", "none"])
 def test_planner_sampling_gives_distinct_valid_paths(source):
     ws = random_workspace((20, 20), 60, seed=1)
     p = GridPathProblem(ws)
@@ -114,3 +114,27 @@ def test_seeded_solve_with_every_encoding(encoding):
     np.testing.assert_allclose(r.front.F[0], exact.F[0], rtol=1e-9)  # the seeded shortest path
     X = PlannerSampling()._do(r.problem, 30, random_state=np.random.default_rng(0))
     assert X.dtype == (np.bool_ if encoding == "binary" else np.int64)
+
+
+def test_monotone_projection_of_a_monotone_path_is_itself():
+    from gapath.encodings.base import Frame, monotone_projection, profiles_of_paths
+    from gapath.workspace import random_monotone_path
+
+    ws = random_workspace((15, 15), 0, seed=1)
+    frame = Frame.of(ws)
+    rng = np.random.default_rng(2)
+    for _ in range(20):
+        path = random_monotone_path(ws.shape, ws.start, ws.goal, rng, max_step=3)
+        e, x = profiles_of_paths(frame, [path])
+        pe, px = monotone_projection(frame, path)
+        assert np.array_equal(px, x[0]) and np.array_equal(pe, e[0])
+
+
+def test_astar_seeds_are_valid_monotone_paths():
+    ws = random_workspace((20, 20), 60, seed=1)
+    p = GridPathProblem(ws)
+    paths = planner_paths(ws, "astar")
+    assert len(paths) == 4
+    for path in paths:
+        assert ws.is_valid_path(path)
+    p.encode(paths)  # representable in the integer encoding

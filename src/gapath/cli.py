@@ -50,10 +50,11 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
                    help="penalty per interfering cell (default: %(default)s)")
     p.add_argument("--tiebreak", choices=("smoothness", "none"), default="smoothness",
                    help="tie-break inside a non-dominated rank (default: %(default)s)")
-    p.add_argument("--seed-from", choices=("weighted", "exact", "none"), default="weighted",
+    p.add_argument("--seed-from", choices=("weighted", "exact", "astar", "none"), default="weighted",
                    help="initial population: shortest, safest and weighted-sum monotone paths "
-                        "plus random ones (weighted), the exact monotone front (exact), or all "
-                        "random as in the seeds' protocol (none) (default: %(default)s)")
+                        "plus random ones (weighted), the exact monotone front (exact), A* "
+                        "paths projected onto monotone paths (astar), or all random as in the "
+                        "seeds' protocol (none) (default: %(default)s)")
     p.add_argument("--pop", type=int, default=pop, help="population size (default: %(default)s)")
     p.add_argument("--gen", type=int, default=gen, help="generations (default: %(default)s)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default: %(default)s)")

@@ -92,8 +92,9 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
         for a single objective).
     seed_from : initial population: ``"weighted"`` (default: the shortest,
         the safest and weighted-sum optimal monotone paths, the rest random),
-        ``"exact"`` (the exact monotone front) or ``"none"`` (all random: the
-        seeds' protocol). See :class:`gapath.operators.PlannerSampling`.
+        ``"exact"`` (the exact monotone front), ``"astar"`` (A* paths
+        projected onto monotone paths) or ``"none"`` (all random: the seeds'
+        protocol). See :class:`gapath.operators.PlannerSampling`.
     progress : show a live progress bar on stderr.
     callback : an extra pymoo ``Callback`` notified every generation.
 

@@ -183,3 +183,32 @@ def profiles_of_paths(frame: Frame, paths) -> tuple[np.ndarray, np.ndarray]:
         if (np.abs(entries[i, 1:] - exits[i, :-1]) > 1).any():
             raise ConfigError(f"path {i} has a step that is not 8-adjacent")
     return entries, exits
+
+
+def monotone_projection(frame: Frame, path) -> tuple[np.ndarray, np.ndarray]:
+    """The column-monotone path that follows ``path`` (workspace cells, any
+    8-connected path from start to goal) column by column.
+
+    In every frame column between the start and the goal column the exit row
+    is the row of the last cell ``path`` visits there (the previous exit row
+    when it skips the column); the columns are joined by the integer
+    encoding's moves (one step towards the next exit row, then vertical).
+    Feasibility is not checked.
+
+    Returns
+    -------
+    entries, exits : (n_cols,) int arrays (frame rows).
+    """
+    p = frame.from_workspace(np.asarray(path).reshape(-1, 2))
+    n_cols = frame.n_cols
+    exits = np.empty(n_cols, np.int64)
+    row = frame.start[0]
+    for k in range(n_cols):
+        rows = p[p[:, 1] == frame.col0 + k, 0]
+        row = int(rows[-1]) if len(rows) else row
+        exits[k] = row
+    exits[-1] = frame.goal[0]
+    prev = np.concatenate([[frame.start[0]], exits[:-1]])
+    entries = prev + np.sign(exits - prev)
+    entries[0] = frame.start[0]
+    return entries, exits

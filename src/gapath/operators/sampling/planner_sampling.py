@@ -10,7 +10,7 @@ from gapath.errors import ConfigError, NoPathError
 from gapath.operators.duplicates import duplicate_mask
 
 #: What :class:`PlannerSampling` can seed from.
-SEED_SOURCES = ("weighted", "exact", "none")
+SEED_SOURCES = ("weighted", "exact", "astar", "none")
 
 
 def planner_paths(workspace, source: str, objectives=("length", "vulnerability"),
@@ -20,6 +20,9 @@ def planner_paths(workspace, source: str, objectives=("length", "vulnerability")
     * ``"weighted"``: the shortest, the safest and weighted-sum optimal
       column-monotone paths (:func:`gapath.planners.weighted_sum.weighted_sum_paths`);
     * ``"exact"``: every path of the exact monotone front for ``objectives``;
+    * ``"astar"``: the A* shortest path and A* paths with the potential
+      field as a cost layer (weights 1, 10, 100), each projected onto the
+      column-monotone path set (:func:`gapath.encodings.base.monotone_projection`);
     * ``"none"``: no paths.
 
     A workspace without a feasible column-monotone path gives no seeds.
@@ -35,9 +38,24 @@ def planner_paths(workspace, source: str, objectives=("length", "vulnerability")
             from gapath.planners.exact import monotone_front
 
             return list(monotone_front(workspace, objectives).paths)
+        if source == "astar":
+            return _astar_paths(workspace)
     except NoPathError:
         pass
     return []
+
+
+def _astar_paths(workspace) -> list[np.ndarray]:
+    from gapath.encodings.base import Frame, expand_profiles, monotone_projection, split_paths
+    from gapath.planners.astar import astar
+
+    frame = Frame.of(workspace)
+    paths = []
+    for w in (0.0, 1.0, 10.0, 100.0):
+        plan = astar(workspace, cost=None if w == 0 else w * workspace.potential)
+        entries, exits = monotone_projection(frame, plan.path)
+        paths.append(split_paths(*expand_profiles(frame, entries[None], exits[None]))[0])
+    return paths
 
 
 class PlannerSampling(Sampling):
@@ -51,7 +69,7 @@ class PlannerSampling(Sampling):
 
     Parameters
     ----------
-    source : ``"weighted"`` (default), ``"exact"`` or ``"none"``
+    source : ``"weighted"`` (default), ``"exact"``, ``"astar"`` or ``"none"``
         (see :func:`planner_paths`).
     n_weights : number of weighted-sum paths for ``"weighted"``.
     max_share : largest share of the population taken by planner paths.
