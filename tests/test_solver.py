@@ -46,3 +46,13 @@ def test_unseeded_protocol_and_determinism():
 def test_bad_settings(kw, match):
     with pytest.raises(ConfigError, match=match):
         solve(random_workspace((8, 8), 5, seed=0), **{"pop_size": 10, "n_gen": 2, **kw})
+
+
+def test_engines_give_the_same_front():
+    ws = random_workspace((12, 12), 20, seed=2)
+    a = solve(ws, pop_size=30, n_gen=8, seed=3, engine="fast")
+    b = solve(ws, pop_size=30, n_gen=8, seed=3, engine="pymoo")
+    assert a.settings["engine"] == "fast"
+    assert np.array_equal(a.front.F, b.front.F) and np.array_equal(a.front.X, b.front.X)
+    with pytest.raises(ConfigError, match="unknown engine"):
+        solve(ws, pop_size=10, n_gen=2, engine="warp")

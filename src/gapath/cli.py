@@ -55,6 +55,9 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
                         "plus random ones (weighted), the exact monotone front (exact), A* "
                         "paths projected onto monotone paths (astar), or all random as in the "
                         "seeds' protocol (none) (default: %(default)s)")
+    p.add_argument("--engine", choices=("fast", "pymoo"), default="fast",
+                   help="NSGA-II engine: FastNSGA2 on arrays (fast) or stock pymoo NSGA2 (pymoo); "
+                        "same results for the same seed (default: %(default)s)")
     p.add_argument("--pop", type=int, default=pop, help="population size (default: %(default)s)")
     p.add_argument("--gen", type=int, default=gen, help="generations (default: %(default)s)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default: %(default)s)")
@@ -134,7 +137,8 @@ def _run(args, workspace) -> int:
     kwargs = dict(objectives=args.objectives, encoding=args.encoding, constraints=args.constraints,
                   penalty=args.penalty, pop_size=args.pop, n_gen=args.gen,
                   tiebreak=None if args.tiebreak == "none" else args.tiebreak,
-                  sbx_eta=args.sbx_eta, seed_from=args.seed_from, progress=not args.quiet)
+                  sbx_eta=args.sbx_eta, seed_from=args.seed_from, engine=args.engine,
+                  progress=not args.quiet)
     out_dir = Path(args.out)
     if args.runs != 1:
         return _multirun(args, workspace, kwargs, out_dir)

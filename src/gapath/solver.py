@@ -8,12 +8,16 @@ from dataclasses import dataclass, field
 import numpy as np
 from pymoo.optimize import minimize
 
-from gapath.algorithms import paper_nsga2
+from gapath.algorithms import FastNSGA2, paper_nsga2
 from gapath.errors import ConfigError
 from gapath.front import PathFront, path_front
 from gapath.operators import PlannerSampling
 from gapath.problems import GridPathProblem
 from gapath.progress import Callbacks, ProgressBar
+
+
+#: Engines that run the seeds' NSGA-II (same results for the same seed).
+ENGINES = {"fast": lambda pop_size, **kw: FastNSGA2(pop_size, **kw), "pymoo": paper_nsga2}
 
 
 @dataclass(eq=False)
@@ -75,8 +79,8 @@ def objective_mode(objectives, constraints=None, sbx_eta=None, tiebreak="smoothn
 
 def solve(workspace, *, objectives=("length", "vulnerability"), encoding="integer",
           constraints=None, penalty=1000.0, pop_size=500, n_gen=500, seed=1,
-          tiebreak="smoothness", sbx_eta=None, seed_from="weighted", progress=False,
-          callback=None) -> SolveResult:
+          tiebreak="smoothness", sbx_eta=None, seed_from="weighted", engine="fast",
+          progress=False, callback=None) -> SolveResult:
     """Run the seeds' NSGA-II on ``workspace`` and return its front.
 
     Parameters
@@ -95,6 +99,9 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
         ``"exact"`` (the exact monotone front), ``"astar"`` (A* paths
         projected onto monotone paths) or ``"none"`` (all random: the seeds'
         protocol). See :class:`gapath.operators.PlannerSampling`.
+    engine : ``"fast"`` (default: :class:`gapath.algorithms.FastNSGA2`, the
+        same NSGA-II on whole arrays, bit-identical results) or ``"pymoo"``
+        (:func:`gapath.algorithms.paper_nsga2`, stock pymoo NSGA2).
     progress : show a live progress bar on stderr.
     callback : an extra pymoo ``Callback`` notified every generation.
 
@@ -117,8 +124,10 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     constraints, sbx_eta = mode["constraints"], mode["sbx_eta"]
     problem = GridPathProblem(workspace, objectives=objectives, encoding=encoding,
                               constraints=constraints, penalty=penalty)
-    algorithm = paper_nsga2(pop_size, encoding=encoding, tiebreak=tiebreak, sbx_eta=sbx_eta,
-                            sampling=None if seed_from == "none" else PlannerSampling(seed_from))
+    if engine not in ENGINES:
+        raise ConfigError(f"unknown engine {engine!r}; expected one of {', '.join(ENGINES)}")
+    algorithm = ENGINES[engine](pop_size, encoding=encoding, tiebreak=tiebreak, sbx_eta=sbx_eta,
+                                sampling=None if seed_from == "none" else PlannerSampling(seed_from))
     bar = ProgressBar(n_gen, disable=not progress)
     callbacks = Callbacks(bar) if callback is None else Callbacks(bar, callback)
 
@@ -127,7 +136,8 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
                     corner_cutting=workspace.corner_cutting, objectives=list(problem.objectives),
                     encoding=encoding, constraints=constraints, penalty=problem.penalty,
                     pop_size=pop_size, n_gen=n_gen, seed=seed, tiebreak=tiebreak, sbx_eta=sbx_eta,
-                    seed_from=seed_from, algorithm="paper_nsga2")
+                    seed_from=seed_from, engine=engine,
+                    algorithm="NSGA-II (Ahmed & Deb 2013 settings)")
     t0 = time.perf_counter()
     interrupted = False
     res = None

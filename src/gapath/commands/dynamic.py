@@ -1,0 +1,374 @@
+"""``gapath simulate``, and the continuous planners for ``gapath plan``.
+
+``gapath simulate MAP --planner P --obstacles N --seed S --out DIR`` runs one
+seeded dynamic-environment simulation (:mod:`gapath.dynamic`) on ``MAP``
+(``maze``, ``warehouse`` or any map file gapath reads) and writes
+``trajectory.json`` (:meth:`gapath.dynamic.SimResult.to_json`),
+``summary.json``, ``run.png`` and, with ``--gif``, ``run.gif``. The exit
+status is 0 when the robot reached the goal and 1 for a failed run (its
+reason is printed and stored); bad input exits with 2.
+
+``gapath plan`` (:mod:`gapath.commands.plan`, another module) plans one path
+on a map. This module does not register a ``plan`` parser; it offers the
+hybrid A* and RRT / RRT* planners to it:
+
+* :func:`add_planner_choices` -- the planner names this module handles
+  (and, given a parser, adds their options to it, skipping options the
+  parser already has);
+* :func:`plan_with` -- plans with one of them on a workspace from the parsed
+  arguments, returning a :class:`PlanOutcome`;
+* :func:`write_plan` -- writes ``front.csv``, ``paths.json``,
+  ``summary.json`` and ``paths.png`` in the format of ``gapath solve`` (one
+  record, with the continuous poses beside the cells).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+#: Planner names handled by :func:`plan_with`.
+PLANNER_CHOICES = ("hybrid-astar", "rrt", "rrt-star")
+#: Planners ``gapath simulate`` can drive.
+SIMULATE_PLANNERS = ("hybrid-astar", "rrt", "rrt-star", "astar", "dstar-lite")
+
+
+def _cell_arg(text):
+    from gapath.cli import _cell
+
+    return _cell(text)
+
+
+def _add(parser, *flags, **kwargs) -> None:
+    """Add an option unless one of its flags is already there."""
+    existing = set()
+    for action in parser._actions:                         # argparse has no public query
+        existing.update(action.option_strings)
+    if not existing.intersection(flags):
+        parser.add_argument(*flags, **kwargs)
+
+
+def add_planner_arguments(parser) -> None:
+    """The options of the car, hybrid A* and RRT(*) (already present options
+    are left alone)."""
+    _add(parser, "--wheelbase", type=float, default=0.6,
+         help="car wheelbase, world units (default: %(default)s)")
+    _add(parser, "--max-steer", type=float, default=34.4,
+         help="maximum steering angle in degrees, below 90 (default: %(default)s)")
+    _add(parser, "--radius", type=float, default=0.3,
+         help="robot footprint radius, world units (default: %(default)s)")
+    _add(parser, "--speed", type=float, default=1.0,
+         help="robot speed, world units per second (default: %(default)s)")
+    _add(parser, "--heading", type=float, default=None,
+         help="start heading in degrees from +x (east) towards +y (south); default along "
+              "the first steps of the grid shortest path")
+    _add(parser, "--heading-bins", type=int, default=72,
+         help="hybrid A*: heading bins of the discrete states (default: %(default)s)")
+    _add(parser, "--arc-length", type=float, default=None,
+         help="hybrid A*: length of an expansion, above sqrt(2) cells (default: 1.5 cells)")
+    _add(parser, "--heuristic-weight", type=float, default=1.1,
+         help="hybrid A*: weight of the heuristic (default: %(default)s)")
+    _add(parser, "--iterations", type=int, default=20000,
+         help="RRT/RRT*: samples at most (default: %(default)s)")
+    _add(parser, "--step", type=float, default=None,
+         help="RRT/RRT*: tree extension, world units (default: 2 cells)")
+    _add(parser, "--goal-bias", type=float, default=0.1,
+         help="RRT/RRT*: probability of sampling the goal (default: %(default)s)")
+    _add(parser, "--seed", type=int, default=1, help="random seed (default: %(default)s)")
+
+
+def add_planner_choices(parser=None) -> tuple[str, ...]:
+    """The planner names :func:`plan_with` handles; with ``parser``, also
+    add their options (:func:`add_planner_arguments`)."""
+    if parser is not None:
+        add_planner_arguments(parser)
+    return PLANNER_CHOICES
+
+
+def car_from_args(args):
+    """A :class:`~gapath.planners.hybrid_astar.CarModel` from parsed options
+    (missing options take the defaults)."""
+    from gapath.errors import ConfigError
+    from gapath.planners.hybrid_astar import CarModel
+
+    steer = getattr(args, "max_steer", 34.4)
+    try:
+        steer = math.radians(float(steer))
+    except (TypeError, ValueError):
+        raise ConfigError(f"--max-steer must be a number of degrees, got {steer!r}") from None
+    return CarModel(wheelbase=getattr(args, "wheelbase", 0.6), max_steer=steer,
+                    speed=getattr(args, "speed", 1.0), radius=getattr(args, "radius", 0.3))
+
+
+@dataclass(eq=False)
+class PlanOutcome:
+    """A path from :func:`plan_with`.
+
+    Attributes
+    ----------
+    planner : str
+    poses : (n, 3) array
+        World poses ``(x, y, theta)`` (``x = col * cell_size``, ``y = row *
+        cell_size``).
+    cells : (m, 2) int array
+        The cells ``(row, col)`` the poses pass through.
+    objectives : dict
+        ``length``, ``turning``, ``clearance``.
+    seconds : float
+    info : dict
+        Planner figures (expansions, iterations, ...).
+    """
+
+    planner: str
+    poses: np.ndarray
+    cells: np.ndarray
+    objectives: dict
+    seconds: float
+    info: dict = field(default_factory=dict)
+
+    def records(self) -> list[dict]:
+        """``paths.json`` content: ``[{"objectives", "path", "poses"}]``."""
+        return [{"objectives": {k: float(v) for k, v in self.objectives.items()},
+                 "path": np.asarray(self.cells).tolist(),
+                 "poses": np.round(self.poses, 6).tolist()}]
+
+    def summary(self, workspace) -> dict:
+        from gapath.results import versions
+
+        return {"settings": {"map": workspace.name, "shape": list(workspace.shape),
+                             "start": list(workspace.start), "goal": list(workspace.goal),
+                             "cell_size": workspace.cell_size, "planner": self.planner,
+                             **{k: v for k, v in self.info.items() if k != "seconds"}},
+                "versions": versions(),
+                "wall_time_s": round(self.seconds, 6),
+                "objectives": {k: float(v) for k, v in self.objectives.items()}}
+
+
+def _cells(poses, cell_size):
+    rc = np.floor(np.asarray(poses)[:, [1, 0]] / cell_size + 0.5).astype(np.int64)
+    keep = np.ones(len(rc), bool)
+    keep[1:] = np.any(rc[1:] != rc[:-1], axis=1)
+    return rc[keep]
+
+
+def plan_with(name: str, workspace, args) -> PlanOutcome:
+    """Plan from the workspace's start to its goal with ``name``.
+
+    Parameters
+    ----------
+    name : {"hybrid-astar", "rrt", "rrt-star"}
+    workspace : Workspace
+    args : argparse.Namespace
+        Options of :func:`add_planner_arguments` (missing ones take their
+        defaults).
+
+    Returns
+    -------
+    PlanOutcome
+
+    Raises
+    ------
+    ConfigError
+        On an unknown planner or bad options (e.g. steering of 90 degrees or
+        more, a non-positive wheelbase, a start in collision).
+    NoPathError
+        If no path was found.
+    """
+    from gapath.errors import ConfigError
+    from gapath.planners.hybrid_astar import HybridAStar
+    from gapath.planners.rrt import rrt
+
+    if name not in PLANNER_CHOICES:
+        raise ConfigError(f"unknown planner {name!r}; this module plans with "
+                          f"{', '.join(PLANNER_CHOICES)}")
+    car = car_from_args(args)
+    cs = workspace.cell_size
+    t0 = time.perf_counter()
+    if name == "hybrid-astar":
+        planner = HybridAStar(workspace, car, heading_bins=getattr(args, "heading_bins", 72),
+                              arc_length=getattr(args, "arc_length", None),
+                              heuristic_weight=getattr(args, "heuristic_weight", 1.1))
+        heading = getattr(args, "heading", None)
+        start = None
+        if heading is not None:
+            sr, sc = workspace.start
+            start = (sc * cs, sr * cs, math.radians(float(heading)))
+        res = planner.plan(start)
+        poses = np.asarray(res.poses)
+        info = {"expansions": res.expansions, "reached": res.reached, "cost": res.cost,
+                "min_turning_radius": car.min_turning_radius, "radius": car.radius,
+                "heading_bins": planner.heading_bins, "arc_length": planner.arc_length}
+    else:
+        res = rrt(workspace, seed=getattr(args, "seed", 1), radius=car.radius,
+                  star=name == "rrt-star", max_iter=getattr(args, "iterations", 20000),
+                  step=getattr(args, "step", None), goal_bias=getattr(args, "goal_bias", 0.1))
+        poses = np.asarray(res.poses)
+        info = {"iterations": res.iterations, "nodes": res.nodes,
+                "first_solution": res.first_solution, "radius": car.radius,
+                "seed": getattr(args, "seed", 1)}
+    seconds = time.perf_counter() - t0
+    return PlanOutcome(planner=name, poses=poses, cells=_cells(poses, cs),
+                       objectives={"length": res.length, "turning": res.turning,
+                                   "clearance": res.clearance},
+                       seconds=seconds, info=info)
+
+
+def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) -> list[Path]:
+    """Write ``front.csv`` (one row: length, turning, clearance),
+    ``paths.json``, ``summary.json`` and (with ``plots``) ``paths.png`` into
+    ``out_dir``; returns the files."""
+    from gapath.results import atomic_write
+
+    out = Path(out_dir)
+    files = [out / "front.csv", out / "paths.json", out / "summary.json"]
+    names = list(outcome.objectives)
+    atomic_write(files[0], ",".join(names) + "\n"
+                 + ",".join(repr(float(outcome.objectives[n])) for n in names) + "\n")
+    atomic_write(files[1], json.dumps(outcome.records(), indent=1) + "\n")
+    atomic_write(files[2], json.dumps(outcome.summary(workspace), indent=1, sort_keys=True) + "\n")
+    if plots:
+        import matplotlib.pyplot as plt
+
+        from gapath.dynamic_plots import _base
+        from gapath.plotting import png_bytes
+
+        h, w = workspace.shape
+        _, ax = plt.subplots(figsize=(6.0 * w / max(h, w) + 0.4, 6.0 * h / max(h, w) + 0.6))
+        _base(workspace, ax)
+        p = outcome.poses
+        ax.plot(p[:, 0], p[:, 1], "-", color="tab:blue", lw=2)
+        ax.set_title(f"{outcome.planner}: length {outcome.objectives['length']:.2f}, "
+                     f"turning {outcome.objectives['turning']:.2f} rad", fontsize=9)
+        atomic_write(out / "paths.png", png_bytes(ax))
+        files.append(out / "paths.png")
+    return files
+
+
+# ---------------------------------------------------------------------------
+# gapath simulate
+# ---------------------------------------------------------------------------
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser(
+        "simulate", help="simulate a robot among appearing and moving obstacles",
+        description="One seeded run of a planner among dynamic obstacles (NO-MOPP's setting): "
+                    "the robot senses, predicts collisions, replans locally or halts.")
+    p.add_argument("map", help="'maze', 'warehouse' (generated, seeded by --map-seed) or a map "
+                               "file (.map, .yaml, .txt, .grid, .npy, .pgm, .png)")
+    p.add_argument("--planner", choices=SIMULATE_PLANNERS, default="hybrid-astar",
+                   help="planner (default: %(default)s)")
+    p.add_argument("--obstacles", type=int, default=4,
+                   help="moving obstacles: half timed to cross the robot's path, half wandering "
+                        "(default: %(default)s)")
+    p.add_argument("--stationary", type=int, default=3,
+                   help="stationary obstacles appearing on the path (default: %(default)s)")
+    p.add_argument("--obstacle-speed", default="0.3,0.7",
+                   help="LOW,HIGH speed of moving obstacles (default: %(default)s)")
+    p.add_argument("--map-seed", type=int, default=0, help="seed of a generated map (default: 0)")
+    p.add_argument("--start", type=_cell_arg, help="start cell ROW,COL (map files; default: the map's)")
+    p.add_argument("--goal", type=_cell_arg, help="goal cell ROW,COL")
+    p.add_argument("--sensor-range", type=float, default=6.0,
+                   help="sensor range, world units (default: %(default)s)")
+    p.add_argument("--fov", type=float, default=180.0,
+                   help="half-angle of the field of view in degrees: 45, 90 or 180 in the paper "
+                        "(default: %(default)s)")
+    p.add_argument("--dt", type=float, default=0.1, help="tick, seconds (default: %(default)s)")
+    p.add_argument("--max-time", type=float, default=None,
+                   help="time limit, seconds (default: 3 x direct distance / speed + 60)")
+    add_planner_arguments(p)
+    p.add_argument("--out", default="gapath-simulate", help="output directory (default: %(default)s)")
+    p.add_argument("--gif", action="store_true", help="also write run.gif")
+    p.add_argument("--no-plots", action="store_true", help="skip run.png")
+    p.add_argument("--quiet", action="store_true")
+    p.set_defaults(func=run)
+
+
+def _speed_range(text):
+    from gapath.errors import ConfigError
+
+    try:
+        lo, hi = (float(v) for v in str(text).split(","))
+    except ValueError:
+        raise ConfigError(f"--obstacle-speed must be LOW,HIGH, got {text!r}") from None
+    return lo, hi
+
+
+def run(args) -> int:
+    from gapath.dynamic import Robot, SimSettings, make_planner, simulate
+    from gapath.errors import ConfigError
+    from gapath.results import atomic_write, versions
+    from gapath.scenarios import make_scenario
+
+    if args.obstacles < 0 or args.stationary < 0:
+        raise ConfigError("--obstacles and --stationary must be >= 0")
+    robot = Robot(car=car_from_args(args), sensor_range=args.sensor_range, fov=args.fov)
+    settings = SimSettings(dt=args.dt, max_time=args.max_time)
+    obstacles = dict(n_stationary=args.stationary, n_crossers=(args.obstacles + 1) // 2,
+                     n_wanderers=args.obstacles // 2, robot_speed=robot.speed,
+                     sensor_range=robot.sensor_range,
+                     speed_range=_speed_range(args.obstacle_speed))
+    sc = make_scenario(args.map, args.seed, map_seed=args.map_seed, start=args.start,
+                       goal=args.goal, **obstacles)
+    planner_kw = {}
+    if args.planner == "hybrid-astar":
+        planner_kw = dict(heading_bins=args.heading_bins, arc_length=args.arc_length,
+                          heuristic_weight=args.heuristic_weight)
+    elif args.planner in ("rrt", "rrt-star"):
+        planner_kw = dict(max_iter=args.iterations, step=args.step, goal_bias=args.goal_bias)
+    planner = make_planner(args.planner, **planner_kw)
+    start = sc.start
+    if args.heading is not None:
+        start = (start[0], start[1], math.radians(args.heading))
+    res = simulate(sc.workspace, planner, robot, sc.stationary, sc.moving, settings, start,
+                   args.seed)
+    out = Path(args.out)
+    data = res.to_json()
+    data["stationary"] = [{"cells": o.cells.tolist(), "appear_at": o.appear_at}
+                          for o in sc.stationary]
+    data["moving"] = [{"position": o.position.tolist(), "velocity": o.velocity.tolist(),
+                       "radius": o.radius, "mode": o.mode, "appear_at": o.appear_at}
+                      for o in sc.moving]
+    if res.obstacles is not None:
+        data["obstacle_positions"] = np.round(np.nan_to_num(res.obstacles, nan=-1e9), 4).tolist()
+    atomic_write(out / "trajectory.json", json.dumps(data) + "\n")
+    c = robot.car
+    summary = {
+        **res.summary(),
+        "settings": {"map": sc.workspace.name, "shape": list(sc.workspace.shape),
+                     "start": list(sc.workspace.start), "goal": list(sc.workspace.goal),
+                     "cell_size": sc.workspace.cell_size, "planner": args.planner,
+                     "seed": args.seed, "map_seed": args.map_seed, "obstacles": obstacles,
+                     "robot": {"wheelbase": c.wheelbase, "max_steer_deg": math.degrees(c.max_steer),
+                               "speed": c.speed, "radius": c.radius,
+                               "sensor_range": robot.sensor_range, "fov_deg": robot.fov},
+                     "dt": settings.dt},
+        "versions": versions(),
+    }
+    atomic_write(out / "summary.json", json.dumps(summary, indent=1, sort_keys=True, default=float)
+                 + "\n")
+    written = ["trajectory.json", "summary.json"]
+    if not args.no_plots:
+        from gapath.dynamic_plots import plot_run
+        from gapath.plotting import png_bytes
+
+        atomic_write(out / "run.png", png_bytes(plot_run(sc.workspace, res, sc.stationary)))
+        written.append("run.png")
+    if args.gif:
+        from gapath.dynamic_plots import animate_run
+
+        animate_run(sc.workspace, res, sc.stationary, out / "run.gif")
+        written.append("run.gif")
+    if not args.quiet:
+        status = "reached the goal" if res.success else f"FAILED ({res.reason})"
+        print(f"{sc.workspace!r}\n{args.planner}: {status} after {res.time:.1f} s, driven "
+              f"{res.path_length:.2f} (direct {res.direct_distance:.2f}); global plan "
+              f"{1000 * res.global_plan_seconds:.1f} ms, {res.n_replans} replans "
+              f"({1000 * sum(res.replan_seconds):.1f} ms), {res.count('halt')} halts\n"
+              f"wrote {out}/" + ", ".join(written))
+    return 0 if res.success else 1
