@@ -121,6 +121,10 @@ def test_exact_command_and_reference(text_map, tmp_path, capsys):
                  "--reference", "monotone", "--quiet", "--no-plots"]) == 0
     q2 = json.loads((run / "summary.json").read_text())["quality"]
     assert q2["reference"] == "monotone" and q2["reference_size"] == q["reference_size"]
+    conv = (run / "convergence.csv").read_text().splitlines()
+    assert conv[0] == "n_gen,n_eval,hv_ratio" and len(conv) == 1 + 5
+    last = float(conv[-1].split(",")[2])
+    assert last == pytest.approx(q2["hv_ratio"], rel=1e-9)
 
 
 def test_reference_file_errors(text_map, tmp_path, capsys):
@@ -133,3 +137,12 @@ def test_reference_file_errors(text_map, tmp_path, capsys):
     assert main(["solve", str(text_map), "--pop", "10", "--gen", "2", "--out", str(tmp_path / "o"),
                  "--reference", str(bad), "--quiet", "--no-plots"]) == 2
     assert "line 2" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("planner", ["astar-po", "rrt"])
+def test_plan_command(planner, text_map, tmp_path):
+    out = tmp_path / planner
+    assert main(["plan", str(text_map), "--planner", planner, "--out", str(out), "--quiet"]) == 0
+    rec = json.loads((out / "paths.json").read_text())[0]
+    assert rec["path"][0] == [7, 0] and rec["path"][-1] == [0, 9]
+    assert (out / "summary.json").exists() and (out / "front.csv").exists()

@@ -114,13 +114,25 @@ def _report(result, out_dir: Path) -> None:
           + ("" if result.settings.get("plots") is False else ", front.png, paths.png"))
 
 
-def _quality(args, workspace, objectives, F) -> dict:
+def _reference(args, workspace):
     if not args.reference:
-        return {}
-    from gapath.reference import front_quality, reference_front
+        return None
+    from gapath.problems.grid_path import OBJECTIVE_NAMES
+    from gapath.reference import reference_front
 
-    ref = reference_front(workspace, objectives, args.reference)
-    return {"quality": {"reference": str(args.reference), **front_quality(F, ref)}}
+    names = [o.strip() for o in args.objectives.split(",") if o.strip()]
+    bad = [n for n in names if n not in OBJECTIVE_NAMES]
+    if bad:
+        raise ConfigError(f"unknown objective {bad[0]!r}; expected some of {', '.join(OBJECTIVE_NAMES)}")
+    return reference_front(workspace, names, args.reference)
+
+
+def _quality(args, reference, F) -> dict:
+    if reference is None:
+        return {}
+    from gapath.reference import front_quality
+
+    return {"quality": {"reference": str(args.reference), **front_quality(F, reference)}}
 
 
 def _print_quality(extra: dict) -> None:
@@ -140,18 +152,36 @@ def _run(args, workspace) -> int:
                   sbx_eta=args.sbx_eta, seed_from=args.seed_from, engine=args.engine,
                   progress=not args.quiet)
     out_dir = Path(args.out)
+    reference = _reference(args, workspace)
     if args.runs != 1:
-        return _multirun(args, workspace, kwargs, out_dir)
-    result = solve(workspace, seed=args.seed, **kwargs)
-    extra = _quality(args, workspace, result.problem.objectives, result.front.F)
+        return _multirun(args, workspace, kwargs, out_dir, reference)
+    tracker = None
+    if reference is not None:
+        from gapath.convergence import HypervolumeRatioCallback
+
+        tracker = HypervolumeRatioCallback(reference)
+    result = solve(workspace, seed=args.seed, callback=tracker, **kwargs)
+    extra = _quality(args, reference, result.front.F)
     write_result(result, out_dir, plots=not args.no_plots, extra=extra)
+    if tracker is not None and tracker.history:
+        _write_convergence(tracker, out_dir, plots=not args.no_plots)
     if not args.quiet:
         _report(result, out_dir)
         _print_quality(extra)
     return 130 if result.interrupted else 0
 
 
-def _multirun(args, workspace, kwargs, out_dir: Path) -> int:
+def _write_convergence(tracker, out_dir: Path, plots: bool) -> None:
+    from gapath.convergence import plot_convergence
+    from gapath.results import atomic_write
+
+    rows = ["n_gen,n_eval,hv_ratio"] + [f"{int(g)},{int(e)},{h!r}" for g, e, h in tracker.history]
+    atomic_write(out_dir / "convergence.csv", "\n".join(rows) + "\n")
+    if plots:
+        plot_convergence(tracker.history, out_dir / "convergence.png")
+
+
+def _multirun(args, workspace, kwargs, out_dir: Path, reference) -> int:
     from gapath.experiments import multirun
     from gapath.results import versions, write_front, write_result
 
@@ -161,7 +191,7 @@ def _multirun(args, workspace, kwargs, out_dir: Path) -> int:
             print(f"run {r.settings['seed']}: {len(r.front)} paths, {r.seconds:.1f} s", flush=True)
 
     m = multirun(workspace, runs=args.runs, seed=args.seed, on_run=write_run, **kwargs)
-    extra = _quality(args, workspace, m.runs[0].problem.objectives, m.front.F)
+    extra = _quality(args, reference, m.front.F)
     summary = {
         "settings": {**m.runs[0].settings, "seed": m.seeds[0], "runs": args.runs},
         "seeds": m.seeds,

@@ -9,7 +9,7 @@ with ``parser.set_defaults``. Errors derived from
 import importlib
 
 #: Modules that add sub-commands, in help order.
-MODULES: list[str] = ["gapath.commands.exact", "gapath.commands.dynamic"]
+MODULES: list[str] = ["gapath.commands.exact", "gapath.commands.dynamic", "gapath.commands.plan"]
 
 
 def register_all(subparsers) -> None:

@@ -1,0 +1,784 @@
+"""Layered costmaps (Lavin, "A Pareto optimal D* search algorithm", section III-A).
+
+A :class:`Costmap` holds named ``(H, W)`` float layers over a
+:class:`~gapath.workspace.Workspace`. The paper's five layers are
+
+``distance``
+    The occupancy grid as a cost: traversing a free cell costs one unit per
+    unit length, an obstacle costs ``inf`` (it is not traversable). Built
+    from the workspace; it is the only layer that may hold ``inf``.
+``heuristic``
+    Octile distance from every cell to the goal, times ``cell_size`` (the
+    8-connected shortest length on an empty grid): the paper's ``h(n)``.
+``elevation``
+    Terrain height normalised to ``[0, 1]`` (paper: "the elevations were
+    normalized [0:1] for each sample"), from a DEM array
+    (:meth:`Costmap.set_elevation`, :func:`elevation_from_dem`) or a seeded
+    fractal terrain (:func:`fractal_terrain`).
+``solar``
+    Dynamic: the cost of a step depends on its direction and on its index
+    along the path, see :meth:`Costmap.solar_cost`. It has no ``(H, W)``
+    array; :meth:`Costmap.layer` refuses it and :meth:`Costmap.solar_table`
+    gives the costs of the 8 moves per step index.
+``risk``
+    Proximity to one (or more) risk cells: ``1 / max(d^2, cap^2)`` with
+    ``d`` the Euclidean distance in cell units (paper eq. 7: inverse square
+    distance), capped at ``1 / cap^2`` near the risk cell so that it stays
+    finite there (``cap = 1`` by default: 1 at the risk cell and at its four
+    orthogonal neighbours). Several risk cells add up.
+
+Any other name is a *user layer*: a non-negative finite ``(H, W)`` array
+added with :meth:`Costmap.add_layer`.
+
+Path objectives (paper eqs. 4-7)
+    For a path ``p_0 .. p_m`` (``n = m + 1`` waypoints, start and goal
+    included) and steps ``k = 0 .. m - 1`` (``p_k -> p_{k+1}``):
+
+    * ``length`` (F1) = sum of step lengths (SPEC: from the integer step
+      counts, times ``cell_size``);
+    * ``elevation`` (F2) = ``sum_i e(p_i) / n``, the mean over the waypoints;
+    * ``solar`` (F3) = ``sum_k sigma_k``, a sum over the steps (eq. 6 has no
+      ``1/n``), with ``sigma_k`` defined in :meth:`Costmap.solar_cost`;
+    * ``risk`` (F4) = ``sum_i r(p_i) / n``, the mean over the waypoints;
+    * a user layer ``L`` = ``sum_i L(p_i) / n``, like elevation and risk.
+
+Errors
+    Unknown layer names, layers of the wrong shape, NaN, infinite or negative
+    values raise :class:`gapath.errors.ConfigError` naming the layer and the
+    offending value (with its cell) or shape.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numba
+import numpy as np
+
+from gapath.errors import ConfigError
+
+__all__ = [
+    "Costmap", "BUILTIN_LAYERS", "CELL_MEAN", "elevation_from_dem", "fractal_terrain",
+    "load_dem", "risk_layer", "solar_step_cost", "evaluate_layer_profiles",
+]
+
+#: The paper's layer names (section III-A), in its order.
+BUILTIN_LAYERS = ("distance", "heuristic", "elevation", "solar", "risk")
+#: Layers that are computed, never set by hand.
+_DERIVED = ("distance", "heuristic", "solar")
+#: Names that cannot be used for user layers.
+_RESERVED = _DERIVED + ("length", "vulnerability", "smoothness", "interfering")
+
+#: Aggregation codes of the layer objectives (numba kernels).
+CELL_MEAN, STEP_SUM = 0, 1
+
+SQRT2 = math.sqrt(2.0)
+
+#: The 8 moves (dr, dc) in the order of :mod:`gapath.planners._grid`:
+#: E, NE, N, NW, W, SW, S, SE (row up = -1).
+_DR = np.array([0, -1, -1, -1, 0, 1, 1, 1], dtype=np.int64)
+_DC = np.array([1, 1, 0, -1, -1, -1, 0, 1], dtype=np.int64)
+
+
+# ---------------------------------------------------------------------------
+# validation
+# ---------------------------------------------------------------------------
+
+def _check_layer(name: str, values, shape, *, allow_negative: bool = False) -> np.ndarray:
+    """``values`` as a C-contiguous float64 array of ``shape``.
+
+    Raises
+    ------
+    ConfigError
+        Naming the layer, if ``values`` is not numeric, has another shape, or
+        holds NaN, infinite or (unless ``allow_negative``) negative values.
+    """
+    try:
+        arr = np.asarray(values)
+    except Exception:  # pragma: no cover - exotic objects
+        raise ConfigError(f"layer {name!r} must be an array, got {type(values).__name__}") from None
+    if arr.dtype == np.bool_ or not (np.issubdtype(arr.dtype, np.integer)
+                                     or np.issubdtype(arr.dtype, np.floating)):
+        raise ConfigError(f"layer {name!r} must be a numeric array, got dtype {arr.dtype}")
+    if shape is not None and arr.shape != tuple(shape):
+        raise ConfigError(
+            f"layer {name!r} must have the grid's shape {tuple(shape)}, got shape {arr.shape}")
+    if shape is None and (arr.ndim != 2 or arr.size == 0):
+        raise ConfigError(f"layer {name!r} must be a non-empty 2-D array, got shape {arr.shape}")
+    arr = np.ascontiguousarray(arr, dtype=np.float64)
+    bad = np.isnan(arr)
+    if bad.any():
+        r, c = np.argwhere(bad)[0]
+        raise ConfigError(f"layer {name!r} holds NaN at (row {r}, col {c})")
+    bad = ~np.isfinite(arr)
+    if bad.any():
+        r, c = np.argwhere(bad)[0]
+        raise ConfigError(
+            f"layer {name!r} holds {float(arr[r, c])!r} at (row {r}, col {c}); costs must be "
+            f"finite (mark impassable cells as obstacles instead)")
+    if not allow_negative:
+        neg = arr < 0
+        if neg.any():
+            r, c = np.argwhere(neg)[0]
+            raise ConfigError(
+                f"layer {name!r} holds the negative value {float(arr[r, c])!r} at "
+                f"(row {r}, col {c}); costs must be >= 0")
+    return arr
+
+
+def _normalise(arr: np.ndarray) -> np.ndarray:
+    """Min-max normalisation to [0, 1] (a flat array gives zeros)."""
+    lo, hi = float(arr.min()), float(arr.max())
+    if hi > lo:
+        return (arr - lo) / (hi - lo)
+    return np.zeros_like(arr)
+
+
+def _check_cell(value, name, shape) -> tuple[int, int]:
+    try:
+        vals = list(value)
+        if len(vals) != 2 or any(isinstance(v, (bool, np.bool_)) or float(v) != int(v) for v in vals):
+            raise ValueError
+        r, c = (int(v) for v in vals)
+    except (TypeError, ValueError, OverflowError):
+        raise ConfigError(f"{name} must be a (row, col) pair of integers, got {value!r}") from None
+    h, w = shape
+    if not (0 <= r < h and 0 <= c < w):
+        raise ConfigError(f"{name} {(r, c)} is outside the {h}x{w} grid")
+    return r, c
+
+
+# ---------------------------------------------------------------------------
+# terrain sources
+# ---------------------------------------------------------------------------
+
+def load_dem(path) -> np.ndarray:
+    """An elevation raster from a ``.npy`` file or a ``.npz`` archive (its
+    ``elevation`` member, else its first array).
+
+    Raises
+    ------
+    ConfigError
+        If the file has another extension or holds no 2-D numeric array.
+    OSError
+        If the file cannot be read.
+    """
+    p = Path(path)
+    if p.suffix == ".npy":
+        arr = np.load(p, allow_pickle=False)
+    elif p.suffix == ".npz":
+        with np.load(p, allow_pickle=False) as z:
+            key = "elevation" if "elevation" in z.files else z.files[0]
+            arr = z[key]
+    else:
+        raise ConfigError(f"DEM file {str(p)!r} must be .npy or .npz, got {p.suffix!r}")
+    return _check_layer(f"dem {p.name}", arr, None, allow_negative=True)
+
+
+def elevation_from_dem(dem, shape, *, method: str = "bilinear", offset=(0, 0),
+                       normalise: bool = True) -> np.ndarray:
+    """An ``(H, W)`` elevation layer from a DEM raster.
+
+    Parameters
+    ----------
+    dem : 2-D array of heights (any units, any finite values) or a path to a
+        ``.npy``/``.npz`` file (see :func:`load_dem`).
+    shape : ``(H, W)`` of the grid.
+    method : {"bilinear", "reflect"}
+        ``"bilinear"``: the whole DEM is stretched over the grid; the centre of
+        cell ``(r, c)`` samples the DEM at ``((r + 0.5) * Hd / H - 0.5,
+        (c + 0.5) * Wd / W - 0.5)`` (pixel-centre alignment, clamped at the
+        border) by bilinear interpolation. ``"reflect"``: one DEM pixel per
+        cell, no interpolation; the DEM is tiled with reflection (mirrored
+        copies, ``numpy.pad(mode="symmetric")``, period ``2 Hd x 2 Wd``) and
+        the window of ``shape`` starting at ``offset`` is cut out, so any
+        window size and offset is valid and the terrain stays continuous
+        across tile borders.
+    offset : ``(row, col)`` of the window's top-left pixel (``"reflect"``
+        only; taken modulo the period).
+    normalise : scale to [0, 1] (min-max over the window), as the paper does.
+
+    Returns
+    -------
+    (H, W) float64 array.
+
+    Raises
+    ------
+    ConfigError
+        On an unknown method, a bad shape, or a DEM with NaN/inf values.
+
+    Examples
+    --------
+    >>> dem = np.arange(6.0).reshape(2, 3)
+    >>> elevation_from_dem(dem, (2, 5), method="reflect", normalise=False)
+    array([[0., 1., 2., 2., 1.],
+           [3., 4., 5., 5., 4.]])
+    """
+    if isinstance(dem, (str, Path)):
+        dem = load_dem(dem)
+    dem = _check_layer("dem", dem, None, allow_negative=True)
+    try:
+        h, w = (int(v) for v in shape)
+    except (TypeError, ValueError):
+        raise ConfigError(f"shape must be (rows, cols), got {shape!r}") from None
+    if h <= 0 or w <= 0:
+        raise ConfigError(f"shape must be positive, got {shape!r}")
+    hd, wd = dem.shape
+    if method == "bilinear":
+        if tuple(offset) != (0, 0):
+            raise ConfigError("offset applies to method='reflect' only")
+        y = np.clip((np.arange(h) + 0.5) * hd / h - 0.5, 0, hd - 1)
+        x = np.clip((np.arange(w) + 0.5) * wd / w - 0.5, 0, wd - 1)
+        y0 = np.minimum(np.floor(y).astype(np.int64), max(hd - 2, 0))
+        x0 = np.minimum(np.floor(x).astype(np.int64), max(wd - 2, 0))
+        y1 = np.minimum(y0 + 1, hd - 1)
+        x1 = np.minimum(x0 + 1, wd - 1)
+        fy = (y - y0)[:, None]
+        fx = (x - x0)[None, :]
+        out = ((1 - fy) * (1 - fx) * dem[np.ix_(y0, x0)] + (1 - fy) * fx * dem[np.ix_(y0, x1)]
+               + fy * (1 - fx) * dem[np.ix_(y1, x0)] + fy * fx * dem[np.ix_(y1, x1)])
+    elif method == "reflect":
+        r0, c0 = (int(v) for v in offset)
+        r0 %= 2 * hd
+        c0 %= 2 * wd
+        # indices into the mirrored tiling: period 2n, pixel i -> i or 2n-1-i
+        ri = (r0 + np.arange(h)) % (2 * hd)
+        ci = (c0 + np.arange(w)) % (2 * wd)
+        ri = np.where(ri < hd, ri, 2 * hd - 1 - ri)
+        ci = np.where(ci < wd, ci, 2 * wd - 1 - ci)
+        out = dem[np.ix_(ri, ci)]
+    else:
+        raise ConfigError(f"unknown DEM method {method!r}; expected 'bilinear' or 'reflect'")
+    out = np.ascontiguousarray(out, dtype=np.float64)
+    return _normalise(out) if normalise else out
+
+
+def fractal_terrain(shape, seed: int = 0, *, hurst: float = 0.8) -> np.ndarray:
+    """Seeded fractal terrain by spectral synthesis, normalised to [0, 1].
+
+    White Gaussian noise is filtered in the Fourier domain by the amplitude
+    ``|f|^-(hurst + 1)`` (power spectrum ``|f|^-(2 hurst + 2)``, a fractional
+    Brownian surface with Hurst exponent ``hurst``; the mean is removed),
+    transformed back and min-max normalised. Larger ``hurst`` gives smoother
+    terrain. The same ``(shape, seed, hurst)`` gives the same array.
+
+    Raises
+    ------
+    ConfigError
+        If the shape is not positive or ``hurst`` is outside (0, 1].
+
+    Examples
+    --------
+    >>> t = fractal_terrain((8, 6), seed=1)
+    >>> t.shape, float(t.min()), float(t.max())
+    ((8, 6), 0.0, 1.0)
+    """
+    try:
+        h, w = (int(v) for v in shape)
+    except (TypeError, ValueError):
+        raise ConfigError(f"shape must be (rows, cols), got {shape!r}") from None
+    if h <= 0 or w <= 0:
+        raise ConfigError(f"shape must be positive, got {shape!r}")
+    if not (0.0 < float(hurst) <= 1.0):
+        raise ConfigError(f"hurst must be in (0, 1], got {hurst!r}")
+    rng = np.random.default_rng(seed)
+    noise = rng.standard_normal((h, w))
+    fy = np.fft.fftfreq(h)[:, None]
+    fx = np.fft.rfftfreq(w)[None, :]
+    f = np.sqrt(fy * fy + fx * fx)
+    f[0, 0] = 1.0
+    amp = f ** -(float(hurst) + 1.0)
+    amp[0, 0] = 0.0
+    out = np.fft.irfft2(np.fft.rfft2(noise) * amp, s=(h, w))
+    return _normalise(out)
+
+
+def risk_layer(shape, cells, *, cap: float = 1.0) -> np.ndarray:
+    """Risk proximity ``sum_i 1 / max(d_i^2, cap^2)`` (paper eq. 7, capped).
+
+    ``d_i`` is the Euclidean distance, in cell units, from a cell to risk cell
+    ``i``. Without the cap the risk cell itself would be infinite.
+
+    Raises
+    ------
+    ConfigError
+        If a cell is outside the grid or ``cap`` is not positive.
+
+    Examples
+    --------
+    >>> risk_layer((3, 3), [(1, 1)]).round(3).tolist()
+    [[0.5, 1.0, 0.5], [1.0, 1.0, 1.0], [0.5, 1.0, 0.5]]
+    """
+    h, w = shape
+    try:
+        cap = float(cap)
+    except (TypeError, ValueError):
+        raise ConfigError(f"risk cap must be a positive number, got {cap!r}") from None
+    if not np.isfinite(cap) or cap <= 0:
+        raise ConfigError(f"risk cap must be a positive number, got {cap!r}")
+    arr = np.asarray(cells)
+    if arr.ndim == 1:
+        cells = [cells]
+    rr, cc = np.mgrid[0:h, 0:w]
+    out = np.zeros((h, w))
+    for cell in cells:
+        r, c = _check_cell(cell, "risk cell", shape)
+        d2 = (rr - r) ** 2 + (cc - c) ** 2
+        out += 1.0 / np.maximum(d2, cap * cap)
+    return out
+
+
+# ---------------------------------------------------------------------------
+# the solar cost
+# ---------------------------------------------------------------------------
+
+def solar_step_cost(dr, dc, step, *, rate: float, angle0: float = 0.0):
+    """Solar deviation of a step (see :meth:`Costmap.solar_cost`); vectorised."""
+    dr = np.asarray(dr, dtype=np.float64)
+    dc = np.asarray(dc, dtype=np.float64)
+    norm = np.hypot(dr, dc)
+    theta = float(angle0) + float(rate) * np.asarray(step, dtype=np.float64)
+    # step direction (x = east = +col, y = north = -row) . sun vector
+    dot = (dc * np.cos(theta) - dr * np.sin(theta)) / norm
+    return 0.5 * (1.0 + dot)
+
+
+# ---------------------------------------------------------------------------
+# the costmap
+# ---------------------------------------------------------------------------
+
+class Costmap:
+    """Named cost layers over a workspace (paper section III-A).
+
+    Parameters
+    ----------
+    workspace : Workspace
+        The grid, start, goal and cell size.
+    elevation : (H, W) array, optional
+        Elevation layer; normalised to [0, 1] (see :meth:`set_elevation`).
+    risk : (row, col) or list of cells, optional
+        Risk cell(s) (see :meth:`set_risk`).
+    risk_cap : float, default 1.0
+        Distance (cells) below which the risk stops growing.
+    solar_rate : float, default 0.01
+        Rotation of the solar vector per path step, radians, counter-clockwise
+        (paper section II: 0.01 rad per step; its Mars study, section IV, uses
+        1 rad per step).
+    solar_angle0 : float, default 0.0
+        Angle of the solar vector at the first step (0: ``[1, 0]``, east).
+    layers : dict, optional
+        User layers ``{name: (H, W) array}`` (see :meth:`add_layer`).
+
+    Raises
+    ------
+    ConfigError
+        On a layer of the wrong shape, with NaN/inf/negative values, a
+        reserved or unknown name, or a bad solar setting.
+
+    Examples
+    --------
+    >>> from gapath import Workspace
+    >>> ws = Workspace(np.zeros((3, 4), bool))
+    >>> cm = Costmap(ws, elevation=np.arange(12.0).reshape(3, 4), risk=(1, 1))
+    >>> cm.names
+    ('distance', 'heuristic', 'elevation', 'solar', 'risk')
+    >>> float(cm.layer("elevation")[2, 3])
+    1.0
+    >>> cm.objective_names
+    ('length', 'elevation', 'solar', 'risk')
+    """
+
+    def __init__(self, workspace, *, elevation=None, risk=None, risk_cap: float = 1.0,
+                 solar_rate: float = 0.01, solar_angle0: float = 0.0, layers=None):
+        self.workspace = workspace
+        self._layers: dict[str, np.ndarray] = {}
+        self.risk_cells: list[tuple[int, int]] = []
+        self.risk_cap = float(risk_cap)
+        for label, v in (("solar_rate", solar_rate), ("solar_angle0", solar_angle0)):
+            try:
+                ok = np.isfinite(float(v))
+            except (TypeError, ValueError):
+                ok = False
+            if not ok:
+                raise ConfigError(f"{label} must be a finite number (radians), got {v!r}")
+        self.solar_rate = float(solar_rate)
+        self.solar_angle0 = float(solar_angle0)
+        if elevation is not None:
+            self.set_elevation(elevation)
+        if risk is not None:
+            self.set_risk(risk, cap=risk_cap)
+        for name, values in (layers or {}).items():
+            self.add_layer(name, values)
+
+    # -- shape and names ---------------------------------------------------
+    @property
+    def shape(self) -> tuple[int, int]:
+        return self.workspace.shape
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Available layers: the built-in ones that are set (paper order),
+        then the user layers in the order they were added."""
+        builtin = tuple(n for n in BUILTIN_LAYERS if n in _DERIVED or n in self._layers)
+        return builtin + tuple(n for n in self._layers if n not in BUILTIN_LAYERS)
+
+    @property
+    def objective_names(self) -> tuple[str, ...]:
+        """Names usable as path objectives: ``length`` (F1, from the distance
+        and heuristic layers), then every other layer except ``heuristic``."""
+        return ("length",) + tuple(n for n in self.names if n not in ("distance", "heuristic"))
+
+    def aggregation(self, name: str) -> int:
+        """How objective ``name`` sums up along a path: :data:`STEP_SUM`
+        (``solar``) or :data:`CELL_MEAN` (cell layers).
+
+        Raises
+        ------
+        ConfigError
+            If ``name`` is not a layer objective of this costmap.
+        """
+        self.check_objectives([name])
+        if name == "length":
+            raise ConfigError("'length' is not a layer objective (it is the path length)")
+        return STEP_SUM if name == "solar" else CELL_MEAN
+
+    def check_objectives(self, objectives) -> tuple[str, ...]:
+        """``objectives`` (sequence or comma-separated string) as a tuple of
+        names, each one a path objective of this costmap.
+
+        Raises
+        ------
+        ConfigError
+            If a name is unknown, not set (e.g. ``elevation`` before
+            :meth:`set_elevation`), repeated, or the list is empty.
+        """
+        if isinstance(objectives, str):
+            objectives = [o.strip() for o in objectives.split(",") if o.strip()]
+        names = tuple(objectives)
+        if not names:
+            raise ConfigError("at least one objective is needed")
+        for n in names:
+            if not isinstance(n, str):
+                raise ConfigError(f"objective names must be strings, got {n!r}")
+            if n not in self.objective_names:
+                raise ConfigError(self._unknown(n, objective=True))
+        for n in names:
+            if names.count(n) > 1:
+                raise ConfigError(f"objective {n!r} is given twice")
+        return names
+
+    def _unknown(self, name, objective=False) -> str:
+        if name in BUILTIN_LAYERS and name not in self.names:
+            how = {"elevation": "set_elevation(...)", "risk": "set_risk(...)"}[name]
+            return f"layer {name!r} is not set on this costmap; call {how} first"
+        if objective and name == "heuristic":
+            return "'heuristic' is the goal-distance estimate, not a path objective"
+        kind = "objective" if objective else "layer"
+        avail = self.objective_names if objective else self.names
+        return f"unknown {kind} {name!r}; available: {', '.join(avail)}"
+
+    # -- setting layers ----------------------------------------------------
+    def set_elevation(self, values, *, method: str = "bilinear", offset=(0, 0)) -> None:
+        """Set the elevation layer, normalised to [0, 1].
+
+        ``values`` of the grid's shape is used as is (then normalised);
+        another shape (or a ``.npy``/``.npz`` path) is a DEM resampled by
+        :func:`elevation_from_dem` with ``method`` (``"bilinear"`` stretches
+        the whole DEM, ``"reflect"`` tiles it with reflection and cuts the
+        window at ``offset``).
+        """
+        if isinstance(values, (str, Path)):
+            values = load_dem(values)
+        arr = _check_layer("elevation", values, None, allow_negative=True)
+        if arr.shape == self.shape and method == "bilinear" and tuple(offset) == (0, 0):
+            self._layers["elevation"] = _normalise(arr)
+        else:
+            self._layers["elevation"] = elevation_from_dem(arr, self.shape, method=method,
+                                                           offset=offset)
+
+    def set_risk(self, cells, *, cap: float | None = None) -> None:
+        """Set the risk layer from one ``(row, col)`` or several risk cells
+        (see :func:`risk_layer`)."""
+        cap = self.risk_cap if cap is None else cap
+        arr = np.asarray(cells)
+        cell_list = [tuple(cells)] if arr.ndim == 1 else [tuple(c) for c in cells]
+        self._layers["risk"] = risk_layer(self.shape, cell_list, cap=cap)
+        self.risk_cells = [_check_cell(c, "risk cell", self.shape) for c in cell_list]
+        self.risk_cap = float(cap)
+
+    def add_layer(self, name: str, values) -> None:
+        """Add (or replace) a user layer: a non-negative finite ``(H, W)``
+        array. ``elevation`` and ``risk`` may be given this way too (then
+        used as given, not normalised).
+
+        Raises
+        ------
+        ConfigError
+            On a reserved name (``distance``, ``heuristic``, ``solar``, the
+            SPEC objective names) or a bad array.
+        """
+        if not isinstance(name, str) or not name or "," in name:
+            raise ConfigError(f"layer names must be non-empty strings without commas, got {name!r}")
+        if name in _RESERVED:
+            raise ConfigError(f"layer name {name!r} is reserved (computed by gapath); "
+                              f"choose another name")
+        self._layers[name] = _check_layer(name, values, self.shape)
+
+    # -- reading layers ----------------------------------------------------
+    def layer(self, name: str) -> np.ndarray:
+        """The ``(H, W)`` array of a layer (a read-only view or a new array).
+
+        Raises
+        ------
+        ConfigError
+            If the layer is unknown or not set, or is ``solar`` (dynamic: use
+            :meth:`solar_cost` or :meth:`solar_table`).
+        """
+        if name == "distance":
+            out = np.where(self.workspace.occ, np.inf, 1.0)
+        elif name == "heuristic":
+            h, w = self.shape
+            gr, gc = self.workspace.goal
+            dr = np.abs(np.arange(h) - gr)[:, None]
+            dc = np.abs(np.arange(w) - gc)[None, :]
+            out = (np.maximum(dr, dc) + (SQRT2 - 1.0) * np.minimum(dr, dc)) * self.workspace.cell_size
+        elif name == "solar":
+            raise ConfigError("layer 'solar' is dynamic (it depends on the step direction and "
+                              "index); use Costmap.solar_cost or Costmap.solar_table")
+        elif name in self._layers:
+            out = self._layers[name].view()
+        else:
+            raise ConfigError(self._unknown(name))
+        out.setflags(write=False)
+        return out
+
+    def solar_cost(self, dr, dc, step):
+        """Solar deviation ``sigma`` of a step ``(dr, dc)`` taken as step number
+        ``step`` (0 for the first step of the path); vectorised.
+
+        The solar vector starts at ``[cos a0, sin a0]`` (``[1, 0]``: east) and
+        turns counter-clockwise by ``solar_rate`` per step:
+        ``s_k = [cos(a0 + k w), sin(a0 + k w)]`` in ``(x, y)`` = (east, north)
+        coordinates (north is towards row 0). With ``r_k`` the unit step
+        direction, the paper minimises the dot product ``r_k . s_k`` (eq. 6);
+        a search needs non-negative costs, so the cost is that dot product
+        mapped from ``[-1, 1]`` to ``[0, 1]``::
+
+            sigma_k = (1 + r_k . s_k) / 2 = (1 - cos(phi_k)) / 2
+
+        where ``phi_k`` is the angle between the rover's rear (``-r_k``) and
+        ``s_k``: 0 when the rear solar panel faces the solar vector, 1 when
+        the rover heads straight along it. The paper's ``r . s`` is
+        ``2 sigma - 1`` per step.
+
+        Examples
+        --------
+        >>> from gapath import Workspace
+        >>> cm = Costmap(Workspace(np.zeros((2, 2), bool)), solar_rate=np.pi / 2)
+        >>> [float(cm.solar_cost(0, 1, 0)), float(cm.solar_cost(0, -1, 0)), float(cm.solar_cost(-1, 0, 1))]
+        [1.0, 0.0, 1.0]
+        """
+        return solar_step_cost(dr, dc, step, rate=self.solar_rate, angle0=self.solar_angle0)
+
+    def solar_table(self, n_steps: int) -> np.ndarray:
+        """``(n_steps, 8)`` solar costs of the 8 moves (order E, NE, N, NW, W,
+        SW, S, SE of :mod:`gapath.planners._grid`) at step indices
+        ``0 .. n_steps - 1``."""
+        k = np.arange(int(n_steps))[:, None]
+        return np.ascontiguousarray(self.solar_cost(_DR[None, :], _DC[None, :], k))
+
+    # -- path objectives ---------------------------------------------------
+    def evaluate_path(self, path, objectives=None) -> dict[str, float]:
+        """Objectives (module docstring: F1..F4 and user layers) of one path.
+
+        Parameters
+        ----------
+        path : (m, 2) cells, consecutive cells 8-adjacent.
+        objectives : names (default: :attr:`objective_names`).
+
+        Returns
+        -------
+        dict name -> value.
+
+        Raises
+        ------
+        ConfigError
+            On unknown objectives or a malformed path.
+        """
+        from gapath.objectives import _check_path
+
+        names = self.objective_names if objectives is None else self.check_objectives(objectives)
+        p = _check_path(self.workspace, path)
+        d = np.diff(p, axis=0)
+        out = {}
+        for n in names:
+            if n == "length":
+                diag = int(np.count_nonzero((d[:, 0] != 0) & (d[:, 1] != 0)))
+                out[n] = float(((len(d) - diag) + SQRT2 * diag) * self.workspace.cell_size)
+            elif n == "solar":
+                out[n] = float(np.sum(self.solar_cost(d[:, 0], d[:, 1], np.arange(len(d)))))
+            else:
+                out[n] = float(np.mean(self._layers[n][p[:, 0], p[:, 1]]))
+        return out
+
+    def with_workspace(self, workspace) -> "Costmap":
+        """A copy over another workspace of the same shape (e.g. with other
+        obstacles, start or goal); the layers are shared.
+
+        Raises
+        ------
+        ConfigError
+            If the grid shapes differ.
+        """
+        if tuple(workspace.shape) != tuple(self.shape):
+            raise ConfigError(f"workspace shape {workspace.shape} differs from the costmap's "
+                              f"{self.shape}")
+        out = object.__new__(Costmap)
+        out.__dict__.update(self.__dict__)
+        out.workspace = workspace
+        out._layers = dict(self._layers)
+        out.risk_cells = list(self.risk_cells)
+        return out
+
+    def profile_evaluator(self, frame, objectives) -> "LayerProfileEvaluator":
+        """A callable ``(entries, exits) -> (N, k)`` giving the layer
+        objectives ``objectives`` of column profiles of ``frame`` (see
+        :func:`evaluate_layer_profiles`)."""
+        return LayerProfileEvaluator(self, frame, objectives)
+
+    def __repr__(self) -> str:
+        h, w = self.shape
+        return (f"Costmap({self.workspace.name!r}, {h}x{w}, layers={list(self.names)}, "
+                f"solar_rate={self.solar_rate:g}, risk_cells={self.risk_cells})")
+
+
+# ---------------------------------------------------------------------------
+# layer objectives of column profiles (the GA's kernel)
+# ---------------------------------------------------------------------------
+
+@numba.njit(cache=True)
+def evaluate_layer_profiles(entries, exits, col0, layers, agg, flip, transpose, solar_angle0,
+                            solar_rate):
+    """Layer objectives of column-monotone paths given as column profiles.
+
+    Cells are visited in path order exactly as
+    :func:`gapath.objectives.evaluate_profiles` visits them: in column ``k``
+    (frame column ``col0 + k``) the vertical run ``entries[i, k] ..
+    exits[i, k]``; consecutive columns are joined by one horizontal or
+    diagonal step.
+
+    Parameters
+    ----------
+    entries, exits : (N, n_cols) int arrays (frame rows).
+    col0 : frame column of the start.
+    layers : (k, Hf, Wf) float array, the cell layers in frame orientation
+        (unused rows for ``solar``).
+    agg : (k,) int array, :data:`CELL_MEAN` (mean of the layer over the
+        path's cells, start and goal included) or :data:`STEP_SUM` (the
+        solar cost summed over the steps, with their true indices
+        ``0, 1, ...`` and their directions mapped back to the workspace).
+    flip, transpose : the frame's maps (:class:`gapath.encodings.base.Frame`);
+        a frame step ``(dr, dc)`` is the workspace step ``(dr, -dc)`` after
+        a flip, then ``(dc, dr)`` after a transpose.
+    solar_angle0, solar_rate : the costmap's solar settings.
+
+    Returns
+    -------
+    (N, k) float64 array.
+    """
+    n, n_cols = entries.shape
+    n_obj = agg.shape[0]
+    out = np.zeros((n, n_obj))
+    acc = np.zeros(n_obj)
+    for i in range(n):
+        acc[:] = 0.0
+        n_cells = 0
+        step = 0
+        for k in range(n_cols):
+            c = col0 + k
+            a = entries[i, k]
+            b = exits[i, k]
+            if k > 0:                              # the step into column k
+                dr = a - exits[i, k - 1]
+                dc = 1
+                # frame step -> workspace step (undo the flip, then the transpose)
+                wdr = dr
+                wdc = -dc if flip else dc
+                if transpose:
+                    wdr, wdc = wdc, wdr
+                norm = math.sqrt(wdr * wdr + wdc * wdc)
+                th = solar_angle0 + solar_rate * step
+                sig = 0.5 * (1.0 + (wdc * math.cos(th) - wdr * math.sin(th)) / norm)
+                for j in range(n_obj):
+                    if agg[j] == STEP_SUM:
+                        acc[j] += sig
+                step += 1
+            s = 1 if b >= a else -1
+            r = a
+            while True:
+                n_cells += 1
+                for j in range(n_obj):
+                    if agg[j] == CELL_MEAN:
+                        acc[j] += layers[j, r, c]
+                if r == b:
+                    break
+                # a vertical step inside the column
+                wdr = s
+                wdc = 0
+                if transpose:
+                    wdr, wdc = wdc, wdr
+                th = solar_angle0 + solar_rate * step
+                sig = 0.5 * (1.0 + (wdc * math.cos(th) - wdr * math.sin(th)))
+                for j in range(n_obj):
+                    if agg[j] == STEP_SUM:
+                        acc[j] += sig
+                step += 1
+                r += s
+        for j in range(n_obj):
+            out[i, j] = acc[j] / n_cells if agg[j] == CELL_MEAN else acc[j]
+    return out
+
+
+class LayerProfileEvaluator:
+    """Layer objectives of a frame's column profiles (see
+    :meth:`Costmap.profile_evaluator`): the layers are put in frame
+    orientation once, then every call runs :func:`evaluate_layer_profiles`.
+
+    Raises
+    ------
+    ConfigError
+        If a name is not a layer objective of the costmap (``length`` is not:
+        the frame's own evaluation computes it), or the costmap's grid differs
+        from the frame's workspace.
+    """
+
+    def __init__(self, costmap: Costmap, frame, objectives):
+        names = costmap.check_objectives(objectives)
+        if "length" in names:
+            raise ConfigError("'length' is computed by the frame's objective kernel, "
+                              "not as a layer objective")
+        if tuple(costmap.shape) != tuple(frame.workspace.shape):
+            raise ConfigError(f"the costmap's grid {costmap.shape} differs from the "
+                              f"workspace's {frame.workspace.shape}")
+        self.objectives = names
+        self.costmap = costmap
+        self.frame = frame
+        fh, fw = frame.occ.shape
+        stack = np.zeros((len(names), fh, fw))
+        for j, name in enumerate(names):
+            if name != "solar":
+                arr = costmap.layer(name)
+                if frame.transpose:
+                    arr = arr.T
+                if frame.flip:
+                    arr = arr[:, ::-1]
+                stack[j] = arr
+        self._layers = np.ascontiguousarray(stack)
+        self._agg = np.array([STEP_SUM if n == "solar" else CELL_MEAN for n in names], np.int64)
+
+    def __call__(self, entries, exits) -> np.ndarray:
+        return evaluate_layer_profiles(
+            np.asarray(entries, np.int64), np.asarray(exits, np.int64), self.frame.col0,
+            self._layers, self._agg, bool(self.frame.flip), bool(self.frame.transpose),
+            self.costmap.solar_angle0, self.costmap.solar_rate)

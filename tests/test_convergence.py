@@ -1,0 +1,103 @@
+"""HypervolumeRatioCallback and plot_convergence on short GA runs."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from pymoo.optimize import minimize
+
+from gapath import ConfigError, default_workspace
+from gapath.algorithms import paper_nsga2
+from gapath.convergence import HypervolumeRatioCallback, plot_convergence
+from gapath.front import path_front
+from gapath.metrics import hv_ratio
+from gapath.planners.exact import free_front, monotone_front
+from gapath.problems import GridPathProblem
+
+
+@pytest.fixture(scope="module")
+def ws():
+    return default_workspace()
+
+
+@pytest.fixture(scope="module")
+def reference(ws):
+    return monotone_front(ws, ("length", "vulnerability"))
+
+
+def _run(problem, callback, n_gen=6, pop_size=40, seed=3):
+    return minimize(problem, paper_nsga2(pop_size), ("n_gen", n_gen), seed=seed,
+                    callback=callback)
+
+
+def test_history_rows_match_the_final_population(ws, reference):
+    problem = GridPathProblem(ws)
+    cb = HypervolumeRatioCallback(reference)
+    res = _run(problem, cb)
+    H = cb.to_array()
+    assert H.shape == (6, 3)
+    assert H[:, 0].tolist() == [1, 2, 3, 4, 5, 6]
+    assert (np.diff(H[:, 1]) > 0).all() and H[-1, 1] == res.algorithm.evaluator.n_eval
+    assert ((H[:, 2] >= 0) & (H[:, 2] <= 1 + 1e-9)).all()
+    # the last row is hv_ratio of the final population's front
+    front = path_front(problem, res.algorithm.pop.get("X"))
+    expected = hv_ratio(front.F, reference.F) if len(front) else 0.0
+    assert H[-1, 2] == pytest.approx(expected, abs=1e-12)
+    # elitist survival: the ratio never falls much (only crowding may drop points)
+    assert H[-1, 2] >= H[0, 2] - 1e-9
+
+
+def test_problem_decoding_gives_the_same_values(ws, reference):
+    problem = GridPathProblem(ws)
+    by_columns = HypervolumeRatioCallback(reference)
+    _run(problem, by_columns, n_gen=3)
+    by_decoding = HypervolumeRatioCallback(reference, problem=problem)
+    _run(problem, by_decoding, n_gen=3)
+    np.testing.assert_allclose(by_columns.to_array(), by_decoding.to_array(), atol=1e-12)
+
+
+def test_constraint_mode_and_free_reference(ws):
+    problem = GridPathProblem(ws, constraints="constraint")
+    free = free_front(ws)
+    cb = HypervolumeRatioCallback(free)
+    _run(problem, cb, n_gen=3)
+    H = cb.to_array()
+    assert len(H) == 3
+    # the GA only reaches monotone paths: below the free front's hypervolume
+    assert (H[:, 2] < 1.0).all()
+
+
+def test_reference_columns_follow_the_problem(ws):
+    lv = monotone_front(ws, ("length", "vulnerability"))
+    vl = monotone_front(ws, ("vulnerability", "length"))
+    a = HypervolumeRatioCallback(lv)
+    _run(GridPathProblem(ws), a, n_gen=2)
+    b = HypervolumeRatioCallback(vl)
+    _run(GridPathProblem(ws), b, n_gen=2)
+    np.testing.assert_allclose(a.to_array(), b.to_array(), atol=1e-12)
+
+
+def test_mismatched_reference_raises(ws):
+    three = monotone_front(ws, ("length", "vulnerability", "smoothness"))
+    with pytest.raises(ConfigError):
+        _run(GridPathProblem(ws), HypervolumeRatioCallback(three), n_gen=1)
+    with pytest.raises(ConfigError):
+        HypervolumeRatioCallback(np.zeros((0, 2)))
+
+
+def test_plot_convergence(tmp_path):
+    history = [(1, 40, 0.2), (2, 80, 0.5), (3, 120, 0.7)]
+    out = plot_convergence(history, tmp_path / "conv.png")
+    assert out == tmp_path / "conv.png" and out.stat().st_size > 1000
+    out = plot_convergence(np.array(history), tmp_path / "conv.svg", x="n_gen", label="run 1")
+    assert out.read_text().lstrip().startswith("<?xml")
+
+    from matplotlib.figure import Figure
+
+    ax = Figure().add_subplot()
+    assert plot_convergence(history, ax, label="a") is ax
+    assert len(ax.lines) == 2      # the curve and the 1.0 line
+    with pytest.raises(ConfigError):
+        plot_convergence(history, tmp_path / "x.png", x="time")
+    with pytest.raises(ConfigError):
+        plot_convergence([[1, 2]], tmp_path / "x.png")
