@@ -9,7 +9,8 @@ with ``parser.set_defaults``. Errors derived from
 import importlib
 
 #: Modules that add sub-commands, in help order.
-MODULES: list[str] = ["gapath.commands.exact", "gapath.commands.dynamic", "gapath.commands.plan"]
+MODULES: list[str] = ["gapath.commands.exact", "gapath.commands.experiment", "gapath.commands.dynamic",
+                      "gapath.commands.plan"]
 
 
 def register_all(subparsers) -> None:

@@ -1,0 +1,530 @@
+"""Run an experiment's grid of runs on a process pool or a Dask cluster.
+
+An experiment (:class:`gapath.experiments.spec.ExperimentSpec`, written in
+Python, YAML or TOML: see :mod:`gapath.experiments.spec` for the schema) is
+a list of runs. Each run is a plain dict executed by the pure function
+:func:`run_one`, which returns a JSON-serialisable dict: the front (``F``,
+``metrics``, genomes ``X`` and ``paths``), the settings solve ran with, the
+seed, the package versions, per-run indicators and the timings.
+
+:func:`run_experiment` submits :func:`run_one` for every run not yet in the
+result store (:class:`gapath.experiments.store.ResultStore`) to an
+executor-like object and writes each result as soon as it arrives:
+
+* by default a local ``concurrent.futures.ProcessPoolExecutor`` with
+  ``workers`` processes (default: the number of CPUs; ``workers=0`` runs in
+  this process, one run after the other). Its workers are started with
+  multiprocessing's ``spawn`` method (they inherit no threads or locks) and,
+  on Linux, die with the process that started them; as with any ``spawn``
+  pool, a *script* that calls :func:`run_experiment` must do so under
+  ``if __name__ == "__main__":`` (the CLI and notebooks need nothing);
+* with ``scheduler="tcp://HOST:PORT"`` (or the environment variable
+  ``GAPATH_SCHEDULER``) a ``distributed.Client`` connected to that Dask
+  scheduler; the workers must have gapath installed and be able to read any
+  map *files* of the spec at the same path;
+* any object with ``submit(fn, *args)`` (a ``concurrent.futures.Executor``
+  or a ``distributed.Client``) passed as ``executor``.
+
+The code path is the same for all of them (``submit`` then
+``as_completed``), and so are the results: a run depends on its dict only,
+so the pool, a Dask cluster or an interrupted-and-resumed experiment store
+bit-identical fronts and indicators (only the ``runtime`` entry, with
+timings and host, differs).
+
+Per-run indicators (``result["indicators"]``)
+    ``feasible`` (a feasible path was found), ``front_size``,
+    ``min_length`` (length of the shortest feasible path, or None),
+    ``n_obstacles`` of the run's map, ``first_feasible_gen`` (with the
+    options ``stop_at_first_feasible`` or ``record_first_feasible``: the
+    first generation whose population holds a feasible path, 1 being the
+    initial population, None if none did; with them also
+    ``min_length_population``, the shortest path of the final population,
+    feasible or not) and, with the option
+    ``reference``, ``hv_ratio``, ``igd_plus`` and ``reference_points_found``
+    against the exact monotone or free front.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import time
+import traceback
+import uuid
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+from pymoo.core.callback import Callback
+
+from gapath.errors import ConfigError
+from gapath.experiments.spec import (ExperimentSpec, build_workspace, config_key, load_spec,
+                                     map_label, run_key)
+from gapath.experiments.store import ResultStore, store_versions
+
+__all__ = ["ExperimentRun", "FirstFeasible", "front_from_dict", "front_to_dict", "make_executor",
+           "run_experiment", "run_one", "stable_part"]
+
+#: Environment variable naming a Dask scheduler (``tcp://HOST:PORT``).
+SCHEDULER_ENV = "GAPATH_SCHEDULER"
+
+
+# ---------------------------------------------------------------------------
+# one run
+# ---------------------------------------------------------------------------
+
+def _feasible_count(algorithm) -> int:
+    """Paths without interfering cells in the algorithm's population (read
+    from the arrays of :class:`gapath.algorithms.FastNSGA2` when it has
+    them, so that no pymoo ``Population`` is built)."""
+    arrays = getattr(algorithm, "arrays", None)
+    data = getattr(arrays, "data", None)
+    if isinstance(data, dict) and "interfering" in data:
+        return int((np.asarray(data["interfering"]) == 0).sum())
+    from gapath.operators._columns import column
+
+    pop = algorithm.pop
+    if pop is None or len(pop) == 0:
+        return 0
+    interfering = column(pop, "interfering")
+    if interfering is not None:
+        return int((interfering == 0).sum())
+    return int((column(pop, "CV")[:, 0] <= 0).sum())
+
+
+class FirstFeasible(Callback):
+    """A pymoo callback that records the first generation whose population
+    holds a feasible path (no interfering cell) and, with ``stop``, ends the
+    run there through the algorithm's termination (``terminate()``).
+
+    Parameters
+    ----------
+    stop : end the run at the first feasible generation.
+
+    Attributes
+    ----------
+    generation : that generation (pymoo's ``n_gen``: 1 is the initial
+        population), or None.
+
+    Examples
+    --------
+    >>> from gapath import dense_workspace
+    >>> from gapath.solver import solve
+    >>> cb = FirstFeasible()
+    >>> r = solve(dense_workspace(8, 0.3, seed=1), pop_size=20, n_gen=50, seed=1,
+    ...           seed_from="none", callback=cb)
+    >>> r.n_gen == cb.generation
+    True
+    """
+
+    def __init__(self, stop: bool = True):
+        super().__init__()
+        self.stop = bool(stop)
+        self.generation = None
+
+    def notify(self, algorithm):
+        if self.generation is not None or _feasible_count(algorithm) == 0:
+            return
+        self.generation = int(algorithm.n_gen)
+        if self.stop and algorithm.termination is not None:
+            algorithm.termination.terminate()
+            algorithm.termination.update(algorithm)
+
+
+def front_to_dict(front) -> dict:
+    """A :class:`gapath.front.PathFront` as JSON-ready lists (exact floats)."""
+    return {"objectives": list(front.objectives), "F": np.asarray(front.F).tolist(),
+            "metrics": np.asarray(front.metrics).tolist(), "X": np.asarray(front.X).tolist(),
+            "paths": [np.asarray(p).tolist() for p in front.paths]}
+
+
+def front_from_dict(d: dict):
+    """The :class:`gapath.front.PathFront` of :func:`front_to_dict`."""
+    from gapath.front import PathFront
+
+    m = len(d["objectives"])
+    k = len(d["F"])
+    X = np.asarray(d["X"])
+    return PathFront(tuple(d["objectives"]), np.asarray(d["F"], float).reshape(k, m),
+                     np.asarray(d["metrics"], float).reshape(k, 4),
+                     X.reshape(k, -1) if X.size else np.zeros((k, 0)),
+                     [np.asarray(p, np.int64).reshape(-1, 2) for p in d["paths"]])
+
+
+def _solve_kwargs(run: dict) -> dict:
+    import inspect
+
+    from gapath.solver import solve
+
+    s = dict(run["settings"])
+    kwargs = dict(objectives=tuple(s["objectives"]), constraints=s["constraints"],
+                  penalty=s["penalty"], pop_size=s["pop_size"], n_gen=s["n_gen"],
+                  tiebreak=s["tiebreak"], sbx_eta=s["sbx_eta"], seed_from=s["seed_from"])
+    engine = run.get("engine", "paper")
+    if "engine" in inspect.signature(solve).parameters:
+        # solve's names: "fast" (FastNSGA2) and "pymoo" (paper_nsga2, pymoo's NSGA2)
+        import gapath.solver
+
+        names = getattr(gapath.solver, "ENGINES", {})
+        kwargs["engine"] = "pymoo" if engine == "paper" and "pymoo" in names else engine
+    elif engine != "paper":
+        raise ConfigError(f"engine {engine!r} needs gapath.solver.solve(engine=...), "
+                          "which this gapath does not have; use engine 'paper' or 'auto'")
+    return kwargs
+
+
+def run_one(run: dict) -> dict:
+    """Execute one run of an experiment and return its result.
+
+    A pure function of ``run`` (a dict of :meth:`ExperimentSpec.runs`): the
+    same dict gives the same result on any process or machine, except for
+    the ``runtime`` entry. Errors do not raise: they give a result with
+    ``status: "failed"`` and the error message.
+
+    Parameters
+    ----------
+    run : ``{"map", "encoding", "engine", "settings", "options", "seed"}``.
+
+    Returns
+    -------
+    dict with ``key`` (:func:`gapath.experiments.spec.run_key`), ``config``
+    (:func:`gapath.experiments.spec.config_key`), ``run``, ``seed``,
+    ``status`` (``"ok"`` or ``"failed"``), ``versions``; when ok also
+    ``settings`` (as solve reports them), ``front`` (:func:`front_to_dict`),
+    ``n_gen``, ``n_eval`` and ``indicators`` (see the module docstring); when
+    failed ``error``; always ``runtime`` (``seconds`` of the optimisation,
+    ``wall_seconds``, ``started``, ``host``, ``pid``, and a failure's
+    ``traceback``).
+
+    Examples
+    --------
+    >>> spec = ExperimentSpec(settings={"pop_size": 20, "n_gen": 3}, seeds=1)
+    >>> r = run_one(spec.runs()[0])
+    >>> r["status"], r["n_gen"], r["indicators"]["feasible"]
+    ('ok', 3, True)
+    """
+    from gapath.objectives import LENGTH
+    from gapath.solver import solve
+
+    started, t0 = time.time(), time.perf_counter()
+    result = {"key": run_key(run), "config": config_key(run), "run": run, "seed": run["seed"],
+              "versions": store_versions()}
+    runtime = {"started": started, "host": platform.node(), "pid": os.getpid()}
+    try:
+        ws = build_workspace(run["map"], run["seed"])
+        options = run.get("options") or {}
+        watch = None
+        if options.get("stop_at_first_feasible") or options.get("record_first_feasible"):
+            watch = FirstFeasible(stop=bool(options.get("stop_at_first_feasible")))
+        res = solve(ws, encoding=run["encoding"], seed=int(run["seed"]), progress=False,
+                    callback=watch, **_solve_kwargs(run))
+        if res.interrupted:  # Ctrl-C inside solve: not a result
+            raise KeyboardInterrupt
+        front = res.front
+        indicators = {"feasible": len(front) > 0, "front_size": len(front),
+                      "n_obstacles": ws.n_obstacles,
+                      "min_length": float(front.metrics[:, LENGTH].min()) if len(front) else None}
+        if watch is not None:
+            indicators["first_feasible_gen"] = watch.generation
+            pop = getattr(res.pymoo_result, "pop", None)
+            if pop is not None and len(pop):
+                lengths = res.problem.metrics(pop.get("X"))[:, LENGTH]
+                indicators["min_length_population"] = float(lengths.min())
+        if options.get("reference"):
+            from gapath.reference import front_quality, reference_front
+
+            ref = reference_front(ws, front.objectives, options["reference"])
+            q = front_quality(front.F, ref)
+            indicators.update({k: q[k] for k in ("hv_ratio", "igd_plus", "reference_points_found")})
+        result.update(status="ok", settings=res.settings, front=front_to_dict(front),
+                      n_gen=int(res.n_gen), n_eval=int(res.n_eval), indicators=indicators)
+        runtime["seconds"] = res.seconds
+    except Exception as exc:  # a failed run is a result too
+        result.update(status="failed", error=f"{type(exc).__name__}: {exc}")
+        runtime["traceback"] = traceback.format_exc()
+    runtime["wall_seconds"] = time.perf_counter() - t0
+    result["runtime"] = runtime
+    return result
+
+
+def stable_part(result: dict) -> dict:
+    """``result`` without ``runtime`` (timings, host, pid): what must be
+    bit-identical wherever and whenever the run executed."""
+    return {k: v for k, v in result.items() if k != "runtime"}
+
+
+# ---------------------------------------------------------------------------
+# executors
+# ---------------------------------------------------------------------------
+
+class _InlineFuture:
+    """A future computed when its result is asked for (``workers=0``)."""
+
+    def __init__(self, fn, args):
+        self.fn, self.args, self._done, self._value = fn, args, False, None
+
+    def result(self):
+        if not self._done:
+            self._value, self._done = self.fn(*self.args), True
+        return self._value
+
+    def cancel(self):
+        return True
+
+
+class InlineExecutor:
+    """Runs submitted calls in this process, lazily, in submission order."""
+
+    def submit(self, fn, *args, **kwargs):
+        return _InlineFuture(fn, args)
+
+    def shutdown(self, wait=True, cancel_futures=False):
+        pass
+
+
+def _die_with_parent() -> None:  # pragma: no cover - runs in pool workers
+    """Pool worker initialiser: on Linux, get SIGKILL when the parent dies, so
+    a killed experiment leaves no orphaned workers behind."""
+    import signal
+    import sys
+
+    if sys.platform.startswith("linux"):
+        try:
+            import ctypes
+
+            ctypes.CDLL("libc.so.6", use_errno=True).prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+        except (OSError, AttributeError):
+            pass
+
+
+def _process_pool(workers: int):
+    """A process pool whose workers start fresh (``spawn``: nothing of this
+    process's threads or locks is inherited) and die with this process."""
+    import multiprocessing as mp
+    from concurrent.futures import ProcessPoolExecutor
+
+    return ProcessPoolExecutor(max_workers=workers, mp_context=mp.get_context("spawn"),
+                               initializer=_die_with_parent)
+
+
+def _is_dask(executor) -> bool:
+    return type(executor).__module__.startswith("distributed")
+
+
+def make_executor(workers: int | None = None, scheduler: str | None = None):
+    """The executor :func:`run_experiment` uses, and whether it owns it.
+
+    Parameters
+    ----------
+    workers : processes of the local pool (default ``os.cpu_count()``; 0:
+        run in this process).
+    scheduler : ``tcp://HOST:PORT`` of a Dask scheduler (default: the
+        ``GAPATH_SCHEDULER`` environment variable); wins over ``workers``.
+
+    Returns
+    -------
+    ``(executor, description)``.
+
+    Raises
+    ------
+    ConfigError
+        On a negative ``workers``, or a scheduler given without the
+        ``distributed`` package.
+    """
+    scheduler = scheduler or os.environ.get(SCHEDULER_ENV) or None
+    if scheduler:
+        try:
+            from distributed import Client
+        except ImportError:
+            raise ConfigError(f"scheduler {scheduler!r} needs the 'distributed' package "
+                              "(pip install 'dask[distributed]')") from None
+        try:
+            client = Client(scheduler, timeout="20s")
+        except (OSError, TimeoutError) as exc:
+            raise ConfigError(f"cannot connect to the Dask scheduler {scheduler!r}: {exc}") from None
+        return client, f"Dask scheduler {scheduler}"
+    workers = (os.cpu_count() or 1) if workers is None else int(workers)
+    if workers < 0:
+        raise ConfigError(f"workers must be >= 0, got {workers}")
+    if workers == 0:
+        return InlineExecutor(), "this process"
+    return _process_pool(workers), f"local pool of {workers} process{'es' if workers > 1 else ''}"
+
+
+def _as_completed(executor, futures):
+    if isinstance(executor, InlineExecutor):
+        return iter(futures)
+    if _is_dask(executor):
+        from distributed import as_completed
+
+        return as_completed(futures)
+    from concurrent.futures import as_completed
+
+    return as_completed(futures)
+
+
+def _submit(executor, run: dict, key: str):
+    if _is_dask(executor):
+        # a fresh task key per submission: never a cached result of an earlier one
+        return executor.submit(run_one, run, key=f"gapath-run-{key[:16]}-{uuid.uuid4().hex[:12]}",
+                               pure=False)
+    return executor.submit(run_one, run)
+
+
+def _close(executor) -> None:
+    if _is_dask(executor):
+        executor.close()
+    else:
+        executor.shutdown(wait=True, cancel_futures=True)
+
+
+def _lost_run(run: dict, key: str, exc: BaseException) -> dict:
+    """The failed result of a run whose worker died or whose future broke."""
+    return {"key": key, "config": config_key(run), "run": run, "seed": run["seed"],
+            "versions": store_versions(), "status": "failed",
+            "error": f"{type(exc).__name__}: {exc}",
+            "runtime": {"started": time.time(), "host": platform.node(), "pid": os.getpid(),
+                        "traceback": "".join(traceback.format_exception(exc))}}
+
+
+# ---------------------------------------------------------------------------
+# the experiment
+# ---------------------------------------------------------------------------
+
+@dataclass
+class ExperimentRun:
+    """What :func:`run_experiment` did.
+
+    Attributes
+    ----------
+    store : the :class:`gapath.experiments.store.ResultStore`.
+    total : runs in the experiment.
+    skipped : runs already stored when it started.
+    ran : runs executed now; ``failed`` of them failed.
+    seconds : wall time.
+    executor : a description of where the runs executed.
+    """
+
+    store: ResultStore
+    total: int
+    skipped: int
+    ran: int
+    failed: int
+    seconds: float
+    executor: str = ""
+    failures: list = field(default_factory=list)
+
+    @property
+    def complete(self) -> bool:
+        """True when every run of the experiment is stored."""
+        return self.skipped + self.ran - self.failed == self.total
+
+
+def _as_spec(spec) -> ExperimentSpec:
+    if isinstance(spec, ExperimentSpec):
+        return spec
+    if isinstance(spec, dict):
+        return ExperimentSpec.from_dict(spec)
+    if isinstance(spec, (str, Path)):
+        return load_spec(spec)
+    raise ConfigError(f"expected an ExperimentSpec, a dict or a spec file, got {type(spec).__name__}")
+
+
+def run_experiment(spec, out, *, workers: int | None = None, scheduler: str | None = None,
+                   executor=None, progress: bool = True, retry_failed: bool = True,
+                   on_result=None) -> ExperimentRun:
+    """Run every run of ``spec`` not yet stored in ``out``.
+
+    Parameters
+    ----------
+    spec : an :class:`ExperimentSpec`, a dict of one, or a YAML / TOML /
+        JSON spec file.
+    out : the store directory (created; an existing one is resumed).
+    workers : local pool size (default: the number of CPUs; 0: in process).
+    scheduler : a Dask scheduler address ``tcp://HOST:PORT`` (default: the
+        ``GAPATH_SCHEDULER`` environment variable).
+    executor : an executor-like object to use instead (not closed here).
+    progress : show a tqdm bar over the runs on stderr.
+    retry_failed : run again the runs whose last attempt failed.
+    on_result : called with each result dict after it is stored.
+
+    Returns
+    -------
+    :class:`ExperimentRun`.
+
+    Raises
+    ------
+    ConfigError
+        On an invalid spec or executor setting.
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> spec = ExperimentSpec(settings={"pop_size": 20, "n_gen": 2}, seeds=2)
+    >>> out = tempfile.mkdtemp()
+    >>> run_experiment(spec, out, workers=0, progress=False).ran
+    2
+    >>> run_experiment(spec, out, workers=0, progress=False).skipped
+    2
+    """
+    from tqdm.auto import tqdm
+
+    spec = _as_spec(spec)
+    store = ResultStore(out)
+    store.initialise(spec)
+    runs = spec.runs()
+    keyed = {}
+    for run in runs:  # identical runs (e.g. a repeated map) execute once
+        keyed.setdefault(run_key(run), run)
+    done = store.done_keys()
+    failed_before = store.failed_keys() - done
+    pending = [(k, r) for k, r in keyed.items()
+               if k not in done and (retry_failed or k not in failed_before)]
+    skipped = len(keyed) - len(pending)
+    t0 = time.perf_counter()
+    ran = failed = 0
+    failures = []
+    description = "nothing to run"
+    if pending:
+        owned = executor is None
+        if owned:
+            executor, description = make_executor(workers, scheduler)
+        else:
+            description = type(executor).__name__
+        bar = tqdm(total=len(keyed), initial=skipped, unit="run", disable=not progress,
+                   desc=spec.to_dict()["name"], dynamic_ncols=True, mininterval=0.5)
+        futures = {}
+        try:
+            for key, run in pending:
+                futures[_submit(executor, run, key)] = key
+            for fut in _as_completed(executor, list(futures)):
+                key = futures[fut]
+                try:
+                    result = fut.result()
+                except Exception as exc:  # a worker died: the run failed
+                    result = _lost_run(keyed[key], key, exc)
+                store.write(result)
+                ran += 1
+                if result["status"] != "ok":
+                    failed += 1
+                    failures.append((key, result.get("error")))
+                    bar.set_postfix_str(f"failed={failed}", refresh=False)
+                bar.update(1)
+                if on_result is not None:
+                    on_result(result)
+        except BaseException:
+            for fut in futures:
+                fut.cancel()
+            raise
+        finally:
+            bar.close()
+            if owned:
+                _close(executor)
+    return ExperimentRun(store, len(keyed), skipped, ran, failed, time.perf_counter() - t0,
+                         description, failures)
+
+
+def describe_run(run: dict) -> str:
+    """A one-line label of a run (map, encoding, engine, seed)."""
+    return f"{map_label(run['map'])} {run['encoding']} {run['engine']} seed {run['seed']}"
+

@@ -1,0 +1,666 @@
+"""Experiment specifications: a grid of GA runs, from Python, YAML or TOML.
+
+An experiment is the cartesian product ``maps x encodings x engines x grid
+x seeds``; every point of it is one *run*, a plain JSON-serialisable dict
+that :func:`gapath.experiments.runner.run_one` executes. Write it as a
+Python :class:`ExperimentSpec` (or a dict for :meth:`ExperimentSpec.from_dict`)
+or in a YAML / TOML file (:func:`load_spec`)::
+
+    name: dense-small                 # label (not part of any run's identity)
+    description: free text            # optional
+    maps:                             # list; each entry is one of
+      - default                       #   the bundled 32x32 scenario
+      - maps/arena.map                #   a map file (relative to the spec file)
+      - {file: {path: arena.map, start: [40, 3], goal: [3, 40], corner_cutting: false}}
+      - {dense: {n: 32, p0: 0.3, seed: 7}}          # gapath.dense_workspace
+      - {dense: {n: [16, 32], p0: 1.0, seed: run}}  # seed "run": the run's seed
+      - {random: {shape: [32, 32], obstacles: 173, seed: 2013}}  # random_workspace
+    encodings: [integer]              # default [integer]
+    engines: [auto]                   # paper (alias pymoo) | fast | auto (default [auto]); alias: algorithms
+    settings:                         # fixed gapath.solver.solve settings
+      objectives: length,vulnerability   # or a list
+      pop_size: 200
+      n_gen: 500
+      seed_from: none                 # weighted (default) | exact | none
+    grid:                             # axes of the grid: setting -> list of values
+      pop_size: [100, 200]
+    seeds: {start: 1, count: 100}     # or a list [1, 2, 3], or a count (seeds 1..count)
+    options:
+      stop_at_first_feasible: true    # stop a run at its first feasible path
+      record_first_feasible: false    # record that generation without stopping
+      reference: monotone             # per-run hv ratio / IGD+ vs monotone | free
+
+The same in TOML::
+
+    name = "dense-small"
+    maps = ["default", {dense = {n = 32, p0 = 0.3, seed = "run"}}]
+    seeds = {start = 1, count = 10}
+    [settings]
+    pop_size = 200
+    seed_from = "none"
+    [options]
+    stop_at_first_feasible = true
+
+Settings (keys of ``settings`` and ``grid``) are those of
+:func:`gapath.solver.solve`: ``objectives``, ``constraints``, ``penalty``,
+``pop_size``, ``n_gen``, ``tiebreak`` (``smoothness`` or ``none``),
+``sbx_eta`` and ``seed_from``. Missing ones take solve's defaults, and the
+objective mode's defaults (``constraints``, ``sbx_eta``) are resolved, so
+every run records every value it ran with. Map generators accept ``start``,
+``goal`` and ``corner_cutting`` too. Engines: ``paper`` is
+:func:`gapath.algorithms.paper_nsga2` through ``solve``; ``fast`` the
+vectorised :class:`gapath.algorithms.FastNSGA2` (solve's ``engine="fast"``);
+``auto`` resolves to ``fast`` when available, else ``paper``, when the spec
+is built, and the saved spec (``experiment.json``) holds the resolved name,
+so a store keeps meaning what it ran. The engine is part of a run's
+identity, although ``fast`` is meant to be bit-identical to ``paper``.
+
+Identity of a run
+    :func:`run_key` is the sha256 of the run's canonical JSON
+    (:func:`canonical_json`: sorted keys, no spaces, shortest float repr), with
+    a map file identified by its name and the sha256 of its content rather
+    than its path. Runs with equal keys are the same computation; the result
+    store (:mod:`gapath.experiments.store`) names each result by its key.
+    :func:`config_key` leaves the seed out: runs with the same config key are
+    repetitions of one configuration (the rows of a report).
+
+Errors name the spec file (or ``<spec>``) and the key, e.g.
+``exp.yaml: settings.pop_sise: unknown setting``.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+import json
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from gapath.errors import ConfigError
+
+__all__ = [
+    "ENGINES", "SETTINGS", "ExperimentSpec", "build_workspace", "canonical_json", "config_key",
+    "load_spec", "map_label", "resolve_engine", "run_key", "sha256_hex",
+]
+
+#: Engine names a spec accepts (``auto`` is resolved when the spec is built
+#: and saved resolved; ``pymoo``, solve's name for ``paper``, is an alias).
+ENGINES = ("paper", "fast", "auto")
+
+#: Settings of :func:`gapath.solver.solve` a spec may set, with solve's defaults.
+SETTINGS = dict(objectives=("length", "vulnerability"), constraints=None, penalty=1000.0,
+                pop_size=500, n_gen=500, tiebreak="smoothness", sbx_eta=None,
+                seed_from="weighted")
+
+#: Per-experiment options and their defaults.
+OPTIONS = dict(stop_at_first_feasible=False, record_first_feasible=False, reference=None)
+
+_TOP_KEYS = ("name", "description", "maps", "encodings", "engines", "algorithms", "settings",
+             "grid", "seeds", "options")
+_MAP_KINDS = ("default", "file", "dense", "random")
+_MAP_COMMON = ("start", "goal", "corner_cutting")
+
+
+# ---------------------------------------------------------------------------
+# canonical JSON and hashes
+# ---------------------------------------------------------------------------
+
+def _plain(obj):
+    """``obj`` with tuples as lists and NumPy scalars as Python numbers."""
+    if isinstance(obj, dict):
+        return {str(k): _plain(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_plain(v) for v in obj]
+    if hasattr(obj, "item") and not isinstance(obj, (str, bytes)):
+        return obj.item()
+    return obj
+
+
+def canonical_json(obj) -> str:
+    """The canonical JSON text of ``obj``: sorted keys, no whitespace, ASCII,
+    floats in Python's shortest round-trip repr, tuples as lists.
+
+    Raises
+    ------
+    ValueError
+        On NaN or infinite floats (not JSON).
+
+    Examples
+    --------
+    >>> canonical_json({"b": (1, 2.5), "a": None})
+    '{"a":null,"b":[1,2.5]}'
+    """
+    return json.dumps(_plain(obj), sort_keys=True, separators=(",", ":"), ensure_ascii=True,
+                      allow_nan=False)
+
+
+def sha256_hex(obj) -> str:
+    """sha256 (hex) of :func:`canonical_json` of ``obj``."""
+    return hashlib.sha256(canonical_json(obj).encode("ascii")).hexdigest()
+
+
+def _identity(run: dict) -> dict:
+    run = copy.deepcopy(run)
+    spec = run.get("map", {})
+    if "file" in spec:  # a map file is its name and content, not where it lies
+        spec["file"].pop("path", None)
+    return run
+
+
+def run_key(run: dict) -> str:
+    """The key of a run: sha256 of its canonical JSON, a map file counted by
+    its name and content hash, not its path.
+
+    Examples
+    --------
+    >>> run_key({"seed": 1}) == run_key({"seed": 1}) != run_key({"seed": 2})
+    True
+    """
+    return sha256_hex(_identity(run))
+
+
+def config_key(run: dict) -> str:
+    """The key of a run's configuration: :func:`run_key` without the seed."""
+    ident = _identity(run)
+    ident.pop("seed", None)
+    return sha256_hex(ident)
+
+
+# ---------------------------------------------------------------------------
+# validation helpers
+# ---------------------------------------------------------------------------
+
+class _Where:
+    """Formats error messages as ``source: key.path: message``."""
+
+    def __init__(self, source):
+        self.source = str(source) if source is not None else "<spec>"
+
+    def error(self, key: str, message: str) -> ConfigError:
+        return ConfigError(f"{self.source}: {key}: {message}" if key else f"{self.source}: {message}")
+
+
+def _int(value, where: _Where, key: str, *, minimum: int | None = None) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or (
+            isinstance(value, float) and not value.is_integer()):
+        raise where.error(key, f"expected an integer, got {value!r}")
+    v = int(value)
+    if minimum is not None and v < minimum:
+        raise where.error(key, f"expected an integer >= {minimum}, got {value!r}")
+    return v
+
+
+def _float(value, where: _Where, key: str, *, lo=None, hi=None) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise where.error(key, f"expected a number, got {value!r}")
+    v = float(value)
+    if (lo is not None and v < lo) or (hi is not None and v > hi):
+        raise where.error(key, f"expected a number in [{lo}, {hi}], got {value!r}")
+    return v
+
+
+def _cell(value, where: _Where, key: str):
+    if value is None:
+        return None
+    if not isinstance(value, (list, tuple)) or len(value) != 2:
+        raise where.error(key, f"expected [row, col], got {value!r}")
+    return [_int(v, where, f"{key}[{i}]", minimum=0) for i, v in enumerate(value)]
+
+
+def _list(value, where: _Where, key: str) -> list:
+    if isinstance(value, (list, tuple)):
+        if not value:
+            raise where.error(key, "must not be empty")
+        return list(value)
+    return [value]
+
+
+def _mapping(value, where: _Where, key: str) -> dict:
+    if value is None:
+        return {}
+    if not isinstance(value, dict):
+        raise where.error(key, f"expected a mapping, got {value!r}")
+    return value
+
+
+def _unknown(d: dict, allowed, where: _Where, key: str, what: str) -> None:
+    for k in d:
+        if k not in allowed:
+            prefix = f"{key}.{k}" if key else str(k)
+            raise where.error(prefix, f"unknown {what}; expected one of {', '.join(allowed)}")
+
+
+# ---------------------------------------------------------------------------
+# maps
+# ---------------------------------------------------------------------------
+
+def _file_sha256(path: Path, where: _Where, key: str) -> str:
+    try:
+        return hashlib.sha256(path.read_bytes()).hexdigest()
+    except OSError as exc:
+        raise where.error(key, f"cannot read map file {str(path)!r} ({exc.strerror})") from None
+
+
+def _normalise_map(value, where: _Where, key: str, base_dir: Path) -> dict:
+    """One map entry in canonical form ``{kind: {...}}``."""
+    if isinstance(value, str):
+        if value == "default":
+            return {"default": {}}
+        value = {"file": {"path": value}}
+    if not isinstance(value, dict) or len(value) != 1:
+        raise where.error(key, f"expected 'default', a file path or one of "
+                               f"{{{', '.join(_MAP_KINDS[1:])}: {{...}}}}, got {value!r}")
+    (kind, args), = value.items()
+    if kind not in _MAP_KINDS:
+        raise where.error(f"{key}.{kind}", f"unknown map kind; expected one of {', '.join(_MAP_KINDS)}")
+    k = f"{key}.{kind}"
+    args = _mapping(args, where, k)
+    out: dict = {}
+    if kind == "default":
+        _unknown(args, _MAP_COMMON, where, k, "key")
+    elif kind == "file":
+        _unknown(args, ("path", "name", "sha256") + _MAP_COMMON, where, k, "key")
+        if not isinstance(args.get("path"), str):
+            raise where.error(f"{k}.path", f"expected a file path, got {args.get('path')!r}")
+        path = Path(os.path.expanduser(args["path"]))
+        path = (path if path.is_absolute() else base_dir / path).resolve()
+        digest = _file_sha256(path, where, f"{k}.path")
+        if args.get("sha256") not in (None, digest):
+            raise where.error(f"{k}.sha256", f"map file {str(path)!r} changed: its sha256 is "
+                                             f"{digest[:12]}..., the spec says {str(args['sha256'])[:12]}...")
+        out.update(path=str(path), name=path.name, sha256=digest)
+    elif kind == "dense":
+        _unknown(args, ("n", "p0", "seed") + _MAP_COMMON, where, k, "key")
+        if "n" not in args or "p0" not in args:
+            raise where.error(k, "needs n (grid side or [rows, cols]) and p0")
+        n = args["n"]
+        if isinstance(n, (list, tuple)):
+            if len(n) != 2:
+                raise where.error(f"{k}.n", f"expected a side or [rows, cols], got {n!r}")
+            n = [_int(v, where, f"{k}.n[{i}]", minimum=2) for i, v in enumerate(n)]
+            n = n[0] if n[0] == n[1] else n
+        else:
+            n = _int(n, where, f"{k}.n", minimum=2)
+        out.update(n=n, p0=_float(args["p0"], where, f"{k}.p0", lo=0.0, hi=1.0),
+                   seed=_map_seed(args.get("seed", 0), where, f"{k}.seed"))
+    else:  # random
+        _unknown(args, ("shape", "obstacles", "seed") + _MAP_COMMON, where, k, "key")
+        if "shape" not in args or "obstacles" not in args:
+            raise where.error(k, "needs shape ([rows, cols]) and obstacles")
+        shape = args["shape"]
+        if not isinstance(shape, (list, tuple)) or len(shape) != 2:
+            raise where.error(f"{k}.shape", f"expected [rows, cols], got {shape!r}")
+        out.update(shape=[_int(v, where, f"{k}.shape[{i}]", minimum=2) for i, v in enumerate(shape)],
+                   obstacles=_int(args["obstacles"], where, f"{k}.obstacles", minimum=0),
+                   seed=_map_seed(args.get("seed", 0), where, f"{k}.seed"))
+    for name in ("start", "goal"):
+        if args.get(name) is not None:
+            out[name] = _cell(args[name], where, f"{k}.{name}")
+    if args.get("corner_cutting") is not None:
+        if not isinstance(args["corner_cutting"], bool):
+            raise where.error(f"{k}.corner_cutting", f"expected true or false, got {args['corner_cutting']!r}")
+        out["corner_cutting"] = args["corner_cutting"]
+    return {kind: out}
+
+
+def _map_seed(value, where: _Where, key: str):
+    if value == "run":
+        return "run"
+    return _int(value, where, key, minimum=0)
+
+
+def map_label(spec: dict) -> str:
+    """A short readable label of a canonical map spec (``seed: run`` is left
+    out: it names the configuration, not one map).
+
+    Examples
+    --------
+    >>> map_label({"dense": {"n": 8, "p0": 0.3, "seed": "run"}})
+    'dense-8x8-p0.3'
+    """
+    (kind, a), = spec.items()
+    if kind == "default":
+        label = "default"
+    elif kind == "file":
+        label = Path(a["name"]).stem
+    elif kind == "dense":
+        h, w = (a["n"], a["n"]) if isinstance(a["n"], int) else a["n"]
+        label = f"dense-{h}x{w}-p{a['p0']:g}"
+    else:
+        h, w = a["shape"]
+        label = f"random-{h}x{w}-k{a['obstacles']}"
+    if kind in ("dense", "random") and a["seed"] != "run":
+        label += f"-s{a['seed']}"
+    for name in ("start", "goal"):
+        if name in a:
+            label += f"-{name}{a[name][0]},{a[name][1]}"
+    if a.get("corner_cutting") is False:
+        label += "-nocc"
+    return label
+
+
+def build_workspace(spec: dict, seed: int | None = None):
+    """The :class:`gapath.Workspace` of a canonical map spec; ``seed`` fills a
+    generator's ``seed: run``.
+
+    Raises
+    ------
+    ConfigError
+        If a map file changed since the spec was expanded (its sha256
+        differs), or on bad generator arguments.
+    """
+    from gapath.workspace import default_workspace, dense_workspace, random_workspace
+
+    (kind, a), = spec.items()
+    start, goal = a.get("start"), a.get("goal")
+    cc = a.get("corner_cutting")
+    if kind in ("dense", "random"):
+        s = a["seed"]
+        if s == "run":
+            if seed is None:
+                raise ConfigError(f"map {map_label(spec)} takes the run's seed, but none was given")
+            s = int(seed)
+        if kind == "dense":
+            ws = dense_workspace(a["n"] if isinstance(a["n"], int) else tuple(a["n"]), a["p0"], s,
+                                 start=start, goal=goal)
+        else:
+            ws = random_workspace(tuple(a["shape"]), a["obstacles"], s, start=start, goal=goal)
+        return ws.replace(corner_cutting=cc) if cc is not None else ws
+    kw = {} if cc is None else {"corner_cutting": cc}
+    if kind == "default":
+        ws = default_workspace()
+        changes = {k: tuple(v) for k, v in (("start", start), ("goal", goal)) if v is not None}
+        return ws.replace(**changes, **kw) if changes or kw else ws
+    from gapath.loaders import load_map
+
+    path = Path(a["path"])
+    digest = hashlib.sha256(path.read_bytes()).hexdigest()
+    if digest != a["sha256"]:
+        raise ConfigError(f"map file {path} changed since the experiment was set up "
+                          f"(sha256 {digest[:12]}..., expected {a['sha256'][:12]}...)")
+    return load_map(path, start=None if start is None else tuple(start),
+                    goal=None if goal is None else tuple(goal), **kw)
+
+
+# ---------------------------------------------------------------------------
+# settings and engines
+# ---------------------------------------------------------------------------
+
+def _setting(name: str, value, where: _Where, key: str):
+    """One solve setting, validated and in canonical form."""
+    from gapath.objectives import OBJECTIVES
+
+    if name == "objectives":
+        names = value.split(",") if isinstance(value, str) else value
+        if not isinstance(names, (list, tuple)) or not all(isinstance(n, str) for n in names):
+            raise where.error(key, f"expected objective names, got {value!r}")
+        names = [n.strip() for n in names if n.strip()]
+        if not names:
+            raise where.error(key, "expected at least one objective")
+        for n in names:
+            if n not in OBJECTIVES:
+                raise where.error(key, f"unknown objective {n!r}; expected some of {', '.join(OBJECTIVES)}")
+        return names
+    if name in ("pop_size", "n_gen"):
+        return _int(value, where, key, minimum=2 if name == "pop_size" else 1)
+    if name == "penalty":
+        return _float(value, where, key, lo=0.0)
+    if name == "sbx_eta":
+        return None if value is None else _float(value, where, key, lo=0.0)
+    choices = {"constraints": (None, "penalty", "constraint"),
+               "tiebreak": ("smoothness", None),
+               "seed_from": ("weighted", "exact", "none")}[name]
+    if name == "tiebreak" and value == "none":
+        value = None
+    if value not in choices:
+        raise where.error(key, f"expected one of {', '.join(str(c) for c in choices)}, got {value!r}")
+    return value
+
+
+def _complete_settings(settings: dict) -> dict:
+    """solve's defaults filled in, the objective mode resolved."""
+    from gapath.solver import objective_mode
+
+    s = {k: (list(v) if isinstance(v, tuple) else v) for k, v in SETTINGS.items()}
+    s.update(settings)
+    mode = objective_mode(s["objectives"], s["constraints"], s["sbx_eta"], s["tiebreak"])
+    s["constraints"], s["sbx_eta"] = mode["constraints"], float(mode["sbx_eta"])
+    return s
+
+
+def fast_engine_available() -> bool:
+    """True when :class:`gapath.algorithms.FastNSGA2` exists and
+    :func:`gapath.solver.solve` takes an ``engine=`` parameter."""
+    import inspect
+
+    import gapath.algorithms
+    from gapath.solver import solve
+
+    return (hasattr(gapath.algorithms, "FastNSGA2")
+            and "engine" in inspect.signature(solve).parameters)
+
+
+def resolve_engine(engine: str) -> str:
+    """``auto`` -> ``fast`` when :func:`fast_engine_available`, else ``paper``;
+    other names unchanged."""
+    if engine == "auto":
+        return "fast" if fast_engine_available() else "paper"
+    return engine
+
+
+# ---------------------------------------------------------------------------
+# the spec
+# ---------------------------------------------------------------------------
+
+@dataclass
+class ExperimentSpec:
+    """A grid of runs (see the module docstring for the schema).
+
+    Parameters
+    ----------
+    name : label of the experiment.
+    maps : map entries: ``"default"``, a file path, or ``{kind: {...}}`` with
+        kind ``file``, ``dense`` or ``random``.
+    encodings : genome encodings (an axis).
+    engines : ``paper``, ``fast`` or ``auto`` (an axis).
+    settings : fixed :func:`gapath.solver.solve` settings.
+    grid : setting -> list of values (axes; their product is taken).
+    seeds : list of seeds, ``{"start": s, "count": k}`` or a count ``k``
+        (seeds ``1..k``).
+    options : ``stop_at_first_feasible``, ``record_first_feasible``,
+        ``reference`` (``None``, ``"monotone"`` or ``"free"``).
+    description : free text.
+    source : the file the spec came from (for messages and relative paths).
+
+    Raises
+    ------
+    ConfigError
+        On any invalid entry; the message names the source and the key.
+
+    Examples
+    --------
+    >>> spec = ExperimentSpec(maps=["default"], settings={"pop_size": 20, "n_gen": 2}, seeds=2)
+    >>> [r["seed"] for r in spec.runs()]
+    [1, 2]
+    """
+
+    name: str = "experiment"
+    maps: list = field(default_factory=lambda: ["default"])
+    encodings: list = field(default_factory=lambda: ["integer"])
+    engines: list = field(default_factory=lambda: ["auto"])
+    settings: dict = field(default_factory=dict)
+    grid: dict = field(default_factory=dict)
+    seeds: object = 1
+    options: dict = field(default_factory=dict)
+    description: str = ""
+    source: str | None = None
+
+    def __post_init__(self):
+        self._normalised = self._normalise()
+
+    # -- construction --------------------------------------------------------
+    @classmethod
+    def from_dict(cls, data: dict, source=None) -> "ExperimentSpec":
+        """A spec from a mapping (the parsed YAML / TOML document).
+
+        Raises
+        ------
+        ConfigError
+            On unknown keys or bad values (names ``source`` and the key).
+        """
+        where = _Where(source)
+        if not isinstance(data, dict):
+            raise where.error("", f"the spec must be a mapping of {', '.join(_TOP_KEYS)}, "
+                                  f"got {type(data).__name__}")
+        _unknown(data, _TOP_KEYS, where, "", "key")
+        data = dict(data)
+        if "algorithms" in data:
+            if "engines" in data:
+                raise where.error("algorithms", "give engines or algorithms, not both")
+            data["engines"] = data.pop("algorithms")
+        kwargs = {k: v for k, v in data.items() if v is not None}
+        return cls(**kwargs, source=None if source is None else str(source))
+
+    def to_dict(self) -> dict:
+        """The normalised spec as a JSON-serialisable dict (what the store
+        saves as ``experiment.json``)."""
+        return copy.deepcopy(self._normalised)
+
+    # -- normalisation -------------------------------------------------------
+    def _normalise(self) -> dict:
+        where = _Where(self.source)
+        base_dir = Path(self.source).resolve().parent if self.source else Path.cwd()
+        if not isinstance(self.name, str) or not self.name:
+            raise where.error("name", f"expected a non-empty string, got {self.name!r}")
+        maps = [_normalise_map(m, where, f"maps[{i}]", base_dir)
+                for i, m in enumerate(_list(self.maps, where, "maps"))]
+        encodings = []
+        for i, e in enumerate(_list(self.encodings, where, "encodings")):
+            from gapath.encodings import ENCODINGS
+
+            if e not in ENCODINGS:
+                raise where.error(f"encodings[{i}]", f"unknown encoding {e!r}; expected one of "
+                                                      f"{', '.join(ENCODINGS)}")
+            encodings.append(e)
+        engines = []
+        for i, e in enumerate(_list(self.engines, where, "engines")):
+            e = "paper" if e == "pymoo" else e
+            if e not in ENGINES:
+                raise where.error(f"engines[{i}]", f"unknown engine {e!r}; expected one of {', '.join(ENGINES)}")
+            e = resolve_engine(e)  # saved resolved: a stored spec keeps meaning what it ran
+            if e not in engines:
+                engines.append(e)
+        settings = _mapping(self.settings, where, "settings")
+        _unknown(settings, tuple(SETTINGS), where, "settings", "setting")
+        settings = {k: _setting(k, v, where, f"settings.{k}") for k, v in settings.items()}
+        grid = _mapping(self.grid, where, "grid")
+        _unknown(grid, tuple(SETTINGS), where, "grid", "setting")
+        axes = {}
+        for k, values in grid.items():
+            if not isinstance(values, (list, tuple)) or not values:
+                raise where.error(f"grid.{k}", f"expected a non-empty list of values, got {values!r}")
+            axes[k] = [_setting(k, v, where, f"grid.{k}[{i}]") for i, v in enumerate(values)]
+        options = _mapping(self.options, where, "options")
+        _unknown(options, tuple(OPTIONS), where, "options", "option")
+        opts = dict(OPTIONS)
+        for k in ("stop_at_first_feasible", "record_first_feasible"):
+            if k in options:
+                if not isinstance(options[k], bool):
+                    raise where.error(f"options.{k}", f"expected true or false, got {options[k]!r}")
+                opts[k] = options[k]
+        if options.get("reference") not in (None, "monotone", "free"):
+            raise where.error("options.reference",
+                              f"expected monotone or free, got {options['reference']!r}")
+        opts["reference"] = options.get("reference")
+        return dict(name=self.name, description=str(self.description or ""), maps=maps,
+                    encodings=encodings, engines=engines, settings=settings, grid=axes,
+                    seeds=self._seeds(where), options=opts)
+
+    def _seeds(self, where: _Where) -> list[int]:
+        s = self.seeds
+        if isinstance(s, dict):
+            _unknown(s, ("start", "count"), where, "seeds", "key")
+            start = _int(s.get("start", 1), where, "seeds.start", minimum=0)
+            count = _int(s.get("count", 1), where, "seeds.count", minimum=1)
+            return list(range(start, start + count))
+        if isinstance(s, (list, tuple)):
+            if not s:
+                raise where.error("seeds", "must not be empty")
+            seeds = [_int(v, where, f"seeds[{i}]", minimum=0) for i, v in enumerate(s)]
+            if len(set(seeds)) != len(seeds):
+                raise where.error("seeds", f"repeated seeds in {seeds}")
+            return seeds
+        return list(range(1, _int(s, where, "seeds", minimum=1) + 1))
+
+    # -- expansion -----------------------------------------------------------
+    def configurations(self) -> list[dict]:
+        """The runs of seed ``None``: one per configuration, in grid order."""
+        n = self._normalised
+        axes = list(n["grid"].items())
+        out = []
+        for m, enc, eng in itertools.product(n["maps"], n["encodings"], n["engines"]):
+            for combo in itertools.product(*[v for _, v in axes]):
+                settings = dict(n["settings"])
+                settings.update({k: v for (k, _), v in zip(axes, combo)})
+                out.append(dict(map=copy.deepcopy(m), encoding=enc, engine=eng,
+                                settings=_complete_settings(settings), options=dict(n["options"])))
+        return out
+
+    def runs(self) -> list[dict]:
+        """Every run: configurations x seeds, in a deterministic order (seed
+        innermost). Each run is a JSON-serialisable dict with keys ``map``,
+        ``encoding``, ``engine``, ``settings``, ``options`` and ``seed``."""
+        return [dict(copy.deepcopy(c), seed=s) for c in self.configurations()
+                for s in self._normalised["seeds"]]
+
+    def __len__(self) -> int:
+        n = self._normalised
+        k = math.prod(len(v) for v in n["grid"].values())
+        return len(n["maps"]) * len(n["encodings"]) * len(n["engines"]) * k * len(n["seeds"])
+
+
+def load_spec(path) -> ExperimentSpec:
+    """Read an experiment spec from a ``.yaml`` / ``.yml``, ``.toml`` or
+    ``.json`` file.
+
+    Raises
+    ------
+    ConfigError
+        If the file cannot be read or parsed (message with the line), or on
+        any invalid entry (message with the key).
+    """
+    import tomllib
+
+    import yaml
+
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as exc:
+        raise ConfigError(f"{path}: cannot read the experiment spec ({exc.strerror})") from None
+    suffix = path.suffix.lower()
+    if suffix in (".yaml", ".yml"):
+        try:
+            data = yaml.safe_load(text)
+        except yaml.YAMLError as exc:
+            mark = getattr(exc, "problem_mark", None)
+            at = f", line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+            raise ConfigError(f"{path}{at}: invalid YAML: {getattr(exc, 'problem', None) or exc}") from None
+    elif suffix == ".toml":
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise ConfigError(f"{path}: invalid TOML: {exc}") from None
+    elif suffix == ".json":
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as exc:
+            raise ConfigError(f"{path}, line {exc.lineno}, column {exc.colno}: invalid JSON: {exc.msg}") from None
+    else:
+        raise ConfigError(f"{path}: unknown spec format {suffix!r}; expected .yaml, .yml, .toml or .json")
+    if data is None:
+        raise ConfigError(f"{path}: the experiment spec is empty")
+    return ExperimentSpec.from_dict(data, source=path)
