@@ -13,8 +13,22 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from gapath.encodings.integer import _linear_draw
 from gapath.errors import ConfigError
+
+
+@numba.njit(cache=True, inline="always")
+def _linear_draw(current, edge, u):
+    """A row between ``edge`` and ``current`` (excluded), probability growing
+    linearly from zero at ``current`` to its maximum at ``edge``."""
+    n = abs(edge - current)
+    if n == 0:
+        return current
+    target = u * (n * (n + 1) // 2)
+    m = 1
+    while m * (m + 1) // 2 < target and m < n:
+        m += 1
+    return current + m * (1 if edge > current else -1)
+
 
 
 def relative_moves(frame, entries, exits, encoding: str) -> np.ndarray:

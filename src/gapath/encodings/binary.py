@@ -67,7 +67,7 @@ import numba
 import numpy as np
 
 from gapath.encodings.base import Frame, profiles_of_paths
-from gapath.encodings.integer import _linear_draw
+from gapath.encodings._relative import _linear_draw
 from gapath.errors import ConfigError
 
 

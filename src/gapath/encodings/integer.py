@@ -33,6 +33,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
+from gapath.encodings._relative import _linear_draw, relative_moves
 from gapath.encodings.base import Frame, profiles_of_paths
 from gapath.errors import ConfigError
 
@@ -52,20 +53,6 @@ def _decode(X, start_row, goal_row, height):
         entries[i, n_var] = r + np.sign(goal_row - r)
         exits[i, n_var] = goal_row
     return entries, exits
-
-
-@numba.njit(cache=True, inline="always")
-def _linear_draw(current, edge, u):
-    """A row between ``edge`` and ``current`` (excluded), probability growing
-    linearly from zero at ``current`` to its maximum at ``edge``."""
-    n = abs(edge - current)
-    if n == 0:
-        return current
-    target = u * (n * (n + 1) // 2)
-    m = 1
-    while m * (m + 1) // 2 < target and m < n:
-        m += 1
-    return current + m * (1 if edge > current else -1)
 
 
 @numba.njit(cache=True)
@@ -140,17 +127,8 @@ class IntegerEncoding:
         return self.encode_profiles(entries, exits)
 
     def encode_profiles(self, entries, exits) -> np.ndarray:
-        sr = self.frame.start[0]
-        prev = np.concatenate([np.full((len(exits), 1), sr), exits[:, :-1]], axis=1)
-        expected = prev + np.sign(exits - prev)
-        expected[:, 0] = sr
-        bad = np.argwhere(entries != expected)
-        if len(bad):
-            i, k = bad[0]
-            raise ConfigError(
-                f"path {i} is not representable in the integer encoding at column {k}: "
-                f"it enters at row {entries[i, k]} where the encoding enters at row {expected[i, k]}")
-        return (prev - exits)[:, :-1].astype(np.int64)
+        """Genes of column profiles: the signed row changes between exit rows."""
+        return relative_moves(self.frame, entries, exits, self.name)
 
     def edge_fix(self, X, random_state: np.random.Generator) -> np.ndarray:
         """The seeds' edge-fixing: a copy of ``X`` (rounded, within bounds)
