@@ -48,6 +48,7 @@ from gapath.planners._grid import (
     octile,
     path_length,
 )
+from gapath.planners._incremental import IncrementalGridPlanner
 from gapath.planners.astar import PlanResult
 
 __all__ = ["DStarLite"]
@@ -289,7 +290,7 @@ def _extract_path(occ, cc, g, start, goal):
 # the planner
 # ---------------------------------------------------------------------------
 
-class DStarLite:
+class DStarLite(IncrementalGridPlanner):
     """Incremental shortest paths under changing obstacles (D* Lite).
 
     The planner keeps its own copy of the occupancy grid. Cells are blocked or
@@ -356,22 +357,6 @@ class DStarLite:
 
     # -- state ------------------------------------------------------------
     @property
-    def start(self) -> tuple[int, int]:
-        """The robot's cell ``s_start``."""
-        return self._start
-
-    @property
-    def goal(self) -> tuple[int, int]:
-        return self._goal
-
-    @property
-    def occ(self) -> np.ndarray:
-        """Read-only view of the current occupancy grid."""
-        view = self._occ.view()
-        view.setflags(write=False)
-        return view
-
-    @property
     def workspace(self):
         """The current map as a :class:`~gapath.workspace.Workspace`
         (start = the robot's cell)."""
@@ -380,10 +365,7 @@ class DStarLite:
         return Workspace(self._occ.copy(), self._start, self._goal, cell_size=self.cell_size,
                          corner_cutting=self.corner_cutting, name=self.name)
 
-    def _index(self, cell) -> int:
-        return cell[0] * self._occ.shape[1] + cell[1]
-
-    # -- the paper's Main() ---------------------------------------------------
+    # -- the paper's Main(); move_to and update_cells: IncrementalGridPlanner --
     def plan(self) -> PlanResult:
         """Search from scratch: Initialize(), then ComputeShortestPath().
 
@@ -429,96 +411,13 @@ class DStarLite:
         self._sync_km()
         return self._search(t0)
 
-    def move_to(self, cell) -> None:
-        """Move the robot to ``cell`` (the new ``s_start``).
-
-        Usually ``cell`` is the next cell of the current path, but any free
-        cell is accepted. ``km`` is updated lazily, at the next
-        :meth:`update_cells` or :meth:`replan`, as in the paper.
-
-        Raises
-        ------
-        ConfigError
-            If ``cell`` is outside the grid or on an obstacle.
-        """
-        self._start = check_cell(cell, "cell", self._occ)
-
-    def update_cells(self, cells, blocked=True) -> int:
-        """Mark cells blocked (obstacle) or free.
-
-        Parameters
-        ----------
-        cells : (row, col) or (k, 2) array-like of cells
-        blocked : bool or (k,) array-like of bool
-            New state of each cell (one value for all, or one per cell).
-
-        Returns
-        -------
-        int
-            Number of cells whose state actually changed.
-
-        Raises
-        ------
-        ConfigError
-            If a cell is outside the grid, if ``blocked`` does not match the
-            cells, or if the robot's cell or the goal would be blocked.
-        """
-        occ = self._occ
-        h, w = occ.shape
-        try:
-            arr = np.asarray(cells, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ConfigError(
-                f"cells must be (row, col) pairs of integers, got {cells!r}") from None
-        if arr.ndim == 1 and arr.shape[0] == 2:
-            arr = arr[None, :]
-        if arr.ndim != 2 or arr.shape[1] != 2 or not np.all(np.isfinite(arr)) \
-                or np.any(arr != np.round(arr)):
-            raise ConfigError(f"cells must be (row, col) pairs of integers, got {cells!r}")
-        arr = arr.astype(np.int64)
-        flags = np.asarray(blocked)
-        if flags.ndim == 0:
-            flags = np.full(len(arr), bool(flags))
-        elif flags.shape != (len(arr),):
-            raise ConfigError(
-                f"blocked must be one bool or one per cell ({len(arr)}), got shape {flags.shape}")
-        flags = flags.astype(bool)
-        for (r, c), b in zip(arr, flags):
-            if not (0 <= r < h and 0 <= c < w):
-                raise ConfigError(
-                    f"cell {(int(r), int(c))} is outside the {h}x{w} grid "
-                    f"(rows 0..{h - 1}, cols 0..{w - 1})")
-            if b and (r, c) == self._start:
-                raise ConfigError(f"cannot block the robot's cell (start) {self._start}")
-            if b and (r, c) == self._goal:
-                raise ConfigError(f"cannot block the goal {self._goal}")
-        changed = occ[arr[:, 0], arr[:, 1]] != flags
-        if not changed.any():
-            return 0
-        arr = arr[changed]
-        flags = flags[changed]
-        occ_old = occ.copy()
-        occ[arr[:, 0], arr[:, 1]] = flags                        # scan graph: the new edge costs
-        if not self._initialized:
-            return int(len(arr))
-        self._sync_km()                                          # -
-        # every cell whose outgoing edges may change: the changed cell and its
-        # 8 neighbours (this covers the diagonals that pass the changed corner)
-        sources = set()
-        for r, c in arr:
-            for dr in (-1, 0, 1):
-                for dc in (-1, 0, 1):
-                    rr, cc = r + dr, c + dc
-                    if 0 <= rr < h and 0 <= cc < w:
-                        sources.add(int(rr) * w + int(cc))
-        src = np.array(sorted(sources), dtype=np.int64)
-        self._size = _update_changed_edges(
-            occ_old, occ, self.corner_cutting, src, self._g, self._rhs, self._hnode, self._hk1,
-            self._hk2, self._pos, self._size, self._index(self._start),
-            self._index(self._goal), self._km)
-        return int(len(arr))
-
     # -- helpers -----------------------------------------------------------
+    def _repair_edges(self, occ_old, src) -> None:
+        self._size = _update_changed_edges(
+            occ_old, self._occ, self.corner_cutting, src, self._g, self._rhs, self._hnode,
+            self._hk1, self._hk2, self._pos, self._size, self._index(self._start),
+            self._index(self._goal), self._km)
+
     def _sync_km(self) -> None:
         """km = km + h(s_last, s_start); s_last = s_start.
 

@@ -114,6 +114,7 @@ import numpy as np
 
 from gapath.errors import ConfigError, NoPathError
 from gapath.planners._grid import DC, DR, can_step, check_cell
+from gapath.planners._incremental import IncrementalGridPlanner
 
 __all__ = [
     "ParetoPlanResult", "astar_po", "weighted_sum_astar", "DStarPO", "WeightedSumDStar",
@@ -1228,7 +1229,7 @@ def weighted_sum_astar(costmap, objectives=DEFAULT_OBJECTIVES, *, weights=None, 
 # D*: D*-PO and the weighted-sum baseline
 # ---------------------------------------------------------------------------
 
-class DStarPO:
+class DStarPO(IncrementalGridPlanner):
     """D*-PO: D* Lite over cost vectors with Pareto selection of ``U.Top()``
     (Lavin; see :mod:`gapath.planners.pareto`), with replanning.
 
@@ -1301,22 +1302,6 @@ class DStarPO:
         return self._model.objectives
 
     @property
-    def start(self) -> tuple[int, int]:
-        """The robot's cell ``s_start``."""
-        return self._start
-
-    @property
-    def goal(self) -> tuple[int, int]:
-        return self._goal
-
-    @property
-    def occ(self) -> np.ndarray:
-        """Read-only view of the current occupancy grid."""
-        view = self._occ.view()
-        view.setflags(write=False)
-        return view
-
-    @property
     def workspace(self):
         """The current map as a :class:`~gapath.workspace.Workspace`
         (start = the robot's cell)."""
@@ -1326,10 +1311,6 @@ class DStarPO:
         return Workspace(self._occ.copy(), self._start, self._goal, cell_size=ws.cell_size,
                          corner_cutting=ws.corner_cutting, name=ws.name)
 
-    def _index(self, cell) -> int:
-        return cell[0] * self._occ.shape[1] + cell[1]
-
-    # -- the paper's Main() ---------------------------------------------------
     def plan(self) -> ParetoPlanResult:
         """Search from scratch: Initialize(), then ComputeShortestPath().
 
@@ -1374,86 +1355,13 @@ class DStarPO:
         self._sync_km()
         return self._search(t0)
 
-    def move_to(self, cell) -> None:
-        """Move the robot to ``cell`` (the new ``s_start``); ``km`` is updated
-        lazily, at the next :meth:`update_cells` or :meth:`replan`.
-
-        Raises
-        ------
-        ConfigError
-            If ``cell`` is outside the grid or on an obstacle.
-        """
-        self._start = check_cell(cell, "cell", self._occ)
-
-    def update_cells(self, cells, blocked=True) -> int:
-        """Mark cells blocked (obstacle) or free.
-
-        Parameters
-        ----------
-        cells : (row, col) or (k, 2) array-like of cells
-        blocked : bool or (k,) array-like of bool
-
-        Returns
-        -------
-        int
-            Number of cells whose state changed.
-
-        Raises
-        ------
-        ConfigError
-            If a cell is outside the grid, ``blocked`` does not match the
-            cells, or the robot's cell or the goal would be blocked.
-        """
-        occ = self._occ
-        h, w = occ.shape
-        try:
-            arr = np.asarray(cells, dtype=np.float64)
-        except (TypeError, ValueError):
-            raise ConfigError(f"cells must be (row, col) pairs of integers, got {cells!r}") from None
-        if arr.ndim == 1 and arr.shape[0] == 2:
-            arr = arr[None, :]
-        if arr.ndim != 2 or arr.shape[1] != 2 or not np.all(np.isfinite(arr)) \
-                or np.any(arr != np.round(arr)):
-            raise ConfigError(f"cells must be (row, col) pairs of integers, got {cells!r}")
-        arr = arr.astype(np.int64)
-        flags = np.asarray(blocked)
-        if flags.ndim == 0:
-            flags = np.full(len(arr), bool(flags))
-        elif flags.shape != (len(arr),):
-            raise ConfigError(
-                f"blocked must be one bool or one per cell ({len(arr)}), got shape {flags.shape}")
-        flags = flags.astype(bool)
-        for (r, c), b in zip(arr, flags):
-            if not (0 <= r < h and 0 <= c < w):
-                raise ConfigError(f"cell {(int(r), int(c))} is outside the {h}x{w} grid")
-            if b and (r, c) == self._start:
-                raise ConfigError(f"cannot block the robot's cell (start) {self._start}")
-            if b and (r, c) == self._goal:
-                raise ConfigError(f"cannot block the goal {self._goal}")
-        changed = occ[arr[:, 0], arr[:, 1]] != flags
-        if not changed.any():
-            return 0
-        arr, flags = arr[changed], flags[changed]
-        occ_old = occ.copy()
-        occ[arr[:, 0], arr[:, 1]] = flags
-        if not self._initialized:
-            return int(len(arr))
-        self._sync_km()
-        sources = set()
-        for r, c in arr:
-            for dr in (-1, 0, 1):
-                for dc in (-1, 0, 1):
-                    rr, cc = r + dr, c + dc
-                    if 0 <= rr < h and 0 <= cc < w:
-                        sources.add(int(rr) * w + int(cc))
-        src = np.array(sorted(sources), dtype=np.int64)
+    # -- helpers -----------------------------------------------------------
+    def _repair_edges(self, occ_old, src) -> None:
         model = self._model
         _update_changed_edges(occ_old, src, self._index(self._start), self._index(self._goal),
-                              self._km, occ, model.cc, *model.costs(), model.ucols, model.pareto,
-                              *self._arrays)
-        return int(len(arr))
+                              self._km, self._occ, model.cc, *model.costs(), model.ucols,
+                              model.pareto, *self._arrays)
 
-    # -- helpers -----------------------------------------------------------
     def _sync_km(self) -> None:
         """km = km + h(s_last, s_start); s_last = s_start."""
         if self._last != self._start:
