@@ -212,6 +212,9 @@ def _multirun(args, workspace, kwargs, out_dir: Path, reference) -> int:
 
 
 def main(argv=None) -> int:
+    import matplotlib
+
+    matplotlib.use("Agg")  # the CLI only writes image files (library modules leave the backend alone)
     parser = build_parser()
     args = parser.parse_args(argv)
     try:

@@ -868,7 +868,7 @@ class SimResult:
         return {
             "planner": self.planner, "seed": self.seed, "success": self.success,
             "reason": self.reason, "time_s": round(self.time, 3),
-            "path_length": self.path_length, "global_length": self.global_length,
+            "path_length": float(self.path_length), "global_length": self.global_length,
             "direct_distance": self.direct_distance,
             "global_plan_seconds": self.global_plan_seconds,
             "replan_seconds": float(sum(self.replan_seconds)),

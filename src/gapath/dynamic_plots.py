@@ -1,4 +1,5 @@
-"""Pictures and animations of dynamic-environment runs (matplotlib, no screen).
+"""Pictures and animations of dynamic-environment runs (matplotlib; the
+backend is the caller's: ``gapath`` commands select Agg).
 
 Colours follow the NO-MOPP paper's figures: static obstacles black,
 dynamic stationary obstacles purple, moving obstacles green, the robot an
@@ -9,13 +10,9 @@ from __future__ import annotations
 
 import math
 
-import matplotlib
-
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-from matplotlib.patches import Circle, Rectangle  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from matplotlib.patches import Circle, Rectangle
 
 #: Colours of the planners in comparison plots.
 PLANNER_COLOURS = {"hybrid-astar": "tab:blue", "rrt": "tab:orange", "rrt-star": "tab:red",

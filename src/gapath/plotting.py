@@ -1,13 +1,13 @@
-"""Plots of fronts and paths (matplotlib, no screen needed)."""
+"""Plots of fronts and paths (matplotlib).
+
+The module leaves the matplotlib backend alone, so the figures show in a
+notebook's inline backend; ``gapath`` commands select Agg (files only).
+"""
 
 from __future__ import annotations
 
-import matplotlib
-
-matplotlib.use("Agg")
-
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
 #: (label, colour) of the marked paths.
 MARKS = {"shortest": "tab:blue", "safest": "tab:green", "knee": "tab:red"}

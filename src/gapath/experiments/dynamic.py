@@ -44,7 +44,7 @@ import numpy as np
 
 from gapath.errors import ConfigError
 
-__all__ = ["DynamicStudy", "PLANNER_ORDER", "SCENARIO_ORDER", "SEED_TABLES", "register_experiment",
+__all__ = ["DynamicStudy", "LABELS", "PLANNER_ORDER", "SCENARIO_ORDER", "SEED_TABLES", "register_experiment",
            "run", "run_fov", "write_outputs"]
 
 #: Planners of the study, in table order.

@@ -30,6 +30,8 @@ from gapath.results import atomic_write
 
 ENCODING_ORDER = ("integer", "mixed", "binary", "absolute")
 PROTOCOLS = {"seeds": "none", "seeded": "weighted"}
+#: Settings of ``--quick`` (tests, notebooks, smoke runs).
+QUICK = dict(runs=2, pop_size=40, n_gen=15)
 
 
 def run(workspace=None, *, runs=10, pop_size=500, n_gen=500, seed=1, encodings=ENCODING_ORDER,
@@ -105,9 +107,6 @@ def _markdown(result) -> str:
 def write_outputs(result, out_dir) -> list[Path]:
     """``encodings.md``, ``encodings.csv``, ``encodings.json`` and
     ``encodings.png`` (merged fronts beside the exact front)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     from gapath.plotting import png_bytes
@@ -142,13 +141,14 @@ def register_experiment(subparsers) -> None:
     p.add_argument("--runs", type=int, default=10)
     p.add_argument("--pop", type=int, default=500)
     p.add_argument("--gen", type=int, default=500)
-    p.add_argument("--quick", action="store_true", help="2 runs x pop 40 x 15 generations")
+    p.add_argument("--quick", action="store_true", help=f"{QUICK['runs']} runs x pop {QUICK['pop_size']} x {QUICK['n_gen']} generations")
     p.add_argument("--out", default="docs/results", help="output directory (default: %(default)s)")
     p.set_defaults(func=_cli)
 
 
 def _cli(args) -> int:
-    runs, pop, gen = (2, 40, 15) if args.quick else (args.runs, args.pop, args.gen)
+    runs, pop, gen = ((QUICK["runs"], QUICK["pop_size"], QUICK["n_gen"]) if args.quick
+                      else (args.runs, args.pop, args.gen))
     result = run(runs=runs, pop_size=pop, n_gen=gen,
                  progress=lambda r: print(json.dumps(r), flush=True))
     for f in write_outputs(result, args.out):

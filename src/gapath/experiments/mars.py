@@ -46,8 +46,9 @@ import numpy as np
 from gapath.errors import ConfigError, NoPathError
 
 __all__ = [
-    "mars_workspace", "mars_costmap", "run_workspace", "mars_study", "MarsStudy",
-    "PAPER_TABLE_I", "OBJECTIVES", "PLANNERS", "summary_rows", "write_results", "QUICK",
+    "mars_workspace", "mars_costmap", "study_workspace", "run_workspace", "mars_study",
+    "MarsStudy", "PAPER_TABLE_I", "OBJECTIVES", "PLANNERS", "summary_rows", "study_stats",
+    "write_results", "QUICK", "FULL",
 ]
 
 #: Settings of ``--quick`` (tests, smoke runs).
@@ -192,6 +193,26 @@ def _dominates(a, b, tol: float = 1e-9) -> bool:
     return bool(np.all((a <= b) | eq) and np.any((a < b) & ~eq))
 
 
+def study_workspace(index: int, *, seed: int = 2015, size: int = 100, dem=None):
+    """Workspace ``index`` of the study seeded ``seed`` and its costmap, as
+    :func:`run_workspace` builds them (workspace seed ``seed * 1000 + index``).
+
+    Returns
+    -------
+    (workspace, costmap) : a :class:`gapath.Workspace` and its
+        :class:`gapath.costmap.Costmap` (distance, elevation, solar, risk).
+
+    Examples
+    --------
+    >>> ws, cm = study_workspace(0, size=40)
+    >>> ws.shape
+    (40, 40)
+    """
+    ws_seed = int(seed) * 1000 + int(index)
+    ws = mars_workspace(ws_seed, size=size)
+    return ws, mars_costmap(ws, ws_seed, dem=dem)
+
+
 def run_workspace(index: int, *, seed: int = 2015, size: int = 100, dem=None,
                   ga_pop: int = 100, ga_gen: int = 150, ga_seed: int = 1) -> dict:
     """Run every planner of the study on workspace ``index``.
@@ -212,9 +233,7 @@ def run_workspace(index: int, *, seed: int = 2015, size: int = 100, dem=None,
     from gapath.planners.pareto import plan
     from gapath.problems import GridPathProblem
 
-    ws_seed = int(seed) * 1000 + int(index)
-    ws = mars_workspace(ws_seed, size=size)
-    cm = mars_costmap(ws, ws_seed, dem=dem)
+    ws, cm = study_workspace(index, seed=seed, size=size, dem=dem)
     rec = {"index": int(index), "workspace": ws.name, "terrain": cm.terrain,
            "risk_cell": list(cm.risk_cells[0]), "obstacle_share": ws.n_obstacles / ws.occ.size}
     for label, name in PLANNERS.items():
