@@ -120,11 +120,12 @@ def p0_for_obstacles(n: int, target: int, samples: int = 2000, decimals: int = 3
 
 def table1_spec(grids=(8, 16, 32), p0s=P0S, runs: int = 100, *, pop_size: int = 200,
                 n_gen: int = 500, engine: str = "auto", first_seed: int = 1,
-                name: str = "dense-table1") -> ExperimentSpec:
+                name: str = "dense-table1", seed_from: str = "none") -> ExperimentSpec:
     """The Table 1 experiment: ``grids x p0s`` rows, ``runs`` seeded dense
     workspaces each (map seed = run seed), NSGA-II with ``pop_size`` for at
-    most ``n_gen`` generations, stopped at the first feasible path,
-    unseeded initial population.
+    most ``n_gen`` generations, stopped at the first feasible path, with an
+    unseeded initial population (``seed_from="none"``, the paper's protocol;
+    ``"weighted"`` etc. give the planner-seeded variant, reported beside it).
 
     Examples
     --------
@@ -139,7 +140,7 @@ def table1_spec(grids=(8, 16, 32), p0s=P0S, runs: int = 100, *, pop_size: int = 
                     "feasible path (gapath.experiments.dense).",
         maps=maps, encodings=["integer"], engines=[engine],
         settings=dict(objectives="length,vulnerability", pop_size=pop_size, n_gen=n_gen,
-                      seed_from="none"),
+                      seed_from=seed_from),
         seeds={"start": first_seed, "count": runs},
         options={"stop_at_first_feasible": True})
 
@@ -200,6 +201,20 @@ def _rows(store_dir) -> list[dict]:
     return out
 
 
+def unsuccessful_runs(store_dir) -> dict:
+    """``{(grid, p0): [seeds]}``: the stored runs of a dense store that found
+    no feasible path (over every stored seed, like the table's rows)."""
+    from gapath.experiments.store import ResultStore
+
+    store = ResultStore(store_dir)
+    out = {}
+    for r in store.results(_widened_spec(store).runs()):
+        d = r["run"]["map"]["dense"]
+        if r.get("status") == "ok" and not r["indicators"]["feasible"]:
+            out.setdefault((d["n"], d["p0"]), []).append(int(r["seed"]))
+    return {k: sorted(v) for k, v in sorted(out.items())}
+
+
 def _timing(store_dir) -> dict:
     from gapath.experiments.store import ResultStore
 
@@ -215,8 +230,9 @@ def _f(v, digits=4):
     return _num(v, digits)
 
 
-def dense_report(table1_dir, results_dir, large_dir=None, *, basename: str = "dense",
-                 wall_seconds: dict | None = None, workers=None) -> dict:
+def dense_report(table1_dir, results_dir, large_dir=None, *, seeded_dir=None,
+                 basename: str = "dense", wall_seconds: dict | None = None,
+                 workers=None) -> dict:
     """Write ``<basename>.md``, ``.csv`` and ``.png`` into ``results_dir``:
     our Table 1 beside the paper's, and the larger grids.
 
@@ -225,6 +241,9 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, basename: str = "de
     table1_dir : store of :func:`table1_spec`.
     results_dir : where the files go (e.g. ``docs/results``).
     large_dir : store of :func:`large_spec` (optional).
+    seeded_dir : store of the planner-seeded variant of :func:`table1_spec`
+        (optional): its success and median generation go in extra columns,
+        marked as seeded.
     wall_seconds : ``{"table1": s, "large": s}`` wall times to record.
     workers : the pool size, to record with the times.
 
@@ -243,11 +262,21 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, basename: str = "de
     for row in t1:
         p = paper_row(row["grid"], row["p0"]) or {}
         row.update({f"paper_{k}": v for k, v in p.items()})
+    seeded = {}
+    if seeded_dir is not None and ResultStore(seeded_dir).exists():
+        seeded = {(r["grid"], r["p0"]): r for r in _rows(seeded_dir)}
+        for row in t1:
+            s_row = seeded.get((row["grid"], row["p0"]))
+            if s_row:
+                row.update(seeded_success_pct=s_row["success_pct"], seeded_runs=s_row["runs"],
+                           seeded_median_generations=s_row["median_generations"])
+    misses = unsuccessful_runs(table1_dir)
     # CSV: both parts, full precision
     cols = ["part", "grid", "p0", "runs", "failed", "obstacles_mean", "paper_obstacles", "success_pct",
             "paper_success_pct", "median_generations", "generations_q1", "generations_q3",
             "paper_median_generations", "mean_min_path_length", "paper_mean_min_path_length",
-            "best_min_path_length", "pop_size", "n_gen", "engine"]
+            "best_min_path_length", "pop_size", "n_gen", "engine", "seeded_success_pct",
+            "seeded_median_generations", "seeded_runs"]
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(cols)
@@ -265,6 +294,8 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, basename: str = "de
         "" if counts[0] >= 100 else " (the protocol asks for 100; see the runs column)")
     head = ["grid", "p0", "obstacles (paper)", "success % (paper)",
             "median gen. [q1, q3] (paper)", "mean min length (paper)", "shortest of all runs", "runs"]
+    if seeded:
+        head.append("SEEDED success %, median gen.")
     body = []
     for row in t1:
         med = row["median_generations"]
@@ -276,6 +307,9 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, basename: str = "de
                      f"{_f(row['mean_min_path_length'], 4)} ({_f(row.get('paper_mean_min_path_length'), 4)})",
                      _f(row["best_min_path_length"], 4),
                      f"{row['runs']}" + (f" ({row['failed']} failed)" if row["failed"] else "")])
+        if seeded:
+            body[-1].append("-" if row.get("seeded_success_pct") is None else
+                            f"{_f(row['seeded_success_pct'], 3)}, {_f(row['seeded_median_generations'])}")
     settings = spec["settings"]
     text = ["# Dense obstacles: Ahmed & Deb (2013), Table 1, reproduced", "",
             "Generated by `gapath experiment dense` (module `gapath.experiments.dense`). "
@@ -295,8 +329,24 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, basename: str = "de
             "feasible path of a population at its first feasible generation, even the "
             "shortest over 100 runs: the paper probably measured them otherwise (e.g. after "
             "optimising further); we report ours as defined here. Obstacles: "
-            "mean over the runs.", "",
-            markdown_table(head, body)]
+            "mean over the runs." + (
+                " SEEDED (last column, not the paper's protocol): the same runs with the "
+                "initial population seeded from planners (`seed_from=\"weighted\"`: the "
+                "shortest, the safest and weighted-sum optimal monotone paths)." if seeded else ""),
+            "", markdown_table(head, body)]
+    below = [row for row in t1 if row.get("paper_success_pct") is not None
+             and row["success_pct"] is not None and row["success_pct"] < row["paper_success_pct"]]
+    text += ["", "## Runs without a feasible path", "",
+             f"{len(below)} of {len(t1)} rows are below the paper's success rate"
+             + (": " + ", ".join(f"{r['grid']}x{r['grid']} p0 {r['p0']:g} ({_f(r['success_pct'], 3)} "
+                                  f"vs {_f(r['paper_success_pct'], 3)})" for r in below) if below else "")
+             + ". The seeds (= map seeds) of the runs that found no feasible path, per row "
+             "(rerun one with `gapath.dense_workspace(grid, p0, seed)` and "
+             "`gapath.solve(..., pop_size=200, seed=seed, seed_from=\"none\")`):", ""]
+    text += [f"- {g}x{g} p0 {p:g}: {', '.join(map(str, seeds))}" for (g, p), seeds in misses.items()]
+    if not misses:
+        text.append("- none")
+    text.append("")
     if large:
         head = ["grid", "p0", "obstacles (paper)", "success %", "median gen. [q1, q3]",
                 "mean min length", "runs", "paper"]
@@ -309,7 +359,7 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, basename: str = "de
                          f"{_f(row['obstacles_mean'], 5)} ({paper.get('obstacles', '-')})",
                          _f(row["success_pct"], 3), gens, _f(row["mean_min_path_length"], 5),
                          str(row["runs"]), paper.get("outcome", "-")])
-        text += ["## Larger grids (population 500)", "",
+        text += [f"## Larger grids (population {large[0]['pop_size']})", "",
                  f"At most {large[0]['n_gen']} generations, population {large[0]['pop_size']}, "
                  "stopped at the first feasible path. `dense_workspace` takes a probability: "
                  "p0 = target / (n^2 - E[path cells]) with the mean length of the generator's "
@@ -317,6 +367,8 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, basename: str = "de
                  "64x64 (p0 = 0.200, 791 obstacles expected), 287.1 on 128x128 (p0 = 0.309, "
                  "4,974 expected).", "", markdown_table(head, body)]
     timing = {"table1": _timing(table1_dir)}
+    if seeded:
+        timing["table1-seeded"] = _timing(seeded_dir)
     if large:
         timing["large"] = _timing(large_dir)
     lines = []
@@ -334,7 +386,7 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, basename: str = "de
                          (".png", png_bytes(_plot(t1)))):
         atomic_write(results_dir / f"{basename}{suffix}", data)
         files.append(results_dir / f"{basename}{suffix}")
-    return {"table1": t1, "large": large, "files": files}
+    return {"table1": t1, "large": large, "unsuccessful": misses, "files": files}
 
 
 def _plot(rows):
@@ -393,6 +445,10 @@ def register_experiment(subparsers) -> None:
     p.add_argument("--p0", default=None, help="comma-separated p0 values (default: 0.1,...,1.0)")
     p.add_argument("--large-runs", type=int, default=None,
                    help="runs on 64x64 and 128x128 (default: 10; 0 skips them)")
+    p.add_argument("--seeded", action="store_true",
+                   help="also run every Table 1 row with the initial population seeded from "
+                        "planners (seed_from=weighted; DIR/table1-seeded), reported beside the "
+                        "paper's protocol and marked SEEDED")
     p.add_argument("--engine", choices=("auto", "paper", "fast"), default="auto",
                    help="GA engine (default: fast when available, else paper)")
     add_executor_options(p)
@@ -419,6 +475,13 @@ def run(args) -> int:
         t0 = time.perf_counter()
         r = run_experiment(t1, out / "table1", **kw)
         wall["table1"], failed = time.perf_counter() - t0, r.failed
+        if args.seeded:
+            ts = table1_spec(grids, p0s, runs, n_gen=QUICK["n_gen"] if quick else 500,
+                             engine=args.engine, seed_from="weighted",
+                             name="dense-table1-seeded-quick" if quick else "dense-table1-seeded")
+            t0 = time.perf_counter()
+            r = run_experiment(ts, out / "table1-seeded", **kw)
+            wall["table1-seeded"], failed = time.perf_counter() - t0, failed + r.failed
         if large_runs > 0:
             ls = large_spec(QUICK["large_sizes"] if quick else (64, 128), large_runs,
                             pop_size=QUICK["large_pop"] if quick else 500,
@@ -431,7 +494,9 @@ def run(args) -> int:
         print(f"interrupted: finished runs are kept in {out}; run the same command to resume")
         return 130
     results = Path(args.results) if args.results else (out if quick else Path("docs/results"))
+    seeded_dir = out / "table1-seeded"
     rep = dense_report(out / "table1", results, out / "large" if large_runs > 0 else None,
+                       seeded_dir=seeded_dir if seeded_dir.exists() else None,
                        wall_seconds=wall, workers=args.workers)
     if not args.quiet:
         print("wrote " + ", ".join(str(f) for f in rep["files"]))
