@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 from pymoo.core.callback import Callback
-from tqdm.auto import tqdm
+from tqdm import tqdm  # the text bar (tqdm.auto warns in kernels without ipywidgets)
 
 from gapath.operators._columns import column
 
