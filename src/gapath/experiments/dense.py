@@ -342,7 +342,9 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, seeded_dir=None,
                                   f"vs {_f(r['paper_success_pct'], 3)})" for r in below) if below else "")
              + ". The seeds (= map seeds) of the runs that found no feasible path, per row "
              "(rerun one with `gapath.dense_workspace(grid, p0, seed)` and "
-             "`gapath.solve(..., pop_size=200, seed=seed, seed_from=\"none\")`):", ""]
+             "`gapath.solve(..., pop_size=200, seed=seed, seed_from=\"none\")`; "
+             "`benchmarks/dense_hard_maps.py` reruns them with more generations and other GA "
+             "seeds, and tries other random-path generators: see `dense_hard_maps.md`):", ""]
     text += [f"- {g}x{g} p0 {p:g}: {', '.join(map(str, seeds))}" for (g, p), seeds in misses.items()]
     if not misses:
         text.append("- none")
