@@ -59,6 +59,21 @@ def test_quick_study(tmp_path, capsys):
         np.testing.assert_allclose(rec["A*"]["F"][0], rec["D*"]["F"][0], rtol=0.2)
     stats = next(x for x in lines if x["kind"] == "mars_stats")
     assert stats["n"] == mars.QUICK["n_workspaces"]
+    # the GA is seeded from planners (as gapath solve): a front on every workspace,
+    # so its row is in the table even with the quick budget
+    assert "GA" in [r["algorithm"] for r in rows]
+    assert all(x["GA"]["front_size"] > 0 for x in lines if x["kind"] == "mars_workspace")
+    assert "seeded from planners" in md
+
+
+def test_unseeded_ga_is_the_all_random_protocol():
+    seeded = mars.run_workspace(0, size=24, ga_pop=12, ga_gen=3)
+    unseeded = mars.run_workspace(0, size=24, ga_pop=12, ga_gen=3, ga_seed_from="none")
+    # same workspace and planners, only the GA's first population differs
+    assert seeded["A*"]["F"] == unseeded["A*"]["F"] and seeded["D*-PO"]["F"] == unseeded["D*-PO"]["F"]
+    assert seeded["GA"]["front_size"] > 0
+    if unseeded["GA"]["front_size"]:
+        assert seeded["GA"]["front"] != unseeded["GA"]["front"]
 
 
 def test_study_rejects_bad_settings():
@@ -66,5 +81,7 @@ def test_study_rejects_bad_settings():
 
     with pytest.raises(ConfigError):
         mars.mars_study(0)
+    with pytest.raises(ConfigError, match="ga_seed_from"):
+        mars.mars_study(1, ga_seed_from="dijkstra")
     with pytest.raises(ConfigError):
         mars.mars_workspace(1, size=2)

@@ -27,7 +27,10 @@ Protocol (paper section IV-A, with the choices this reproduction makes)
       and the GA front (:class:`gapath.problems.GridPathProblem` with the
       four layer objectives, :func:`gapath.algorithms.paper_nsga2`, no
       smoothness tie-break, a budget for two shared cores:
-      ``ga_pop x ga_gen``).
+      ``ga_pop x ga_gen``; its first population seeded like ``gapath solve``
+      (``ga_seed_from="weighted"``: the monotone paths optimal for each
+      objective and for weighted sums of them), or all random with
+      ``ga_seed_from="none"``).
 
 For each workspace the record holds every planner's F1..F4 and wall time,
 the GA front, and whether D*-PO's path is dominated by a point of the GA
@@ -214,8 +217,13 @@ def study_workspace(index: int, *, seed: int = 2015, size: int = 100, dem=None):
 
 
 def run_workspace(index: int, *, seed: int = 2015, size: int = 100, dem=None,
-                  ga_pop: int = 100, ga_gen: int = 150, ga_seed: int = 1) -> dict:
+                  ga_pop: int = 100, ga_gen: int = 150, ga_seed: int = 1,
+                  ga_seed_from: str = "weighted") -> dict:
     """Run every planner of the study on workspace ``index``.
+
+    ``ga_seed_from`` is the GA's initial population: ``"weighted"`` (the
+    default of ``gapath solve``), ``"exact"``, ``"astar"`` or ``"none"`` (all
+    random), see :class:`gapath.operators.PlannerSampling`.
 
     Returns
     -------
@@ -230,6 +238,7 @@ def run_workspace(index: int, *, seed: int = 2015, size: int = 100, dem=None,
 
     from gapath.algorithms import paper_nsga2
     from gapath.front import path_front
+    from gapath.operators import PlannerSampling
     from gapath.planners.pareto import plan
     from gapath.problems import GridPathProblem
 
@@ -244,8 +253,9 @@ def run_workspace(index: int, *, seed: int = 2015, size: int = 100, dem=None,
                       "expansions": res.expansions, "cells": len(res.path)}
     problem = GridPathProblem(ws, objectives=OBJECTIVES, costmap=cm)
     t0, c0 = time.perf_counter(), time.process_time()
-    res = minimize(problem, paper_nsga2(ga_pop, tiebreak=None), ("n_gen", ga_gen), seed=ga_seed,
-                   copy_algorithm=False)
+    sampling = None if ga_seed_from == "none" else PlannerSampling(ga_seed_from)
+    res = minimize(problem, paper_nsga2(ga_pop, tiebreak=None, sampling=sampling), ("n_gen", ga_gen),
+                   seed=ga_seed, copy_algorithm=False)
     front = path_front(problem, res.pop.get("X"))
     seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
     F = np.asarray(front.F, float)
@@ -320,7 +330,7 @@ def summary_rows(records) -> list[dict]:
 
 def mars_study(n_workspaces: int = 100, *, seed: int = 2015, size: int = 100, dem=None,
                ga_pop: int = 100, ga_gen: int = 150, ga_seed: int = 1,
-               on_record=None) -> MarsStudy:
+               ga_seed_from: str = "weighted", on_record=None) -> MarsStudy:
     """Run the study on ``n_workspaces`` workspaces (indices ``0 ..
     n_workspaces - 1``); ``on_record(record)`` is called after each.
 
@@ -331,12 +341,18 @@ def mars_study(n_workspaces: int = 100, *, seed: int = 2015, size: int = 100, de
     Raises
     ------
     ConfigError
-        If ``n_workspaces`` is not positive.
+        If ``n_workspaces`` is not positive or ``ga_seed_from`` unknown.
     """
+    from gapath.operators.sampling.planner_sampling import SEED_SOURCES
+
     if int(n_workspaces) <= 0:
         raise ConfigError(f"n_workspaces must be positive, got {n_workspaces!r}")
+    if ga_seed_from not in SEED_SOURCES:
+        raise ConfigError(f"ga_seed_from must be one of {', '.join(SEED_SOURCES)}, "
+                          f"got {ga_seed_from!r}")
     settings = dict(n_workspaces=int(n_workspaces), seed=int(seed), size=int(size),
                     ga_pop=int(ga_pop), ga_gen=int(ga_gen), ga_seed=int(ga_seed),
+                    ga_seed_from=str(ga_seed_from),
                     solar_rate=1.0, coverage=0.23, objectives=list(OBJECTIVES),
                     terrain="fractal" if isinstance(dem, str) else "mars_dtm reflect")
     _warm_up()
@@ -344,7 +360,7 @@ def mars_study(n_workspaces: int = 100, *, seed: int = 2015, size: int = 100, de
     records = []
     for i in range(int(n_workspaces)):
         rec = run_workspace(i, seed=seed, size=size, dem=dem, ga_pop=ga_pop, ga_gen=ga_gen,
-                            ga_seed=ga_seed)
+                            ga_seed=ga_seed, ga_seed_from=ga_seed_from)
         records.append(rec)
         if on_record is not None:
             on_record(rec)
@@ -415,7 +431,11 @@ def _markdown(study: MarsStudy, stats: dict) -> str:
         "Planners: A* and D* = weighted-sum A* and D* Lite (equal weights on the normalised "
         "objectives); D*-PO = D* Lite with Pareto selection of the open node, priority length; "
         f"GA = paper_nsga2 (pop {st['ga_pop']}, {st['ga_gen']} generations, no smoothness "
-        "tie-break, seed 1) on GridPathProblem with the four layer objectives, column-monotone "
+        "tie-break, seed 1, first population "
+        + ("all random" if st.get("ga_seed_from", "none") == "none" else
+           f"seeded from planners (`{st['ga_seed_from']}`: the monotone paths optimal for each "
+           "objective and for weighted sums)")
+        + ") on GridPathProblem with the four layer objectives, column-monotone "
         "paths; its row is the knee point of each front. Times per workspace: wall-clock mean and "
         "CPU (process time) median, on 2 cores shared with other jobs (wall times are inflated "
         "by the load); the paper's are MATLAB on a Core i5.",
@@ -528,6 +548,9 @@ def add_arguments(p) -> None:
                    help=f"GA population (default: {FULL['ga_pop']})")
     p.add_argument("--ga-gen", type=int, default=None,
                    help=f"GA generations (default: {FULL['ga_gen']})")
+    p.add_argument("--ga-seed-from", default="weighted",
+                   help="the GA's first population: weighted (default, as gapath solve), exact, "
+                        "astar or none (all random)")
     p.add_argument("--terrain", choices=("mars", "fractal"), default="mars",
                    help="elevation source (default: the Mars DTM, fractal if not found)")
     p.add_argument("--out", default=None,
@@ -562,6 +585,7 @@ def run(args) -> int:
         study = mars_study(cfg["n_workspaces"], seed=args.seed, size=args.size,
                            dem="fractal" if args.terrain == "fractal" else None,
                            ga_pop=cfg["ga_pop"], ga_gen=cfg["ga_gen"],
+                           ga_seed_from=args.ga_seed_from,
                            on_record=lambda r: emit({"kind": "mars_workspace", **record_line(r)}))
         files = write_results(study, out)
         for row in study.rows:
