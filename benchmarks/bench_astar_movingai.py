@@ -18,8 +18,12 @@ side with ``pathfinding``'s ``AStarFinder`` (octile heuristic,
 recomputed from the step counts and must be identical; it prints the median
 per-query speed-up (``pathfinding time / gapath time``). Only
 ``finder.find_path`` is timed for ``pathfinding`` (the grid is built and
-cleaned outside the timer). If ``pathfinding`` is not installed the
-comparison is skipped with a note.
+cleaned outside the timer); for gapath the whole ``astar(ws, start, goal)``
+call is timed, argument checks and result included (the warm-up call only
+compiles the kernel and allocates the reusable per-thread scratch arrays).
+The queries alternate, so each side starts with caches the other one left.
+If ``pathfinding`` is not installed the comparison is skipped with a note.
+The setup and summary records carry the load averages.
 
 Progress goes to stderr, results (JSON lines) to stdout; ``--out FILE``
 also writes them to a file.
@@ -96,6 +100,15 @@ def emit(record: dict, out) -> None:
 
 def progress(msg: str) -> None:
     print(msg, file=sys.stderr, flush=True)
+
+
+def _loadavg():
+    """1, 5 and 15 minute load averages (None where unavailable): timings on
+    a shared machine depend on them."""
+    try:
+        return [round(v, 2) for v in os.getloadavg()]
+    except (AttributeError, OSError):  # pragma: no cover - not on every OS
+        return None
 
 
 # ---------------------------------------------------------------------------
@@ -244,7 +257,8 @@ def run_comparison(grid_dir: Path, n_per_map: int, out) -> list[dict]:
         emit({"part": "pathfinding-summary", "pathfinding_version": pf_version,
               "n": len(ratios_all),
               "identical_costs": sum(r.get("identical_costs", 0) for r in records),
-              "median_speedup": round(statistics.median(ratios_all), 1)}, out)
+              "median_speedup": round(statistics.median(ratios_all), 1),
+              "loadavg": _loadavg()}, out)
     return records
 
 
@@ -273,7 +287,7 @@ def main(argv=None) -> int:
         emit({"part": "setup", "python": platform.python_version(), "numpy": np.__version__,
               "numba": numba.__version__, "machine": platform.machine(),
               "cpus": os.cpu_count(), "stride": stride, "compare_per_map": n_compare,
-              "data": str(data)}, out)
+              "data": str(data), "loadavg": _loadavg()}, out)
         summary = run_scenarios(scen_files, stride, out)
         if n_compare > 0:
             run_comparison(data / "movingai" / "grid", n_compare, out)

@@ -7,6 +7,10 @@
   ``abs(a - b) <= 1e-5 * max(1, b)`` (data/README.md).
 * Agreement with a brute-force Dijkstra (plain Python) on random small grids,
   both corner rules, with and without a cost layer.
+* The documented tie-breaking: paths and expansion counts equal those of a
+  plain-Python A* with a ``heapq`` open list ordered the same way; the open
+  list (held-back entry) pops like a plain heap; the move mask follows the
+  move rule; scratch arrays reused across grids and threads.
 * Returned paths are valid; every error case.
 """
 
@@ -16,12 +20,15 @@ import dataclasses
 import heapq
 import math
 import os
+import threading
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 from gapath import ConfigError, NoPathError, Workspace
+from gapath.planners._grid import (DC, DR, HELD, NOT_HELD, can_step, move_mask,
+                                   open_decrease, open_pop, open_push)
 from gapath.planners.astar import PlanResult, astar
 
 SQRT2 = math.sqrt(2.0)
@@ -231,6 +238,177 @@ def test_octile_expands_fewer_cells_than_dijkstra():
     d = astar(ws, heuristic="zero")
     assert a.cost == d.cost == 39 * SQRT2
     assert a.expansions == 40 < d.expansions
+
+
+# ---------------------------------------------------------------------------
+# tie-breaking and the kernel's building blocks
+# ---------------------------------------------------------------------------
+
+def _h(kind, r, c, tr, tc):
+    dr, dc = abs(r - tr), abs(c - tc)
+    if kind == "octile":
+        return dc + (SQRT2 - 1.0) * dr if dr < dc else dr + (SQRT2 - 1.0) * dc
+    if kind == "euclidean":
+        return math.sqrt(dr * dr + dc * dc)
+    if kind == "chebyshev":
+        return float(max(dr, dc))
+    return 0.0
+
+
+def reference_astar(occ, start, goal, corner_cutting, cost=None, weight=1.0,
+                    heuristic="octile"):
+    """Plain-Python A* with the documented order: ``(f, weight * h, index)``,
+    moves E, NE, N, NW, W, SW, S, SE, parent changed only on a smaller g.
+    Returns ``(path, expansions)`` (path None if unreachable)."""
+    h, w = occ.shape
+    s, t = start[0] * w + start[1], goal[0] * w + goal[1]
+    g, parent, closed = {s: 0.0}, {s: -1}, set()
+    hs = weight * _h(heuristic, *start, *goal)
+    queue = [(hs, hs, s)]
+    expansions = 0
+    while queue:
+        _, _, u = heapq.heappop(queue)
+        if u in closed:                               # stale copy
+            continue
+        closed.add(u)
+        expansions += 1
+        if u == t:
+            path = []
+            while u != -1:
+                path.append(divmod(u, w))
+                u = parent[u]
+            return path[::-1], expansions
+        r, c = divmod(u, w)
+        for k in range(8):
+            if not can_step(occ, r, c, DR[k], DC[k], corner_cutting):
+                continue
+            v = u + int(DR[k]) * w + int(DC[k])
+            if v in closed:
+                continue
+            step = SQRT2 if k & 1 else 1.0
+            if cost is not None:
+                step *= 1.0 + 0.5 * (cost.flat[u] + cost.flat[v])
+            ng = g[u] + step
+            if v in g and ng >= g[v]:
+                continue
+            g[v], parent[v] = ng, u
+            hv = weight * _h(heuristic, *divmod(v, w), *goal)
+            heapq.heappush(queue, (ng + hv, hv, v))
+    return None, expansions
+
+
+def test_paths_and_expansions_follow_the_documented_order():
+    rng = np.random.default_rng(2024)
+    n_checked = 0
+    for i in range(300):
+        occ, start, goal = random_grid(rng, max_side=18)
+        corner_cutting = bool(i % 2)
+        kwargs = {}
+        if i % 3 == 0:
+            kwargs["cost"] = rng.uniform(0.0, 2.0, occ.shape) * (rng.random(occ.shape) < 0.5)
+        if i % 5 == 0:
+            kwargs["weight"] = float(rng.choice([0.0, 0.5, 2.0, 3.5]))
+        if i % 7 == 0:
+            kwargs["heuristic"] = str(rng.choice(["euclidean", "chebyshev", "zero"]))
+        expected, expansions = reference_astar(occ, start, goal, corner_cutting, **kwargs)
+        ws = Workspace(occ, start, goal, corner_cutting=corner_cutting)
+        if expected is None:
+            with pytest.raises(NoPathError, match=f"closed {expansions} cells"):
+                astar(ws, **kwargs)
+            continue
+        res = astar(ws, **kwargs)
+        assert res.path.tolist() == [list(cell) for cell in expected]
+        assert res.expansions == expansions
+        n_checked += 1
+    assert n_checked > 150
+
+
+def test_open_list_pops_like_a_plain_heap():
+    """Random pushes and decreases, with many ties: the held-back entry never
+    changes the order."""
+    rng = np.random.default_rng(9)
+    n = 400
+    for _ in range(20):
+        heap = np.empty(3 * n)
+        where = np.zeros(n, np.int64)
+        key = {}
+        size, held = 0, NOT_HELD
+        popped, expected = [], []
+        for _ in range(3 * n):
+            op = rng.random()
+            open_nodes = [v for v in key if where[v] != 0]
+            if op < 0.45 and len(key) < n:
+                v = int(rng.integers(n))
+                if v in key:
+                    continue
+                key[v] = (float(rng.integers(0, 6)), float(rng.integers(0, 3)))
+                size, held = open_push(heap, where, size, held, *key[v], v)
+            elif op < 0.7 and open_nodes:
+                v = int(rng.choice(open_nodes))
+                k1, k2 = key[v]
+                key[v] = (k1 - float(rng.integers(0, 2)), k2 - float(rng.integers(0, 2)))
+                held = open_decrease(heap, where, held, *key[v], v)
+            else:
+                best = min(((key[v][0], key[v][1], v) for v in open_nodes), default=None)
+                v, size, held = open_pop(heap, where, size, held)
+                expected.append(-1 if best is None else best[2])
+                popped.append(v)
+                if v >= 0:
+                    where[v] = 0
+                    key[v] = (math.inf, math.inf)    # closed: never pushed again
+            n_open = sum(1 for v in key if where[v] != 0)
+            assert size + (held[2] >= 0) == n_open
+            assert sum(1 for v in key if where[v] == HELD) == (held[2] >= 0)
+        assert popped == expected
+
+
+@pytest.mark.parametrize("corner_cutting", [False, True])
+def test_move_mask_follows_the_move_rule(corner_cutting):
+    rng = np.random.default_rng(4)
+    for _ in range(30):
+        h, w = (int(v) for v in rng.integers(1, 9, size=2))
+        occ = rng.random((h, w)) < 0.4
+        flat = occ.ravel()
+        for r in range(h):
+            for c in range(w):
+                mask = move_mask(flat, h, w, r, c, corner_cutting)
+                for k in range(8):
+                    assert bool(mask >> k & 1) == can_step(occ, r, c, DR[k], DC[k],
+                                                           corner_cutting)
+
+
+def test_scratch_reuse_across_grids_and_threads():
+    rng = np.random.default_rng(12)
+    cases = []
+    for side in (40, 7, 90, 3, 40):
+        occ = rng.random((side, side + 3)) < 0.2
+        occ[-1, 0] = occ[0, -1] = False
+        cases.append(Workspace(occ, corner_cutting=False))
+    first = []
+    for ws in cases:
+        try:
+            first.append(astar(ws))
+        except NoPathError:
+            first.append(None)
+
+    def check(out):
+        for ws, ref in zip(cases * 3, first * 3):
+            try:
+                res = astar(ws)
+            except NoPathError:
+                res = None
+            out.append(ref is res is None or (
+                ref is not None and res is not None and np.array_equal(res.path, ref.path)
+                and res.expansions == ref.expansions))
+
+    results = []
+    threads = [threading.Thread(target=check, args=(results,)) for _ in range(4)]
+    for th in threads:
+        th.start()
+    check(results)
+    for th in threads:
+        th.join()
+    assert len(results) == 5 * 15 and all(results)
 
 
 # ---------------------------------------------------------------------------

@@ -1,8 +1,11 @@
 """A* on the 8-connected grid of a :class:`~gapath.workspace.Workspace`.
 
-The search runs in a numba kernel with an indexed binary heap in
-preallocated arrays. Moves follow SPEC: 8-connected, straight step 1 and
-diagonal step sqrt(2) (times ``cell_size``); with
+The search runs in a numba kernel on the raveled grid, with per-thread
+scratch arrays that are reused between calls (only the cells a search touched
+are reset) and an indexed binary heap that holds back a new entry that would
+be popped next instead of pushing it (:func:`gapath.planners._grid.open_push`;
+the expansion order is that of a plain heap). Moves follow SPEC: 8-connected,
+straight step 1 and diagonal step sqrt(2) (times ``cell_size``); with
 ``workspace.corner_cutting=False`` a diagonal move needs both orthogonally
 adjacent cells free (the MovingAI convention).
 
@@ -23,6 +26,7 @@ Tie-breaking
 
 from __future__ import annotations
 
+import math
 import threading
 import time
 from dataclasses import dataclass
@@ -35,19 +39,23 @@ from gapath.planners._grid import (
     DC,
     DR,
     HEURISTICS,
+    SQRT2,
     STEP,
     check_cell,
-    heap_decrease,
-    heap_pop,
-    heap_push,
+    NOT_HELD,
     heuristic as _heuristic,
     layer_path_cost,
-    path_length,
+    move_mask,
+    open_decrease,
+    open_pop,
+    open_push,
 )
 
 __all__ = ["PlanResult", "astar"]
 
-_CLOSED = -2
+_UNSEEN = 0
+_CLOSED = -1
+_NO_COST = np.zeros((1, 1))
 
 
 @dataclass(frozen=True, eq=False)
@@ -82,120 +90,137 @@ class PlanResult:
 
 
 @numba.njit(cache=True)
-def _astar_kernel(pocc, pcost, use_cost, w2, s, t, corner_cutting, weight, hkind,
-                  stamp, gen, pos, g, parent, hnode, hk1, hk2):
-    """A* from cell ``s`` to cell ``t`` on a padded, flattened grid.
+def _astar_kernel(occ2d, cost2d, use_cost, s, t, corner_cutting, weight, hkind,
+                  state, g, came, heap, touched):
+    """A* from cell ``s`` to cell ``t`` (row-major indices) of the grid ``occ2d``.
 
-    ``pocc`` is the occupancy with a one-cell blocked border, raveled (row
-    length ``w2 = W + 2``), so neighbours need no bounds checks; ``pcost`` is
-    the cost layer padded the same way (unused unless ``use_cost``). The
-    scratch arrays (``stamp`` ... ``hk2``, at least ``pocc.size`` long) are
-    reused between calls without being cleared: a cell's entries are valid
-    only when ``stamp[cell] == gen``, and ``gen`` is new for every call.
+    ``cost2d`` is the cost layer (unused unless ``use_cost``). The per-cell
+    scratch arrays are reused between calls:
 
-    Returns ``(path, g_goal, expansions)``; ``path`` (unpadded ``(row, col)``
-    cells) is empty when the goal is unreachable.
+    * ``state[v]``: ``_UNSEEN`` (0), ``_CLOSED``, or while ``v`` is open its
+      place in the open list (see :func:`~gapath.planners._grid.open_push`);
+      it is 0 everywhere on entry and reset to 0 for every cell in
+      ``touched`` before returning, so ``g`` and ``came`` need no clearing;
+    * ``g[v]``: best known cost from the start; ``came[v]``: the move (0..7)
+      that reached ``v`` with it;
+    * ``heap``: the open list, ordered by ``(f, weight * h, cell)``.
+
+    Returns ``(path, n_straight, n_diagonal, expansions)``: ``path``
+    (``(row, col)`` cells, start first) is empty when the goal is
+    unreachable; ``expansions`` is -1 if the start or the goal is blocked.
     """
-    offset = np.empty(8, dtype=np.int64)
+    h, w = occ2d.shape
+    occ = occ2d.ravel()                             # views, cell v at [v]
+    cost = cost2d.ravel()
+    if occ[s] or occ[t]:
+        return np.empty((0, 2), dtype=np.int64), 0, 0, -1
+    offset = np.empty(8, dtype=np.int64)            # index step of each move
     for k in range(8):
-        offset[k] = DR[k] * w2 + DC[k]
-    tr = t // w2
-    tc = t - tr * w2
+        offset[k] = DR[k] * w + DC[k]
+    tr = t // w
+    tc = t - tr * w
 
-    stamp[s] = gen
     g[s] = 0.0
-    parent[s] = -1
-    sr = s // w2
-    hs = weight * _heuristic(hkind, sr, s - sr * w2, tr, tc)
-    size = heap_push(hnode, hk1, hk2, pos, 0, s, hs, hs)
+    touched[0] = s
+    n_touched = 1
+    hs = weight * _heuristic(hkind, s // w, s % w, tr, tc)
+    size, held = open_push(heap, state, 0, NOT_HELD, hs, hs, s)
     expansions = 0
     reached = False
 
-    while size > 0:
-        u, size = heap_pop(hnode, hk1, hk2, pos, size)
-        pos[u] = _CLOSED
+    while True:
+        u, size, held = open_pop(heap, state, size, held)
+        if u < 0:                                   # open list exhausted
+            break
+        state[u] = _CLOSED
         expansions += 1
         if u == t:
             reached = True
             break
-        ur = u // w2
-        uc = u - ur * w2
+        ur = u // w
+        uc = u - ur * w
+        moves = move_mask(occ, h, w, ur, uc, corner_cutting)
         gu = g[u]
         for k in range(8):
-            v = u + offset[k]
-            if pocc[v]:
+            if not (moves >> k) & 1:
                 continue
-            if (k & 1) and not corner_cutting:        # diagonal: both sides free
-                if pocc[u + DR[k] * w2] or pocc[u + DC[k]]:
-                    continue
-            seen = stamp[v] == gen
-            if seen and pos[v] == _CLOSED:
+            v = u + offset[k]
+            sv = state[v]
+            if sv == _CLOSED:
                 continue
             step = STEP[k]
             if use_cost:
-                step *= 1.0 + 0.5 * (pcost[u] + pcost[v])
+                step *= 1.0 + 0.5 * (cost[u] + cost[v])
             ng = gu + step
-            if not seen:
-                stamp[v] = gen
-                g[v] = ng
-                parent[v] = u
-                hv = weight * _heuristic(hkind, ur + DR[k], uc + DC[k], tr, tc)
-                size = heap_push(hnode, hk1, hk2, pos, size, v, ng + hv, hv)
-            elif ng < g[v]:
-                g[v] = ng
-                parent[v] = u
-                hv = weight * _heuristic(hkind, ur + DR[k], uc + DC[k], tr, tc)
-                heap_decrease(hnode, hk1, hk2, pos, v, ng + hv, hv)
+            if sv != _UNSEEN and ng >= g[v]:          # open, and no shorter way
+                continue
+            g[v] = ng
+            came[v] = k
+            hv = weight * _heuristic(hkind, ur + DR[k], uc + DC[k], tr, tc)
+            if sv == _UNSEEN:
+                touched[n_touched] = v
+                n_touched += 1
+                size, held = open_push(heap, state, size, held, ng + hv, hv, v)
+            else:
+                held = open_decrease(heap, state, held, ng + hv, hv, v)
 
+    for i in range(n_touched):                      # leave state all _UNSEEN
+        state[touched[i]] = _UNSEEN
     if not reached:
-        return np.empty((0, 2), dtype=np.int64), np.inf, expansions
-    m = 0
+        return np.empty((0, 2), dtype=np.int64), 0, 0, expansions
+    m = 1
     v = t
-    while v != -1:
+    while v != s:
+        v -= offset[came[v]]
         m += 1
-        v = parent[v]
     path = np.empty((m, 2), dtype=np.int64)
+    n_diagonal = 0
     v = t
     for i in range(m - 1, -1, -1):
-        path[i, 0] = v // w2 - 1
-        path[i, 1] = v % w2 - 1
-        v = parent[v]
-    return path, g[t], expansions
+        vr = v // w
+        path[i, 0] = vr
+        path[i, 1] = v - vr * w
+        if i > 0:
+            k = came[v]
+            n_diagonal += k & 1
+            v -= offset[k]
+    return path, m - 1 - n_diagonal, n_diagonal, expansions
 
 
 class _Scratch(threading.local):
     """Per-thread search arrays, grown on demand and reused across calls
     (allocating and clearing them for every query would dominate short
-    searches on large maps)."""
+    searches on large maps). The kernel leaves ``state`` all zero."""
 
-    def __init__(self):
-        self.n = 0
-        self.gen = 0
-        self.arrays = ()
+    n = -1
+    arrays = ()
 
     def get(self, n: int):
         if n > self.n:
-            self.arrays = (np.zeros(n, np.int64),              # stamp
-                           np.empty(n, np.int64),               # pos (heap slot or closed)
-                           np.empty(n),                         # g
-                           np.empty(n, np.int64),               # parent
-                           np.empty(n, np.int64),               # heap: nodes
-                           np.empty(n), np.empty(n))            # heap: f, weight * h
+            index = np.int32 if n < 2**31 - 1 else np.int64
+            self.arrays = (np.zeros(n, index),               # state
+                           np.empty(n),                      # g
+                           np.empty(n, np.uint8),            # came
+                           np.empty(3 * n),                  # open list (heap)
+                           np.empty(n, index))               # touched cells
             self.n = n
-            self.gen = 0
-        self.gen += 1
-        return self.gen, self.arrays
+        return self.arrays
 
 
 _scratch = _Scratch()
 
 
-def _padded(arr: np.ndarray, fill) -> np.ndarray:
-    """``arr`` with a one-cell border of ``fill``, raveled."""
-    h, w = arr.shape
-    out = np.full((h + 2, w + 2), fill, dtype=arr.dtype)
-    out[1:-1, 1:-1] = arr
-    return out.ravel()
+def _cell_index(value, name: str, occ: np.ndarray) -> int:
+    """Row-major index of the cell ``value``; raises like :func:`check_cell`,
+    except that obstacles are checked by the kernel (fast path for a tuple
+    of two ``int``)."""
+    h, w = occ.shape
+    if type(value) is tuple and len(value) == 2:
+        r, c = value
+        if type(r) is int and type(c) is int and 0 <= r < h and 0 <= c < w:
+            return r * w + c
+    r, c = check_cell(value, name, occ)
+    return r * w + c
 
 
 def check_cost_layer(cost, shape) -> np.ndarray:
@@ -238,7 +263,7 @@ def _check_weight(weight) -> float:
         wv = float(weight)
     except (TypeError, ValueError):
         raise ConfigError(f"weight must be a non-negative number, got {weight!r}") from None
-    if not np.isfinite(wv) or wv < 0:
+    if not math.isfinite(wv) or wv < 0:
         raise ConfigError(f"weight must be a finite number >= 0, got {weight!r}")
     return wv
 
@@ -305,33 +330,35 @@ def astar(workspace, start=None, goal=None, *, cost=None, weight: float = 1.0,
     4.0
     """
     t0 = time.perf_counter()
-    occ = workspace.occ
-    src = check_cell(workspace.start if start is None else start, "start", occ)
-    dst = check_cell(workspace.goal if goal is None else goal, "goal", occ)
-    wv = _check_weight(weight)
-    if not isinstance(heuristic, str) or heuristic not in HEURISTICS:
+    occ = workspace.occ                 # C-contiguous read-only bool (Workspace)
+    start = workspace.start if start is None else start
+    goal = workspace.goal if goal is None else goal
+    s = _cell_index(start, "start", occ)
+    t = _cell_index(goal, "goal", occ)
+    wv = weight if type(weight) is float and 0.0 <= weight < math.inf else _check_weight(weight)
+    hkind = HEURISTICS.get(heuristic) if isinstance(heuristic, str) else None
+    if hkind is None:
         raise ConfigError(
             f"heuristic must be one of {', '.join(map(repr, HEURISTICS))}, got {heuristic!r}")
     if cost is None:
-        layer = np.zeros((1, 1))
+        layer = _NO_COST
         use_cost = False
     else:
         layer = check_cost_layer(cost, occ.shape)
         use_cost = True
-    w2 = occ.shape[1] + 2
-    pocc = _padded(np.asarray(occ, dtype=np.bool_), True)
-    pcost = _padded(layer, 0.0) if use_cost else layer.ravel()
-    gen, scratch = _scratch.get(pocc.size)
-    path, _, expansions = _astar_kernel(
-        pocc, pcost, use_cost, w2, (src[0] + 1) * w2 + src[1] + 1, (dst[0] + 1) * w2 + dst[1] + 1,
-        bool(workspace.corner_cutting), wv, HEURISTICS[heuristic], scratch[0], gen, *scratch[1:])
+    path, n_straight, n_diagonal, expansions = _astar_kernel(
+        occ, layer, use_cost, s, t, workspace.corner_cutting, wv, hkind,
+        *_scratch.get(occ.size))
     if len(path) == 0:
+        src = check_cell(start, "start", occ)          # raises if on an obstacle
+        dst = check_cell(goal, "goal", occ)
+        h, w = occ.shape
         rule = "allowed" if workspace.corner_cutting else "not allowed"
         raise NoPathError(
-            f"no path from start {src} to goal {dst} on the {occ.shape[0]}x{occ.shape[1]} grid "
+            f"no path from start {src} to goal {dst} on the {h}x{w} grid "
             f"(8-connected, corner cutting {rule}; the search closed {expansions} cells)")
-    cs = float(workspace.cell_size)
-    length = path_length(path, cs)
+    cs = workspace.cell_size
+    length = (n_straight + SQRT2 * n_diagonal) * cs      # as path_length (SPEC)
     total = layer_path_cost(path, layer) * cs if use_cost else length
     path.setflags(write=False)
     return PlanResult(path=path, cost=float(total), length=float(length),
