@@ -4,23 +4,34 @@ Prints one JSON object per line:
 
 * ``runs_per_minute`` of a slice of the dense-obstacle experiment (Table 1,
   32x32, p0 0.4, 0.6, 0.8 and 1.0, 8 runs each, population 200, stop at the
-  first feasible path, engine ``auto``) on
-  the local process pool with 1 and with 2 workers, and on a 2-worker Dask
-  ``LocalCluster`` (loopback, one process per worker); executors are
-  started and warmed up once, then timed over ``--repeat`` fresh stores
-  (medians), so the figures are steady-state throughput. The pool's cold
-  start (spawning its workers) is reported apart.
+  first feasible path, engine ``auto``; ``--slice short``: 64 runs of 16x16,
+  mostly 10-50 ms each) on the local process pool with 1 and with 2
+  workers and on a 2-worker Dask ``LocalCluster`` (loopback, one process
+  per worker), with Dask's default settings and with ``LEAN_DASK_CONFIG``
+  (no worker profiler, slower monitors). ``--repeat`` rounds: each round
+  starts every executor, warms up every one of its workers (imports,
+  numba compilation, the worker's malloc settings) outside the timed
+  region, times one ``run_experiment`` of the slice into a fresh store and
+  shuts the executor down; rounds alternate the order. Reported: medians,
+  every round's time, the CPU seconds of all processes (this one with the
+  client, and with a LocalCluster the scheduler and nannies, plus the
+  workers), Dask / pool ratios (of medians and per round) and start-up
+  apart. ``NAME@B`` entries of ``--executors`` set ``batch_seconds=B``
+  (``@0``: one run per task).
 * ``store_overhead``: milliseconds per run spent by the store: hashing the
   run (``run_key``), writing its result atomically, and the directory
   listing that decides what to skip (targets: < 5 ms per run).
 
-Run: ``.venv/bin/python benchmarks/bench_experiments.py [--quick] [--repeat 3]``.
-The machine may be shared: timings are noisy, compare medians.
+Run: ``.venv/bin/python benchmarks/bench_experiments.py [--quick] [--repeat 5]
+[--slice short] [--executors pool2,dask,dask@0,dask-keep-malloc]``.
+The machine may be shared: timings are noisy, compare medians and the
+per-round ratios.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
 import os
 import statistics
@@ -28,36 +39,67 @@ import tempfile
 import time
 
 
-def slice_spec(quick: bool):
+def slice_spec(quick: bool, which: str = "dense32"):
+    """The timed slice: ``dense32`` (32 runs, 32x32, 0.04-2 s each), ``short``
+    (64 runs, 16x16, p0 0.2-0.8, mostly 10-50 ms each: where a task's cost
+    shows), or with ``quick`` 8 runs of 16x16."""
     from gapath.experiments.dense import table1_spec
 
     if quick:
         return table1_spec(grids=(16,), p0s=(0.4, 0.6), runs=4, engine="auto", name="bench-slice")
+    if which == "short":
+        return table1_spec(grids=(16,), p0s=(0.2, 0.4, 0.6, 0.8), runs=16, engine="auto",
+                           name="bench-short")
     return table1_spec(grids=(32,), p0s=(0.4, 0.6, 0.8, 1.0), runs=8, engine="auto", name="bench-slice")
 
 
-def timed_runs(spec, executor, repeat: int) -> list[float]:
+def _cpu_seconds() -> float:
+    """CPU seconds of this process and all its children (pool workers; with
+    a LocalCluster also its worker processes; scheduler, nannies and client
+    run in this process)."""
+    import psutil
+
+    me = psutil.Process()
+    total = 0.0
+    for p in [me, *me.children(recursive=True)]:
+        try:
+            t = p.cpu_times()
+            total += t.user + t.system
+        except psutil.Error:
+            pass
+    return total
+
+
+def timed_run(spec, executor, batch_seconds: float) -> tuple[float, float]:
+    """Wall and CPU seconds (all processes) of the whole slice into a fresh store."""
     from gapath.experiments.runner import run_experiment
 
-    times = []
-    for _ in range(repeat):
-        with tempfile.TemporaryDirectory() as d:
-            t0 = time.perf_counter()
-            r = run_experiment(spec, d, executor=executor, progress=False)
-            times.append(time.perf_counter() - t0)
-            assert r.failed == 0 and r.complete
-    return times
+    with tempfile.TemporaryDirectory() as d:
+        c0, t0 = _cpu_seconds(), time.perf_counter()
+        r = run_experiment(spec, d, executor=executor, progress=False, batch_seconds=batch_seconds)
+        wall, cpu = time.perf_counter() - t0, _cpu_seconds() - c0
+        assert r.failed == 0 and r.complete
+    return wall, cpu
 
 
 def warm(executor, spec) -> None:
-    """Run a few runs so that every worker has imported gapath and compiled
-    its kernels."""
-    from gapath.experiments.runner import _submit, run_one  # noqa: F401
-    from gapath.experiments.spec import run_key
+    """Before the timed region, every worker of ``executor`` imports gapath,
+    compiles its kernels and (Dask) sets its malloc thresholds, by running
+    the spec's first run: on each Dask worker with ``Client.run``; on the
+    pool with tasks until every process has answered."""
+    from gapath.experiments.runner import _is_dask, executor_slots, run_batch
 
-    runs = spec.runs()[:4]
-    for f in [_submit(executor, r, run_key(r) + f"-warm{i}") for i, r in enumerate(runs)]:
-        f.result()
+    runs = spec.runs()[:1]
+    if _is_dask(executor):
+        executor.run(run_batch, runs)
+        return
+    slots, seen = executor_slots(executor), set()
+    for _ in range(20):
+        futures = [executor.submit(run_batch, runs) for _ in range(2 * slots)]
+        seen |= {f.result()[0]["runtime"]["pid"] for f in futures}
+        if len(seen) >= slots:
+            return
+    raise RuntimeError(f"only {len(seen)} of {slots} pool workers answered the warm-up")
 
 
 def line(**kw) -> None:
@@ -65,41 +107,112 @@ def line(**kw) -> None:
     print(json.dumps(kw), flush=True)
 
 
-def bench_throughput(spec, repeat: int) -> None:
+#: Executors of the throughput figure: name -> description.
+EXECUTORS = {
+    "pool1": "local pool, 1 worker",
+    "pool2": "local pool, 2 workers",
+    "dask": "dask LocalCluster, 2 worker processes",
+    # diagnostics, not run by default
+    "dask-keep-malloc": "dask LocalCluster, 2 worker processes, GAPATH_KEEP_MALLOC=1 "
+                        "(the nanny's MALLOC_TRIM_THRESHOLD_ left in force)",
+    "dask-noprofile": "dask LocalCluster, 2 worker processes, worker profiler off",
+    "dask-lean": "dask LocalCluster, 2 worker processes, lean monitoring (LEAN_DASK_CONFIG)",
+}
+
+#: Dask settings for CPU-bound runs on few cores: no statistical profiler in
+#: the workers (a stack walk every 10 ms) and the event loops' monitors (tick,
+#: memory, system) at 1-2 s instead of 20-500 ms. Idle, a default 2-worker
+#: LocalCluster costs ~0.18 CPU cores (scheduler, nannies, client ~0.08; each
+#: worker ~0.05), this ~0.02.
+LEAN_DASK_CONFIG = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "1s",
+    "distributed.worker.memory.monitor-interval": "1s",
+    "distributed.admin.system-monitor.interval": "2s",
+}
+
+
+@contextlib.contextmanager
+def started(name: str):
+    """The executor ``name``, started (not warmed up); closed on exit."""
     from gapath.experiments.runner import _process_pool
 
-    n = len(spec)
-    results = {}
-    for workers in (1, 2):
-        t0 = time.perf_counter()
-        pool = _process_pool(workers)
-        warm(pool, spec)
-        cold = time.perf_counter() - t0
+    if name.startswith("pool"):
+        pool = _process_pool(int(name[4:]))
         try:
-            times = timed_runs(spec, pool, repeat)
+            yield pool
         finally:
             pool.shutdown()
-        med = statistics.median(times)
-        results[f"pool{workers}"] = med
-        line(bench="runs_per_minute", executor=f"local pool, {workers} worker(s)", runs=n,
-             median_s=round(med, 3), runs_per_minute=round(60 * n / med, 1),
-             times_s=[round(t, 3) for t in times], startup_and_warmup_s=round(cold, 2))
-    try:
-        import distributed
-    except ImportError:
-        line(bench="runs_per_minute", executor="dask", skipped="distributed not installed")
         return
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  host="127.0.0.1", dashboard_address=None) as cluster:
-        with distributed.Client(cluster.scheduler_address) as client:
-            warm(client, spec)
-            times = timed_runs(spec, client, repeat)
-    med = statistics.median(times)
-    line(bench="runs_per_minute", executor="dask LocalCluster, 2 worker processes", runs=n,
-         median_s=round(med, 3), runs_per_minute=round(60 * n / med, 1),
-         times_s=[round(t, 3) for t in times])
-    line(bench="scaling", speedup_2_vs_1_workers=round(results["pool1"] / results["pool2"], 3),
-         dask_vs_pool2_time_ratio=round(med / results["pool2"], 3), target_dask_within=0.10)
+    import dask
+    import distributed
+
+    env = {"GAPATH_KEEP_MALLOC": "1"} if name == "dask-keep-malloc" else {}
+    config = {"dask-noprofile": {"distributed.worker.profile.enabled": False},
+              "dask-lean": LEAN_DASK_CONFIG}.get(name, {})
+    with dask.config.set(config):
+        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                      host="127.0.0.1", dashboard_address=None, env=env) as cluster:
+            with distributed.Client(cluster.scheduler_address) as client:
+                client.wait_for_workers(2)
+                yield client
+
+
+def _batch_of(entry: str, default: float) -> tuple[str, float]:
+    """``"dask@0"`` -> ``("dask", 0.0)``; without ``@``, ``default``."""
+    name, _, b = entry.partition("@")
+    if name not in EXECUTORS:
+        raise SystemExit(f"unknown executor {name!r}: one of {', '.join(EXECUTORS)}")
+    return name, (float(b) if b else default)
+
+
+def bench_throughput(spec, rounds: int, executors, batch_seconds: float) -> None:
+    """Interleaved: each round starts, warms up and times every executor once
+    (in reverse order every other round) and shuts it down before the next
+    starts, so that load from other jobs falls on all of them alike and an
+    idle cluster never runs beside a timed pool. An entry ``NAME@B`` runs
+    with ``batch_seconds=B``."""
+    if any(e.startswith("dask") for e in executors):
+        try:
+            import distributed  # noqa: F401
+        except ImportError:
+            line(bench="runs_per_minute", executor="dask", skipped="distributed not installed")
+            executors = [e for e in executors if not e.startswith("dask")]
+    n = len(spec)
+    walls = {e: [] for e in executors}
+    cpus = {e: [] for e in executors}
+    cold = {e: [] for e in executors}
+    for i in range(rounds):
+        for entry in (executors if i % 2 == 0 else executors[::-1]):
+            name, batch = _batch_of(entry, batch_seconds)
+            t0 = time.perf_counter()
+            with started(name) as ex:
+                warm(ex, spec)
+                cold[entry].append(time.perf_counter() - t0)
+                wall, cpu = timed_run(spec, ex, batch)
+            walls[entry].append(wall)
+            cpus[entry].append(cpu)
+    med = {}
+    for entry in executors:
+        name, batch = _batch_of(entry, batch_seconds)
+        med[entry] = statistics.median(walls[entry])
+        line(bench="runs_per_minute", executor=EXECUTORS[name], batch_seconds=batch, runs=n,
+             median_s=round(med[entry], 3), runs_per_minute=round(60 * n / med[entry], 1),
+             times_s=[round(t, 3) for t in walls[entry]], cpu_s=[round(c, 2) for c in cpus[entry]],
+             startup_and_warmup_s=round(statistics.median(cold[entry]), 2))
+    out = {}
+    if "pool1" in med and "pool2" in med:
+        out["speedup_2_vs_1_workers"] = round(med["pool1"] / med["pool2"], 3)
+    if "pool2" in med:
+        for entry in executors:
+            if entry != "pool2" and not entry.startswith("pool1"):
+                key = entry.replace("-", "_")
+                out[f"{key}_vs_pool2_time_ratio"] = round(med[entry] / med["pool2"], 3)
+                # the same round's timings, paired
+                out[f"{key}_vs_pool2_paired_ratios"] = [round(a / b, 3) for a, b in zip(walls[entry], walls["pool2"])]
+                out[f"{key}_vs_pool2_cpu_ratio"] = round(statistics.median(cpus[entry]) / statistics.median(cpus["pool2"]), 3)
+    if out:
+        line(bench="scaling", batch_seconds=batch_seconds, rounds=rounds, target_dask_within=0.10, **out)
 
 
 def bench_store(n: int = 300) -> None:
@@ -140,15 +253,25 @@ def bench_store(n: int = 300) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="a smaller slice, one repetition")
-    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--repeat", type=int, default=3, help="rounds (every executor once per round)")
     ap.add_argument("--no-throughput", action="store_true")
+    ap.add_argument("--no-store", action="store_true", help="skip the store overhead figure")
+    ap.add_argument("--executors", default="pool1,pool2,dask,dask-lean",
+                    help=f"comma-separated, of {', '.join(EXECUTORS)}; NAME@B: with batch_seconds B "
+                         "(default: pool1,pool2,dask,dask-lean)")
+    ap.add_argument("--slice", choices=("dense32", "short"), default="dense32",
+                    help="the timed slice (see slice_spec)")
+    ap.add_argument("--batch-seconds", type=float, default=0.25,
+                    help="run_experiment's batch_seconds (0: one run per task)")
     args = ap.parse_args()
     from gapath.experiments.spec import resolve_engine
 
     line(bench="setup", cpus=os.cpu_count(), engine=resolve_engine("auto"))
-    bench_store(60 if args.quick else 300)
+    if not args.no_store:
+        bench_store(60 if args.quick else 300)
     if not args.no_throughput:
-        bench_throughput(slice_spec(args.quick), 1 if args.quick else args.repeat)
+        bench_throughput(slice_spec(args.quick, args.slice), 1 if args.quick else args.repeat,
+                         args.executors.split(","), args.batch_seconds)
 
 
 if __name__ == "__main__":

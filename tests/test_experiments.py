@@ -260,6 +260,7 @@ def test_local_pool_and_dask_cluster_store_identical_results(tmp_path, monkeypat
     spec = small_spec()
     run_experiment(spec, tmp_path / "inline", workers=0, progress=False)
     run_experiment(spec, tmp_path / "pool", workers=2, progress=False)
+    run_experiment(small_spec(seeds=3), tmp_path / "inline3", workers=0, progress=False)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
                                   protocol="tcp", host="127.0.0.1", dashboard_address=None) as cluster:
         assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
@@ -269,6 +270,11 @@ def test_local_pool_and_dask_cluster_store_identical_results(tmp_path, monkeypat
         monkeypatch.setenv("GAPATH_SCHEDULER", cluster.scheduler_address)
         r = run_experiment(small_spec(seeds=3), tmp_path / "dask", progress=False)
         assert r.executor.startswith("Dask scheduler") and (r.ran, r.skipped) == (4, 8)
+        # runs batched into fewer Dask tasks: the same results
+        r = run_experiment(small_spec(seeds=3), tmp_path / "dask-batched", progress=False,
+                           batch_seconds=60)
+        assert r.ran == 12 and r.complete
+    assert stored(tmp_path / "dask-batched") == stored(tmp_path / "inline3") == stored(tmp_path / "dask")
     reference = stored(tmp_path / "inline")
     assert len(reference) == 8
     assert stored(tmp_path / "pool") == reference
@@ -277,6 +283,131 @@ def test_local_pool_and_dask_cluster_store_identical_results(tmp_path, monkeypat
     for d in ("inline", "pool"):
         report(tmp_path / d, plots=False)
     assert aggregate_files(tmp_path / "pool") == aggregate_files(tmp_path / "inline")
+
+
+class _RecordingPool:
+    """A spawn process pool that records the number of runs of each task."""
+
+    def __init__(self, workers=2):
+        self.pool = runner_mod._process_pool(workers)
+        self._max_workers = workers
+        self.sizes = []
+
+    def submit(self, fn, runs, *args):
+        self.sizes.append(len(runs))
+        return self.pool.submit(fn, runs, *args)
+
+    def shutdown(self, **kw):
+        self.pool.shutdown(**kw)
+
+
+def test_batched_tasks_store_the_same_results_as_single_runs(tmp_path):
+    spec = small_spec(seeds=8)  # 32 runs of a few ms each
+    run_experiment(spec, tmp_path / "inline", workers=0, progress=False)
+    reference = stored(tmp_path / "inline")
+    assert len(reference) == 32
+    pool = _RecordingPool(2)
+    try:
+        r = run_experiment(spec, tmp_path / "batched", executor=pool, progress=False, batch_seconds=60)
+        assert (r.ran, r.failed, r.complete) == (32, 0, True)
+        batched = list(pool.sizes)
+        r = run_experiment(spec, tmp_path / "single", executor=pool, progress=False, batch_seconds=0)
+        assert r.ran == 32
+    finally:
+        pool.shutdown()
+    # one run per task until a run's time is known (2 tasks per worker in flight),
+    # then batches, shorter towards the end, the last ones single
+    assert sum(batched) == 32 and batched[:4] == [1, 1, 1, 1] and max(batched) > 1
+    assert batched[-1] == 1 and batched == sorted(batched[:4]) + sorted(batched[4:], reverse=True)
+    assert pool.sizes[len(batched):] == [1] * 32
+    assert stored(tmp_path / "batched") == reference == stored(tmp_path / "single")
+    report(tmp_path / "inline", plots=False)
+    report(tmp_path / "batched", plots=False)
+    assert aggregate_files(tmp_path / "batched") == aggregate_files(tmp_path / "inline")
+
+
+def test_batch_sizes_follow_run_times_and_shrink_towards_the_end():
+    b = runner_mod._Batcher([(str(i), {}) for i in range(100)], slots=1, target_seconds=0.25,
+                            max_batch=32)
+    assert b.size() == 1  # nothing known yet
+    for _ in range(4):
+        b.observe({"status": "ok", "runtime": {"wall_seconds": 0.01}})
+    assert b.size() == 25  # 0.25 s of 10 ms runs
+    b.observe({"status": "failed", "runtime": {"wall_seconds": 0.0}})  # failures do not count
+    assert b.size() == 25
+    assert [len(b.take()) for _ in range(3)] == [25, 18, 14]  # at most remaining / (4 * slots)
+    while len(b.queue) > 7:
+        b.take()
+    assert b.size() == 1 and len(b.take()) == 1
+    two = runner_mod._Batcher([(str(i), {}) for i in range(100)], slots=2, target_seconds=0.25)
+    two.observe({"status": "ok", "runtime": {"wall_seconds": 0.001}})
+    assert two.size() == 12  # 100 / (4 * 2), under the target's 250 and max_batch's 32
+    slow = runner_mod._Batcher([(str(i), {}) for i in range(100)], slots=2)
+    slow.observe({"status": "ok", "runtime": {"wall_seconds": 2.0}})
+    assert slow.size() == 1  # long runs: one per task
+
+
+def test_a_lost_task_fails_each_of_its_runs_and_the_others_are_stored(tmp_path):
+    from concurrent.futures import Future
+    from concurrent.futures.process import BrokenProcessPool
+
+    class DiesOnSeed2:
+        _max_workers = 1
+
+        def __init__(self):
+            self.sizes = []
+
+        def submit(self, fn, runs, *args):
+            self.sizes.append(len(runs))
+            fut = Future()
+            if any(r["seed"] == 2 for r in runs):
+                fut.set_exception(BrokenProcessPool("a worker died"))
+            else:
+                fut.set_result(fn(runs, *args))
+            return fut
+
+    spec = small_spec(maps=["default"], seeds=6)  # 12 runs
+    ex = DiesOnSeed2()
+    r = run_experiment(spec, tmp_path, executor=ex, progress=False, batch_seconds=60)
+    st = ResultStore(tmp_path)
+    lost = {k for k in st.failed_keys()}
+    assert r.ran == 12 and r.failed == len(lost) == 12 - len(st.done_keys())
+    assert max(ex.sizes) > 1 and r.failed >= 2  # the two seed-2 runs at least
+    for k in lost:
+        bad = st.read(k, failed=True)
+        assert "BrokenProcessPool: a worker died" in bad["error"] and bad["key"] == k
+    assert all(st.read(k)["run"]["seed"] != 2 for k in st.done_keys())
+    r = run_experiment(spec, tmp_path, workers=0, progress=False)
+    assert (r.ran, r.failed, r.complete) == (len(lost), 0, True)
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="glibc malloc")
+def test_malloc_thresholds_are_restored_under_a_dask_nanny_environment():
+    code = """
+import resource, numpy as np
+from gapath.experiments import runner
+tuned = runner._tune_malloc()
+again = runner._tune_malloc()
+f0 = resource.getrusage(resource.RUSAGE_SELF).ru_minflt
+for _ in range(300):
+    a = np.ones(200_000)  # 1.6 MB, allocated and freed
+    del a
+print(tuned, again, resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0)
+"""
+
+    def faults(**env):
+        e = {k: v for k, v in os.environ.items() if k not in ("MALLOC_TRIM_THRESHOLD_", "GAPATH_KEEP_MALLOC")}
+        out = subprocess.run([sys.executable, "-c", code], env={**e, **env}, capture_output=True,
+                             text=True, check=True).stdout.split()
+        return out[0] == "True", out[1] == "True", int(out[2])
+
+    nanny = {"MALLOC_TRIM_THRESHOLD_": "65536"}  # what Dask's nanny sets
+    untouched = faults(**nanny, GAPATH_KEEP_MALLOC="1")
+    tuned = faults(**nanny)
+    plain = faults()
+    assert untouched[:2] == (False, False) and tuned[:2] == (True, False) and plain[:2] == (False, False)
+    # a page fault per page of every array under the nanny's setting; none once tuned
+    assert untouched[2] > 300 * 300 and tuned[2] < 5000 and plain[2] < 5000
 
 
 # ---------------------------------------------------------------------------
