@@ -2,13 +2,16 @@
 the goal, the changing occupancy grid and the checked cell updates.
 
 A subclass keeps ``self._occ`` (the current grid, writable), ``self._start``,
-``self._goal``, ``self._initialized`` and implements ``_sync_km()`` (the
-paper's ``km = km + h(s_last, s_start)``) and ``_repair_edges(occ_old, src)``
-(UpdateVertex for every cell in ``src`` whose outgoing edges may have
-changed).
+``self._goal``, ``self._initialized`` and implements ``plan()``,
+``_sync_km()`` (the paper's ``km = km + h(s_last, s_start)``),
+``_repair_edges(occ_old, src)`` (UpdateVertex for every cell in ``src`` whose
+outgoing edges may have changed) and ``_search(t0)`` (ComputeShortestPath and
+the path's result, ``t0`` the ``time.perf_counter()`` at the call).
 """
 
 from __future__ import annotations
+
+import time
 
 import numpy as np
 
@@ -85,6 +88,22 @@ class IncrementalGridPlanner:
         self._sync_km()
         self._repair_edges(occ_old, _neighbourhood(arr, occ.shape))
         return int(len(arr))
+
+    def replan(self):
+        """Repair the previous search after :meth:`update_cells` /
+        :meth:`move_to` and return the new path (ComputeShortestPath()).
+        The first call without a previous ``plan()`` plans from scratch.
+
+        Raises
+        ------
+        NoPathError
+            If the goal is unreachable (the planner stays usable).
+        """
+        if not self._initialized:
+            return self.plan()
+        t0 = time.perf_counter()
+        self._sync_km()
+        return self._search(t0)
 
     def _checked_cells(self, cells, blocked) -> tuple[np.ndarray, np.ndarray]:
         h, w = self._occ.shape

@@ -394,23 +394,6 @@ class DStarLite(IncrementalGridPlanner):
         self._initialized = True
         return self._search(t0)
 
-    def replan(self) -> PlanResult:
-        """Repair the previous search after :meth:`update_cells` / :meth:`move_to`
-        and return the new optimal path (ComputeShortestPath()).
-
-        The first call without a previous :meth:`plan` plans from scratch.
-
-        Raises
-        ------
-        NoPathError
-            If the goal is unreachable (the planner stays usable).
-        """
-        if not self._initialized:
-            return self.plan()
-        t0 = time.perf_counter()
-        self._sync_km()
-        return self._search(t0)
-
     # -- helpers -----------------------------------------------------------
     def _repair_edges(self, occ_old, src) -> None:
         self._size = _update_changed_edges(

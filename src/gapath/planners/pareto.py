@@ -1339,22 +1339,6 @@ class DStarPO(IncrementalGridPlanner):
         self._initialized = True
         return self._search(t0)
 
-    def replan(self) -> ParetoPlanResult:
-        """Repair the previous search after :meth:`update_cells` /
-        :meth:`move_to` and return the new path (ComputeShortestPath()).
-        The first call without a previous :meth:`plan` plans from scratch.
-
-        Raises
-        ------
-        NoPathError
-            If the goal is unreachable (the planner stays usable).
-        """
-        if not self._initialized:
-            return self.plan()
-        t0 = time.perf_counter()
-        self._sync_km()
-        return self._search(t0)
-
     # -- helpers -----------------------------------------------------------
     def _repair_edges(self, occ_old, src) -> None:
         model = self._model
