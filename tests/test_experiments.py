@@ -563,10 +563,11 @@ def test_dense_quick(tmp_path):
     assert "| 8x8 | 0.3 |" in md and "| 16x16 | 0.7 |" in md and "| 64x64 | 0.2 |" in md
     assert (tmp_path / "dense.png").stat().st_size > 1000
     rows = (tmp_path / "dense.csv").read_text().splitlines()
-    assert rows[0].startswith("part,grid,p0,runs") and len(rows) == 1 + 4 + 1
-    spec = ResultStore(tmp_path / "table1").spec().to_dict()
+    assert rows[0].startswith("part,map_seed,grid,p0,runs") and len(rows) == 1 + 4 + 1
+    spec = ResultStore(tmp_path / "table1-map1").spec().to_dict()
     assert spec["settings"]["seed_from"] == "none" and spec["options"]["stop_at_first_feasible"]
-    assert spec["maps"][0] == {"dense": {"n": 8, "p0": 0.3, "seed": "run"}}
+    assert spec["maps"][0] == {"dense": {"n": 8, "p0": 0.3, "seed": 1}}
+    assert ResultStore(tmp_path / "large-map1").spec().to_dict()["maps"][0]["dense"]["seed"] == 1
     full = dense.table1_spec()
     assert len(full) == 3000 and full.runs()[0]["settings"]["pop_size"] == 200
     assert full.runs()[0]["settings"]["n_gen"] == 500
