@@ -17,10 +17,12 @@ does not describe its own) changes the picture:
 
 Prints one JSON line per measurement. Usage::
 
-    python benchmarks/dense_hard_maps.py STORE/table1 [--long 5000] [--reseeds 10]
+    python benchmarks/dense_hard_maps.py DIR/table1-per-run-maps [--long 5000] [--reseeds 10]
 
-The map of a run is ``gapath.dense_workspace(grid, p0, seed)``; runs use the
-fast engine (bit-identical to the stock pymoo NSGA-II).
+The store is the variant with a new map for every run (``gapath experiment
+dense --per-run-maps``): the map of a run is ``gapath.dense_workspace(grid,
+p0, seed)`` with its own seed; runs use the fast engine (bit-identical to the
+stock pymoo NSGA-II).
 """
 
 from __future__ import annotations
@@ -32,7 +34,7 @@ import time
 import numpy as np
 
 from gapath import Workspace, dense_workspace
-from gapath.experiments.dense import unsuccessful_runs
+from gapath.experiments.dense import map_seed_of, unsuccessful_runs
 from gapath.experiments.runner import FirstFeasible
 from gapath.solver import solve
 from gapath.workspace import _column_run
@@ -85,7 +87,8 @@ def generated_workspace(kind, n, p0, seed):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("store", help="a dense Table 1 store (e.g. DIR/table1)")
+    ap.add_argument("store", help="a dense Table 1 store with a new map per run "
+                                  "(DIR/table1-per-run-maps)")
     ap.add_argument("--long", type=int, default=5000)
     ap.add_argument("--reseeds", type=int, default=10)
     ap.add_argument("--rows", default="16:0.5,16:0.6,16:0.7,16:0.8")
@@ -93,6 +96,10 @@ def main(argv=None):
     ap.add_argument("--skip", default="", help="comma-separated parts to skip")
     args = ap.parse_args(argv)
     skip = set(filter(None, args.skip.split(",")))
+    if map_seed_of(args.store) != "run":
+        ap.error(f"{args.store}: expected a store with a new map per run (gapath experiment dense "
+                 f"--per-run-maps writes DIR/table1-per-run-maps), got map seed "
+                 f"{map_seed_of(args.store)!r}")
     misses = unsuccessful_runs(args.store)
     for (n, p0), seeds in misses.items():
         if n > 16:  # the 32x32 rows are below 100 % in the paper too

@@ -585,7 +585,7 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, seeded_dir=None, ot
     files = []
     results_dir.mkdir(parents=True, exist_ok=True)
     for suffix, data in ((".md", "\n".join(text)), (".csv", buf.getvalue()),
-                         (".png", png_bytes(_plot(t1, per_run)))):
+                         (".png", png_bytes(_plot(t1, per_run, others)))):
         atomic_write(results_dir / f"{basename}{suffix}", data)
         files.append(results_dir / f"{basename}{suffix}")
     return {"table1": t1, "other_maps": others, "per_run": per_run, "large": large,
@@ -599,7 +599,7 @@ def _saved_spec(store_dir) -> dict:
     return _widened_spec(ResultStore(store_dir)).to_dict()
 
 
-def _plot(rows, per_run=()):
+def _plot(rows, per_run=(), others=None):
     import matplotlib.pyplot as plt
 
     fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.8))
@@ -611,6 +611,13 @@ def _plot(rows, per_run=()):
         a1.plot(p0, [r["success_pct"] for r in rr], "o-", color=color, label=f"{g}x{g} gapath")
         a2.plot(p0, [np.nan if r["median_generations"] is None else r["median_generations"] for r in rr],
                 "o-", color=color, label=f"{g}x{g} gapath")
+        if others:
+            band = [[r["success_pct"]] + [o["success_pct"] for rows_m in others.values()
+                                           for o in rows_m if o["grid"] == g and o["p0"] == r["p0"]]
+                    for r in rr]
+            a1.fill_between(p0, [min(b) for b in band], [max(b) for b in band], color=color,
+                            alpha=0.12, lw=0,
+                            label=f"{g}x{g} gapath, min-max over {len(others) + 1} maps")
         pr = [r for r in per_run if r["grid"] == g]
         if pr:
             a1.plot([r["p0"] for r in pr], [r["success_pct"] for r in pr], ":", color=color,
@@ -741,8 +748,10 @@ def run(args) -> int:
     try:
         for name, spec in jobs:
             t0 = time.perf_counter()
-            failed += run_experiment(spec, out / name, **kw).failed
-            wall[name] = time.perf_counter() - t0
+            r = run_experiment(spec, out / name, **kw)
+            failed += r.failed
+            if r.ran:  # a resumed store that ran nothing has no wall time to report
+                wall[name] = time.perf_counter() - t0
     except KeyboardInterrupt:
         print(f"interrupted: finished runs are kept in {out}; run the same command to resume")
         return 130
