@@ -3,27 +3,34 @@
 Prints one JSON object per line:
 
 * ``runs_per_minute`` of a slice of the dense-obstacle experiment (Table 1,
-  32x32, p0 0.4, 0.6, 0.8 and 1.0, 8 runs each, population 200, stop at the
-  first feasible path, engine ``auto``; ``--slice short``: 64 runs of 16x16,
-  mostly 10-50 ms each) on the local process pool with 1 and with 2
-  workers and on a 2-worker Dask ``LocalCluster`` (loopback, one process
-  per worker), with Dask's default settings and with ``LEAN_DASK_CONFIG``
-  (no worker profiler, slower monitors). ``--repeat`` rounds: each round
-  starts every executor, warms up every one of its workers (imports,
-  numba compilation, the worker's malloc settings) outside the timed
-  region, times one ``run_experiment`` of the slice into a fresh store and
-  shuts the executor down; rounds alternate the order. Reported: medians,
-  every round's time, the CPU seconds of all processes (this one with the
-  client, and with a LocalCluster the scheduler and nannies, plus the
-  workers), Dask / pool ratios (of medians and per round) and start-up
-  apart. ``NAME@B`` entries of ``--executors`` set ``batch_seconds=B``
-  (``@0``: one run per task).
+  population 200, stop at the first feasible path, engine ``auto``):
+  by default ``--slice table1``, the 16x16 and 32x32 rows at p0 0.3 to 1.0,
+  20 runs each (320 runs of 0.01-4 s; about 50 s on 2 workers); ``dense32``:
+  the earlier 32 runs (32x32, p0 0.4/0.6/0.8/1.0, 8 each); ``short``: 64
+  runs of 16x16, mostly 10-50 ms each. Executors: the local process pool
+  with 1 and with 2 workers (``pool1``, ``pool2``); a 2-worker Dask
+  ``LocalCluster`` (loopback, one process per worker) with Dask's default
+  settings, connected to by address as a user's own cluster would be
+  (``dask``); and ``dask-local``: what ``gapath experiment run --scheduler
+  local --workers 2`` does (``make_executor(2, "local")``: a LocalCluster
+  started with gapath's Dask settings, ``gapath.experiments.dask_config``).
+  ``--repeat`` rounds: each round starts every executor, warms up every one
+  of its workers (imports, numba compilation, the worker's malloc settings)
+  outside the timed region, times one ``run_experiment`` of the slice into
+  a fresh store and shuts the executor down; rounds alternate the order.
+  Reported: medians, every round's time, the CPU seconds of all processes
+  (this one with the client, and with a LocalCluster the scheduler and
+  nannies, plus the workers), Dask / pool ratios (of medians and per round)
+  and start-up apart. Every executor runs with ``run_experiment``'s default
+  batching (tasks of about 0.25 s of runs on the pool, 1 s on Dask);
+  ``NAME@B`` entries of ``--executors`` set ``batch_seconds=B`` (``@0``:
+  one run per task).
 * ``store_overhead``: milliseconds per run spent by the store: hashing the
   run (``run_key``), writing its result atomically, and the directory
   listing that decides what to skip (targets: < 5 ms per run).
 
 Run: ``.venv/bin/python benchmarks/bench_experiments.py [--quick] [--repeat 5]
-[--slice short] [--executors pool2,dask,dask@0,dask-keep-malloc]``.
+[--slice table1|dense32|short] [--executors pool1,pool2,dask,dask-local]``.
 The machine may be shared: timings are noisy, compare medians and the
 per-round ratios.
 """
@@ -39,10 +46,15 @@ import tempfile
 import time
 
 
-def slice_spec(quick: bool, which: str = "dense32"):
-    """The timed slice: ``dense32`` (32 runs, 32x32, 0.04-2 s each), ``short``
-    (64 runs, 16x16, p0 0.2-0.8, mostly 10-50 ms each: where a task's cost
-    shows), or with ``quick`` 8 runs of 16x16."""
+#: p0 of the rows of the default slice (``--slice table1``).
+TABLE1_P0S = (0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
+
+
+def slice_spec(quick: bool, which: str = "table1"):
+    """The timed slice: ``table1`` (320 runs: the 16x16 and 32x32 rows of
+    Table 1 at p0 0.3-1.0, seeds 1-20), ``dense32`` (32 runs, 32x32, 0.04-2 s
+    each), ``short`` (64 runs, 16x16, p0 0.2-0.8, mostly 10-50 ms each: where
+    a task's cost shows), or with ``quick`` 8 runs of 16x16."""
     from gapath.experiments.dense import table1_spec
 
     if quick:
@@ -50,7 +62,10 @@ def slice_spec(quick: bool, which: str = "dense32"):
     if which == "short":
         return table1_spec(grids=(16,), p0s=(0.2, 0.4, 0.6, 0.8), runs=16, engine="auto",
                            name="bench-short")
-    return table1_spec(grids=(32,), p0s=(0.4, 0.6, 0.8, 1.0), runs=8, engine="auto", name="bench-slice")
+    if which == "dense32":
+        return table1_spec(grids=(32,), p0s=(0.4, 0.6, 0.8, 1.0), runs=8, engine="auto",
+                           name="bench-slice")
+    return table1_spec(grids=(16, 32), p0s=TABLE1_P0S, runs=20, engine="auto", name="bench-table1")
 
 
 def _cpu_seconds() -> float:
@@ -70,7 +85,7 @@ def _cpu_seconds() -> float:
     return total
 
 
-def timed_run(spec, executor, batch_seconds: float) -> tuple[float, float]:
+def timed_run(spec, executor, batch_seconds: float | None) -> tuple[float, float]:
     """Wall and CPU seconds (all processes) of the whole slice into a fresh store."""
     from gapath.experiments.runner import run_experiment
 
@@ -111,31 +126,22 @@ def line(**kw) -> None:
 EXECUTORS = {
     "pool1": "local pool, 1 worker",
     "pool2": "local pool, 2 workers",
-    "dask": "dask LocalCluster, 2 worker processes",
+    "dask": "dask LocalCluster, 2 worker processes, Dask's default settings (client by address)",
+    "dask-local": "--scheduler local: dask LocalCluster, 2 worker processes, gapath's Dask settings",
     # diagnostics, not run by default
     "dask-keep-malloc": "dask LocalCluster, 2 worker processes, GAPATH_KEEP_MALLOC=1 "
                         "(the nanny's MALLOC_TRIM_THRESHOLD_ left in force)",
     "dask-noprofile": "dask LocalCluster, 2 worker processes, worker profiler off",
-    "dask-lean": "dask LocalCluster, 2 worker processes, lean monitoring (LEAN_DASK_CONFIG)",
-}
-
-#: Dask settings for CPU-bound runs on few cores: no statistical profiler in
-#: the workers (a stack walk every 10 ms) and the event loops' monitors (tick,
-#: memory, system) at 1-2 s instead of 20-500 ms. Idle, a default 2-worker
-#: LocalCluster costs ~0.18 CPU cores (scheduler, nannies, client ~0.08; each
-#: worker ~0.05), this ~0.02.
-LEAN_DASK_CONFIG = {
-    "distributed.worker.profile.enabled": False,
-    "distributed.admin.tick.interval": "1s",
-    "distributed.worker.memory.monitor-interval": "1s",
-    "distributed.admin.system-monitor.interval": "2s",
+    "dask-lean": "dask LocalCluster, 2 worker processes, gapath's Dask settings (client by address)",
+    "dask-local-default": "local_client(2, config={}): --scheduler local's code path, Dask's defaults",
 }
 
 
 @contextlib.contextmanager
 def started(name: str):
     """The executor ``name``, started (not warmed up); closed on exit."""
-    from gapath.experiments.runner import _process_pool
+    from gapath.experiments.dask_config import DASK_CONFIG, local_client
+    from gapath.experiments.runner import _close, _process_pool, make_executor
 
     if name.startswith("pool"):
         pool = _process_pool(int(name[4:]))
@@ -144,12 +150,21 @@ def started(name: str):
         finally:
             pool.shutdown()
         return
+    if name in ("dask-local", "dask-local-default"):
+        # exactly what `--scheduler local --workers 2` starts (make_executor), or
+        # the same code path with Dask's defaults
+        client = make_executor(2, "local")[0] if name == "dask-local" else local_client(2, config={})
+        try:
+            yield client
+        finally:
+            _close(client)
+        return
     import dask
     import distributed
 
     env = {"GAPATH_KEEP_MALLOC": "1"} if name == "dask-keep-malloc" else {}
     config = {"dask-noprofile": {"distributed.worker.profile.enabled": False},
-              "dask-lean": LEAN_DASK_CONFIG}.get(name, {})
+              "dask-lean": DASK_CONFIG}.get(name, {})
     with dask.config.set(config):
         with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                       host="127.0.0.1", dashboard_address=None, env=env) as cluster:
@@ -158,15 +173,25 @@ def started(name: str):
                 yield client
 
 
-def _batch_of(entry: str, default: float) -> tuple[str, float]:
-    """``"dask@0"`` -> ``("dask", 0.0)``; without ``@``, ``default``."""
+def _batch_of(entry: str, default: float | None) -> tuple[str, float | None]:
+    """``"dask@0"`` -> ``("dask", 0.0)``; without ``@``, ``default`` (None:
+    run_experiment's default for the executor)."""
     name, _, b = entry.partition("@")
     if name not in EXECUTORS:
         raise SystemExit(f"unknown executor {name!r}: one of {', '.join(EXECUTORS)}")
     return name, (float(b) if b else default)
 
 
-def bench_throughput(spec, rounds: int, executors, batch_seconds: float) -> None:
+def _effective_batch(name: str, batch: float | None) -> float:
+    """The batch_seconds run_experiment uses for executor ``name``."""
+    from gapath.experiments.runner import BATCH_SECONDS, DASK_BATCH_SECONDS
+
+    if batch is not None:
+        return batch
+    return DASK_BATCH_SECONDS if name.startswith("dask") else BATCH_SECONDS
+
+
+def bench_throughput(spec, rounds: int, executors, batch_seconds: float | None) -> None:
     """Interleaved: each round starts, warms up and times every executor once
     (in reverse order every other round) and shuts it down before the next
     starts, so that load from other jobs falls on all of them alike and an
@@ -192,17 +217,20 @@ def bench_throughput(spec, rounds: int, executors, batch_seconds: float) -> None
                 wall, cpu = timed_run(spec, ex, batch)
             walls[entry].append(wall)
             cpus[entry].append(cpu)
+            line(bench="round", round=i + 1, name=entry, wall_s=round(wall, 3), cpu_s=round(cpu, 2))
     med = {}
     for entry in executors:
         name, batch = _batch_of(entry, batch_seconds)
         med[entry] = statistics.median(walls[entry])
-        line(bench="runs_per_minute", executor=EXECUTORS[name], batch_seconds=batch, runs=n,
+        line(bench="runs_per_minute", name=entry, executor=EXECUTORS[name],
+             batch_seconds=_effective_batch(name, batch), runs=n,
              median_s=round(med[entry], 3), runs_per_minute=round(60 * n / med[entry], 1),
              times_s=[round(t, 3) for t in walls[entry]], cpu_s=[round(c, 2) for c in cpus[entry]],
              startup_and_warmup_s=round(statistics.median(cold[entry]), 2))
     out = {}
     if "pool1" in med and "pool2" in med:
         out["speedup_2_vs_1_workers"] = round(med["pool1"] / med["pool2"], 3)
+        out["speedup_2_vs_1_workers_per_round"] = [round(a / b, 3) for a, b in zip(walls["pool1"], walls["pool2"])]
     if "pool2" in med:
         for entry in executors:
             if entry != "pool2" and not entry.startswith("pool1"):
@@ -212,7 +240,8 @@ def bench_throughput(spec, rounds: int, executors, batch_seconds: float) -> None
                 out[f"{key}_vs_pool2_paired_ratios"] = [round(a / b, 3) for a, b in zip(walls[entry], walls["pool2"])]
                 out[f"{key}_vs_pool2_cpu_ratio"] = round(statistics.median(cpus[entry]) / statistics.median(cpus["pool2"]), 3)
     if out:
-        line(bench="scaling", batch_seconds=batch_seconds, rounds=rounds, target_dask_within=0.10, **out)
+        line(bench="scaling", batch_seconds=batch_seconds, rounds=rounds, runs=n,
+             target_dask_within=0.10, **out)
 
 
 def bench_store(n: int = 300) -> None:
@@ -256,13 +285,14 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3, help="rounds (every executor once per round)")
     ap.add_argument("--no-throughput", action="store_true")
     ap.add_argument("--no-store", action="store_true", help="skip the store overhead figure")
-    ap.add_argument("--executors", default="pool1,pool2,dask,dask-lean",
+    ap.add_argument("--executors", default="pool1,pool2,dask,dask-local",
                     help=f"comma-separated, of {', '.join(EXECUTORS)}; NAME@B: with batch_seconds B "
-                         "(default: pool1,pool2,dask,dask-lean)")
-    ap.add_argument("--slice", choices=("dense32", "short"), default="dense32",
+                         "(default: pool1,pool2,dask,dask-local)")
+    ap.add_argument("--slice", choices=("table1", "dense32", "short"), default="table1",
                     help="the timed slice (see slice_spec)")
-    ap.add_argument("--batch-seconds", type=float, default=0.25,
-                    help="run_experiment's batch_seconds (0: one run per task)")
+    ap.add_argument("--batch-seconds", type=float, default=None,
+                    help="run_experiment's batch_seconds (0: one run per task; default: "
+                         "run_experiment's, 0.25 s on the pool and 1 s on Dask)")
     args = ap.parse_args()
     from gapath.experiments.spec import resolve_engine
 

@@ -2,7 +2,7 @@
 
 Sub-commands::
 
-    gapath experiment run SPEC --out DIR [--scheduler tcp://HOST:PORT] [--workers N]
+    gapath experiment run SPEC --out DIR [--scheduler tcp://HOST:PORT|local] [--workers N]
     gapath experiment status DIR
     gapath experiment report DIR
     gapath experiment dense [--quick] --out DIR      (the seeds' Table 1)
@@ -31,10 +31,12 @@ def add_executor_options(p) -> None:
     """``--workers``, ``--scheduler``, ``--quiet`` and ``--retry-failed``
     (shared by the sub-commands that run experiments)."""
     p.add_argument("--workers", type=int, default=None,
-                   help="processes of the local pool (default: the number of CPUs; 0: run in "
-                        "this process)")
-    p.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT",
-                   help="run on this Dask scheduler instead (default: $GAPATH_SCHEDULER if set)")
+                   help="processes of the local pool, or of the LocalCluster with --scheduler "
+                        "local (default: the number of CPUs; 0: run in this process)")
+    p.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
+                   help="run on this Dask scheduler instead; 'local': start a Dask LocalCluster "
+                        "of --workers processes with gapath's Dask settings, run on it, close it "
+                        "(default: $GAPATH_SCHEDULER if set)")
     p.add_argument("--no-retry-failed", dest="retry_failed", action="store_false",
                    help="do not run again the runs whose last attempt failed")
     p.add_argument("--quiet", action="store_true", help="no progress bar or report")
