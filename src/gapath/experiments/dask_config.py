@@ -20,8 +20,8 @@ changes, and no result depends on it.
 
 Measured (``benchmarks/bench_experiments.py``, BENCHMARKS.md): on 320 runs
 of the dense-obstacle experiment on 2 cores, a 2-worker LocalCluster took
-1.15x the local process pool's time with Dask's defaults and 1.03-1.09x
-(medians of two sittings; single rounds 0.85-1.27x) with these settings and
+1.15x the local process pool's time with Dask's defaults and 0.99-1.09x
+(medians of three sittings; single rounds 0.85-1.27x) with these settings and
 the runner's 1 s Dask tasks.
 """
 
