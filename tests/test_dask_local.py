@@ -6,29 +6,16 @@ from pathlib import Path
 
 import pytest
 
+from experiment_cases import small_spec, stored
+
 from gapath import ConfigError
 from gapath.cli import main
 from gapath.experiments import dask_config
 from gapath.experiments.dask_config import (DASK_CONFIG, DASK_CONFIG_FILE, check_dask_config,
                                             load_dask_config, local_client)
-from gapath.experiments.runner import make_executor, run_experiment, stable_part
-from gapath.experiments.spec import ExperimentSpec
-from gapath.experiments.store import ResultStore
+from gapath.experiments.runner import make_executor, run_experiment
 
 distributed = pytest.importorskip("distributed")
-
-
-def small_spec(**kw):
-    args = dict(name="tiny", maps=["default", {"dense": {"n": 8, "p0": 0.4, "seed": "run"}}],
-                engines=["paper"], settings={"pop_size": 12, "n_gen": 4, "seed_from": "none"},
-                grid={"pop_size": [12, 16]}, seeds=2, options={"record_first_feasible": True})
-    args.update(kw)
-    return ExperimentSpec(**args)
-
-
-def stored(out) -> dict:
-    store = ResultStore(out)
-    return {k: stable_part(store.read(k)) for k in store.done_keys()}
 
 
 # ---------------------------------------------------------------------------

@@ -12,13 +12,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from experiment_cases import small_spec, stored
+
 from gapath import ConfigError
 from gapath.cli import main
 from gapath.experiments import merge_fronts
 from gapath.experiments import runner as runner_mod
 from gapath.experiments.report import report
-from gapath.experiments.runner import (FirstFeasible, front_from_dict, run_experiment, run_one,
-                                       stable_part)
+from gapath.experiments.runner import FirstFeasible, front_from_dict, run_experiment, run_one
 from gapath.experiments.spec import (ExperimentSpec, canonical_json, config_key, load_spec,
                                      run_key)
 from gapath.experiments.store import ResultStore
@@ -57,19 +58,6 @@ pop_size = [12, 16]
 [options]
 record_first_feasible = true
 """
-
-
-def small_spec(**kw):
-    args = dict(name="tiny", maps=["default", {"dense": {"n": 8, "p0": 0.4, "seed": "run"}}],
-                engines=["paper"], settings={"pop_size": 12, "n_gen": 4, "seed_from": "none"},
-                grid={"pop_size": [12, 16]}, seeds=2, options={"record_first_feasible": True})
-    args.update(kw)
-    return ExperimentSpec(**args)
-
-
-def stored(out) -> dict:
-    store = ResultStore(out)
-    return {k: stable_part(store.read(k)) for k in store.done_keys()}
 
 
 def aggregate_files(out) -> dict:
