@@ -153,3 +153,16 @@ def test_cli_help_names_the_local_scheduler(capsys):
         main(["experiment", "run", "--help"])
     assert "local" in capsys.readouterr().out
     assert Path(dask_config.__file__).with_name("gapath-dask.yaml") == DASK_CONFIG_FILE
+
+
+def test_a_malformed_address_leaves_no_half_built_client():
+    # a Client that fails in its constructor lingers in a reference cycle, and
+    # its __del__, run by the garbage collector while a later Client starts,
+    # deadlocks both (distributed 2026.8): the address is checked first
+    import gc
+
+    gc.collect()
+    before = sum(isinstance(o, distributed.Client) for o in gc.get_objects())
+    with pytest.raises(ConfigError, match="missing port number"):
+        make_executor(2, "lcoal")
+    assert sum(isinstance(o, distributed.Client) for o in gc.get_objects()) == before

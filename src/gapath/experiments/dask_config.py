@@ -27,6 +27,7 @@ the runner's 1 s Dask tasks.
 
 from __future__ import annotations
 
+import gc
 import os
 from pathlib import Path
 
@@ -192,9 +193,16 @@ def local_client(workers: int | None = None, *, config: dict | None = None, time
     with dask.config.set(config):
         # no dashboard; the scheduler's small HTTP server (health, metrics) on a
         # random loopback port rather than on every interface's 8787
-        client = Client(n_workers=workers, threads_per_worker=1, processes=True,
-                        host="127.0.0.1", dashboard_address=None, timeout=timeout,
-                        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
+        try:
+            client = Client(n_workers=workers, threads_per_worker=1, processes=True,
+                            host="127.0.0.1", dashboard_address=None, timeout=timeout,
+                            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
+        except BaseException:
+            # a Client that failed in its constructor must not be left for the
+            # garbage collector to close while a later Client starts (a
+            # deadlock in distributed 2026.8; see runner.make_executor)
+            gc.collect()
+            raise
     try:
         client.wait_for_workers(workers, timeout=timeout)
     except BaseException:

@@ -58,6 +58,7 @@ Per-run indicators (``result["indicators"]``)
 
 from __future__ import annotations
 
+import gc
 import os
 import platform
 import time
@@ -365,12 +366,21 @@ def make_executor(workers: int | None = None, scheduler: str | None = None):
             n = len(client.nthreads())
             return client, (f"Dask LocalCluster of {n} worker process{'es' if n > 1 else ''} "
                             "(gapath's Dask settings)")
-        try:
-            client = Client(scheduler, timeout="20s")
+        from distributed.comm.addressing import parse_address, parse_host_port
+
+        try:  # checked before a Client exists (see below)
+            parse_host_port(parse_address(scheduler)[1])
         except ValueError as exc:  # e.g. "missing port number in address"
             raise ConfigError(f"scheduler {scheduler!r}: {exc}; expected 'local' or the address "
                               "of a Dask scheduler, tcp://HOST:PORT") from None
-        except (OSError, TimeoutError) as exc:
+        try:
+            client = Client(scheduler, timeout="20s")
+        except (OSError, TimeoutError, ValueError) as exc:
+            # A Client that failed in its constructor is left in a reference
+            # cycle, and its __del__ closes its loop runner; run by the
+            # garbage collector while a later Client starts its own, it
+            # deadlocks both (distributed 2026.8). Collect it now.
+            gc.collect()
             raise ConfigError(f"cannot connect to the Dask scheduler {scheduler!r}: {exc}") from None
         return client, f"Dask scheduler {scheduler}"
     workers = (os.cpu_count() or 1) if workers is None else int(workers)
