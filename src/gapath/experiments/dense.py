@@ -402,10 +402,9 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, seeded_dir=None, ot
             if s_row:
                 row.update(seeded_success_pct=s_row["success_pct"], seeded_runs=s_row["runs"],
                            seeded_median_generations=s_row["median_generations"])
-    others = {}
-    for d in other_map_dirs:
-        if _exists(d) and map_seed_of(d) != main_seed:
-            others[map_seed_of(d)] = _with_paper(_rows(d))
+    other_dirs = {map_seed_of(d): d for d in other_map_dirs if _exists(d)}
+    other_dirs.pop(main_seed, None)
+    others = {m: _with_paper(_rows(d)) for m, d in other_dirs.items()}
     per_run = _with_paper(_rows(per_run_dir)) if _exists(per_run_dir) else []
     large = _rows(large_dir) if _exists(large_dir) else []
     large_per_run = _rows(large_per_run_dir) if _exists(large_per_run_dir) else []
@@ -564,8 +563,7 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, seeded_dir=None, ot
     timing = {"table1": table1_dir}
     if seeded:
         timing["table1-seeded"] = seeded_dir
-    for m, d in zip(others, [d for d in other_map_dirs if _exists(d) and map_seed_of(d) != main_seed]):
-        timing[f"table1-map{m}"] = d
+    timing.update({f"table1-map{m}": d for m, d in other_dirs.items()})
     if per_run:
         timing["table1-per-run-maps"] = per_run_dir
     if large:
