@@ -58,7 +58,6 @@ Per-run indicators (``result["indicators"]``)
 
 from __future__ import annotations
 
-import gc
 import os
 import platform
 import time
@@ -71,7 +70,7 @@ import numpy as np
 from pymoo.core.callback import Callback
 
 from gapath.errors import ConfigError
-from gapath.experiments.dask_config import LOCAL_SCHEDULER  # "local": see make_executor
+from gapath.experiments.dask_config import LOCAL_SCHEDULER, new_client
 from gapath.experiments.spec import (ExperimentSpec, build_workspace, config_key, load_spec,
                                      map_label, run_key)
 from gapath.experiments.store import ResultStore, store_versions
@@ -355,7 +354,7 @@ def make_executor(workers: int | None = None, scheduler: str | None = None):
     if scheduler:
         scheduler = str(scheduler).strip()
         try:
-            from distributed import Client
+            import distributed  # noqa: F401  (needed for any scheduler)
         except ImportError:
             raise ConfigError(f"scheduler {scheduler!r} needs the 'distributed' package "
                               "(pip install 'dask[distributed]')") from None
@@ -368,19 +367,14 @@ def make_executor(workers: int | None = None, scheduler: str | None = None):
                             "(gapath's Dask settings)")
         from distributed.comm.addressing import parse_address, parse_host_port
 
-        try:  # checked before a Client exists (see below)
+        try:  # checked before a Client exists (see dask_config.new_client)
             parse_host_port(parse_address(scheduler)[1])
         except ValueError as exc:  # e.g. "missing port number in address"
             raise ConfigError(f"scheduler {scheduler!r}: {exc}; expected 'local' or the address "
                               "of a Dask scheduler, tcp://HOST:PORT") from None
         try:
-            client = Client(scheduler, timeout="20s")
+            client = new_client(scheduler, timeout="20s")
         except (OSError, TimeoutError, ValueError) as exc:
-            # A Client that failed in its constructor is left in a reference
-            # cycle, and its __del__ closes its loop runner; run by the
-            # garbage collector while a later Client starts its own, it
-            # deadlocks both (distributed 2026.8). Collect it now.
-            gc.collect()
             raise ConfigError(f"cannot connect to the Dask scheduler {scheduler!r}: {exc}") from None
         return client, f"Dask scheduler {scheduler}"
     workers = (os.cpu_count() or 1) if workers is None else int(workers)
