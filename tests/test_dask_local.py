@@ -156,9 +156,9 @@ def test_cli_help_names_the_local_scheduler(capsys):
 
 
 def test_a_malformed_address_leaves_no_half_built_client():
-    # a Client that fails in its constructor lingers in a reference cycle, and
-    # its __del__, run by the garbage collector while a later Client starts,
-    # deadlocks both (distributed 2026.8): the address is checked first
+    # a Client that fails in its constructor is left behind, and its __del__,
+    # run later while another Client starts, can deadlock both (distributed
+    # 2026.8): the address is checked before any Client is built
     import gc
 
     gc.collect()

@@ -27,14 +27,13 @@ the runner's 1 s Dask tasks.
 
 from __future__ import annotations
 
-import gc
 import os
 from pathlib import Path
 
 from gapath.errors import ConfigError
 
 __all__ = ["DASK_CONFIG", "DASK_CONFIG_FILE", "LOCAL_SCHEDULER", "check_dask_config",
-           "load_dask_config", "local_client", "new_client"]
+           "load_dask_config", "local_client"]
 
 #: gapath's Dask settings (dotted keys of ``distributed/distributed.yaml``),
 #: as given to ``dask.config.set``; the same as :data:`DASK_CONFIG_FILE`.
@@ -170,21 +169,6 @@ def load_dask_config(path=None) -> dict:
     return check_dask_config(_flatten(tree), str(path))
 
 
-def new_client(*args, **kwargs):
-    """``distributed.Client(*args, **kwargs)``; if the constructor fails, the
-    half-built Client is garbage-collected at once before the error goes on.
-    Such a Client is left in a reference cycle, and its ``__del__`` closes
-    its event loop; run by the collector later, while another Client starts
-    its own loop, it deadlocks both (distributed 2026.8)."""
-    from distributed import Client
-
-    try:
-        return Client(*args, **kwargs)
-    except BaseException:
-        gc.collect()
-        raise
-
-
 def local_client(workers: int | None = None, *, config: dict | None = None, timeout: str = "60s"):
     """A ``distributed.Client`` that owns a fresh ``LocalCluster``: ``workers``
     worker processes (default: the number of CPUs) of one thread each,
@@ -203,13 +187,14 @@ def local_client(workers: int | None = None, *, config: dict | None = None, time
         raise ConfigError(f"scheduler 'local' needs at least 1 worker, got workers={workers}")
     config = check_dask_config(dict(DASK_CONFIG if config is None else config))
     import dask
+    from distributed import Client
 
     with dask.config.set(config):
         # no dashboard; the scheduler's small HTTP server (health, metrics) on a
         # random loopback port rather than on every interface's 8787
-        client = new_client(n_workers=workers, threads_per_worker=1, processes=True,
-                            host="127.0.0.1", dashboard_address=None, timeout=timeout,
-                            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
+        client = Client(n_workers=workers, threads_per_worker=1, processes=True,
+                        host="127.0.0.1", dashboard_address=None, timeout=timeout,
+                        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
     try:
         client.wait_for_workers(workers, timeout=timeout)
     except BaseException:

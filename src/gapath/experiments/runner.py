@@ -70,7 +70,7 @@ import numpy as np
 from pymoo.core.callback import Callback
 
 from gapath.errors import ConfigError
-from gapath.experiments.dask_config import LOCAL_SCHEDULER, new_client
+from gapath.experiments.dask_config import LOCAL_SCHEDULER  # "local": see make_executor
 from gapath.experiments.spec import (ExperimentSpec, build_workspace, config_key, load_spec,
                                      map_label, run_key)
 from gapath.experiments.store import ResultStore, store_versions
@@ -354,7 +354,7 @@ def make_executor(workers: int | None = None, scheduler: str | None = None):
     if scheduler:
         scheduler = str(scheduler).strip()
         try:
-            import distributed  # noqa: F401  (needed for any scheduler)
+            from distributed import Client
         except ImportError:
             raise ConfigError(f"scheduler {scheduler!r} needs the 'distributed' package "
                               "(pip install 'dask[distributed]')") from None
@@ -367,13 +367,17 @@ def make_executor(workers: int | None = None, scheduler: str | None = None):
                             "(gapath's Dask settings)")
         from distributed.comm.addressing import parse_address, parse_host_port
 
-        try:  # checked before a Client exists (see dask_config.new_client)
+        # Checked before a Client exists: a Client whose constructor fails is
+        # left behind (not freed at once), and its __del__, run later while
+        # another Client starts, can deadlock both (seen with distributed
+        # 2026.8 in the test suite).
+        try:
             parse_host_port(parse_address(scheduler)[1])
         except ValueError as exc:  # e.g. "missing port number in address"
             raise ConfigError(f"scheduler {scheduler!r}: {exc}; expected 'local' or the address "
                               "of a Dask scheduler, tcp://HOST:PORT") from None
         try:
-            client = new_client(scheduler, timeout="20s")
+            client = Client(scheduler, timeout="20s")
         except (OSError, TimeoutError, ValueError) as exc:
             raise ConfigError(f"cannot connect to the Dask scheduler {scheduler!r}: {exc}") from None
         return client, f"Dask scheduler {scheduler}"
