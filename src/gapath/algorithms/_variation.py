@@ -7,13 +7,26 @@ generation (refill rounds), most of a vectorised generation.
 
 :func:`sbx_crossover` and :func:`pm_mutation` compute the same children from
 the same random numbers: they draw from the generator in the same calls, of
-the same sizes, in the same order as pymoo's ``do`` and ``_do``, and do the
-same IEEE arithmetic element by element (``pow`` of the C library, no fused
-multiply-add), so they return bit-identical arrays and leave the generator
-in the same state. :func:`sbx_supported` / :func:`pm_supported` say when an
-operator is one of them (gapath's DiscreteSBX and DiscretePM are);
+the same sizes, in the same order as pymoo's ``do`` and ``_do``, and leave
+it in the same state. Identity on every CPU: the powers are computed by the
+same NumPy call pymoo makes (``np.power`` of two contiguous float64 arrays,
+one call per power of ``calc_betaq``/``mut_pm`` for the whole generation),
+because NumPy dispatches that call to SIMD code on CPUs that have it (AVX-512:
+results that differ from the C library's ``pow`` in the last bit) and to
+``pow`` elsewhere, and its result for an element does not depend on the
+array's length or on the element's position (checked for lengths 1 to 40
+at many offsets and for strided views; a reversed view takes the ``pow``
+loop, so both sides pass fresh contiguous arrays). Everything else
+(bases, exponents, branches, children, clamping) is IEEE arithmetic in numba
+kernels around those calls (no fused multiply-add, IEEE division as NumPy's),
+so both return bit-identical arrays whatever SIMD NumPy picked. Only the
+branch pymoo keeps is powered for each element (pymoo powers both and masks).
+:func:`sbx_supported` / :func:`pm_supported` say when an operator is one of
+them (gapath's DiscreteSBX and DiscretePM are);
 :class:`gapath.algorithms.FastNSGA2` sends any other operator through its
-own ``_do``. ``tests/test_fast_nsga2.py`` checks the equality.
+own ``_do``. ``tests/test_fast_nsga2.py`` checks the equality and
+``tests/test_simd_dispatch.py`` checks it again with NumPy's SIMD dispatch
+disabled.
 """
 
 from __future__ import annotations
@@ -56,7 +69,10 @@ def pm_supported(op, problem) -> bool:
             and not op.at_least_once and _scalars(op.eta, op.prob, op.get_prob_var(problem)))
 
 
-@numba.njit(cache=True)
+_NJIT = dict(cache=True, error_model="numpy")      # IEEE division, as NumPy's
+
+
+@numba.njit(**_NJIT)
 def _sbx_mask(X0, X1, xl, xu, r, prob_var):
     n, m = X0.shape
     cross = np.zeros((n, m), np.bool_)
@@ -67,20 +83,58 @@ def _sbx_mask(X0, X1, xl, xu, r, prob_var):
     return cross
 
 
-@numba.njit(cache=True, inline="always")
-def _betaq(beta, eta, u):
-    alpha = 2.0 - beta ** (-(eta + 1.0))
-    if u <= 1.0 / alpha:
-        return (u * alpha) ** (1.0 / (eta + 1.0))
-    return (1.0 / (2.0 - u * alpha)) ** (1.0 / (eta + 1.0))
+@numba.njit(**_NJIT)
+def _sbx_betas(X0, X1, xl, xu, cross, n_cross):
+    """``cross_sbx``'s two ``beta`` of every crossed gene, in the order of
+    ``X[0][cross]``: ``B[:n_cross]`` from the lower bound (child 1),
+    ``B[n_cross:]`` from the upper bound (child 2)."""
+    n, m = X0.shape
+    B = np.empty(2 * n_cross)
+    k = 0
+    for i in range(n):
+        for j in range(m):
+            if cross[i, j]:
+                a, b = X0[i, j], X1[i, j]
+                y1 = a if a < b else b
+                y2 = b if a < b else a
+                delta = y2 - y1
+                B[k] = 1.0 + (2.0 * (y1 - xl[j]) / delta)
+                B[n_cross + k] = 1.0 + (2.0 * (xu[j] - y2) / delta)
+                k += 1
+    return B
 
 
-@numba.njit(cache=True)
-def _sbx_children(X0, X1, xl, xu, eta, prob_bin, exch, prob_exch, cross, u, w, mating, rint):
+@numba.njit(**_NJIT)
+def _sbx_bases(P, u):
+    """``calc_betaq``'s base of the second power, given ``P = beta **
+    -(eta + 1)`` (laid out as :func:`_sbx_betas`) and the draws ``u``:
+    ``u alpha`` where ``u <= 1 / alpha``, ``1 / (2 - u alpha)`` where
+    ``u > 1 / alpha``, NaN where neither holds (alpha is NaN; pymoo's
+    ``betaq`` stays 0 there)."""
+    n_cross = len(u)
+    Z = np.empty(2 * n_cross)
+    for h in range(2):
+        for k in range(n_cross):
+            r = u[k]
+            alpha = 2.0 - P[h * n_cross + k]
+            if r <= 1.0 / alpha:
+                z = r * alpha
+            elif r > 1.0 / alpha:
+                z = 1.0 / (2.0 - r * alpha)
+            else:
+                z = np.nan
+            Z[h * n_cross + k] = z
+    return Z
+
+
+@numba.njit(**_NJIT)
+def _sbx_children(X0, X1, xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w, mating, rint):
     """Children ``(2 n, m)``: SBX children of the crossed matings (clamped
     to the bounds), copies of the parents for the others; rounded to the
-    nearest integer (half to even, as ``np.around``) when ``rint``."""
+    nearest integer (half to even, as ``np.around``) when ``rint``. ``Q2``
+    holds ``betaq`` (``Z ** (1 / (eta + 1))``, 0 where ``Z`` is NaN)."""
     n, m = X0.shape
+    n_cross = len(w)
     Q = np.empty((2 * n, m))
     k = 0
     for i in range(n):
@@ -91,10 +145,11 @@ def _sbx_children(X0, X1, xl, xu, eta, prob_bin, exch, prob_exch, cross, u, w, m
                 y1 = a if sm else b
                 y2 = b if sm else a
                 delta = y2 - y1
-                beta = 1.0 + (2.0 * (y1 - xl[j]) / delta)
-                c1 = 0.5 * ((y1 + y2) - _betaq(beta, eta, u[k]) * delta)
-                beta = 1.0 + (2.0 * (xu[j] - y2) / delta)
-                c2 = 0.5 * ((y1 + y2) + _betaq(beta, eta, u[k]) * delta)
+                z1, z2 = Z[k], Z[n_cross + k]
+                bq1 = Q2[k] if z1 == z1 else 0.0
+                bq2 = Q2[n_cross + k] if z2 == z2 else 0.0
+                c1 = 0.5 * ((y1 + y2) - bq1 * delta)
+                c2 = 0.5 * ((y1 + y2) + bq2 * delta)
                 ch1 = c1 if sm else c2
                 ch2 = c2 if sm else c1
                 pb = 0.0 if exch[i] > prob_exch else prob_bin
@@ -111,15 +166,23 @@ def _sbx_children(X0, X1, xl, xu, eta, prob_bin, exch, prob_exch, cross, u, w, m
     return Q
 
 
-def _sbx_inputs(op, X, random_state, xl, xu):
+def _power(base, exponent):
+    """``base ** exponent`` as pymoo computes it: one ``np.power`` of two
+    contiguous float64 arrays (NumPy picks its SIMD or its libm loop from
+    the CPU, for pymoo's call and this one alike)."""
+    return np.power(base, np.full(len(base), exponent))
+
+
+def _sbx(op, X, random_state, xl, xu, rint):
     """The random draws of ``Crossover.do`` with ``SimulatedBinaryCrossover._do``
-    in pymoo's order, as the arguments of :func:`_sbx_children`."""
+    in pymoo's order, the powers of ``cross_sbx`` by NumPy, the rest by
+    numba: the ``(2 n, m)`` children."""
     _, n, m = X.shape
     mating = random_state.random(n) < float(_value(op.prob))
     if not mating.any():                           # pymoo does not call _do then
         none = np.zeros(0)
-        return (X[0], X[1], xl, xu, 0.0, 0.0, np.zeros(n), 1.0, np.zeros((n, m), np.bool_),
-                none, none, mating)
+        return _sbx_children(X[0], X[1], xl, xu, 0.0, np.zeros(n), 1.0,
+                             np.zeros((n, m), np.bool_), none, none, none, mating, rint)
     eta, prob_var, prob_exch, prob_bin = (float(_value(v)) for v in
                                           (op.eta, op.prob_var, op.prob_exch, op.prob_bin))
     exch = random_state.random(n)                  # pymoo: random((n, 1)) > prob_exch
@@ -128,7 +191,11 @@ def _sbx_inputs(op, X, random_state, xl, xu):
     n_cross = int(np.count_nonzero(cross))
     u = random_state.random(n_cross)
     w = random_state.random(n_cross)
-    return X[0], X[1], xl, xu, eta, prob_bin, exch, prob_exch, cross, u, w, mating
+    P = _power(_sbx_betas(X[0], X[1], xl, xu, cross, n_cross), -(eta + 1.0))
+    Z = _sbx_bases(P, u)
+    Q2 = _power(Z, 1.0 / (eta + 1.0))
+    return _sbx_children(X[0], X[1], xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w,
+                         mating, rint)
 
 
 def sbx_crossover(op, problem, X, random_state, bounds=None):
@@ -138,35 +205,57 @@ def sbx_crossover(op, problem, X, random_state, bounds=None):
     operator's own repair. ``bounds``: the problem's ``(xl, xu)`` as floats,
     if at hand."""
     xl, xu = _bounds(problem) if bounds is None else bounds
-    X = X.astype(float, copy=False)
-    return _sbx_children(*_sbx_inputs(op, X, random_state, xl, xu), False)
+    return _sbx(op, X.astype(float, copy=False), random_state, xl, xu, False)
 
 
-@numba.njit(cache=True)
-def _pm_children(X, xl, xu, eta, mut, u, mutated, rint):
+@numba.njit(**_NJIT)
+def _pm_xy(X, xl, xu, mut, u):
+    """``mut_pm``'s ``xy`` of every mutated gene (in the order of
+    ``X[mut]``): ``1 - delta1`` where ``u <= 0.5``, else ``1 - delta2``."""
+    n, m = X.shape
+    xy = np.empty(len(u))
+    k = 0
+    for i in range(n):
+        for j in range(m):
+            if mut[i, j]:
+                x, lo, hi = X[i, j], xl[j], xu[j]
+                if u[k] <= 0.5:
+                    xy[k] = 1.0 - (x - lo) / (hi - lo)
+                else:
+                    xy[k] = 1.0 - (hi - x) / (hi - lo)
+                k += 1
+    return xy
+
+
+@numba.njit(**_NJIT)
+def _pm_val(P, u):
+    """``mut_pm``'s ``val`` of every mutated gene, given ``P = xy **
+    (eta + 1)``."""
+    val = np.empty(len(u))
+    for k in range(len(u)):
+        r = u[k]
+        if r <= 0.5:
+            val[k] = 2.0 * r + (1.0 - 2.0 * r) * P[k]
+        else:
+            val[k] = 2.0 * (1.0 - r) + 2.0 * (r - 0.5) * P[k]
+    return val
+
+
+@numba.njit(**_NJIT)
+def _pm_children(X, xl, xu, mut, u, V, mutated, rint):
     """``X`` with the genes ``mut`` of the rows ``mutated`` moved by
-    polynomial mutation (pymoo's ``mut_pm``, bounds clamped); the mutated
-    rows rounded to the nearest integer when ``rint``."""
+    polynomial mutation (pymoo's ``mut_pm``, bounds clamped), given ``V =
+    val ** (1 / (eta + 1))``; the mutated rows rounded to the nearest
+    integer when ``rint``."""
     n, m = X.shape
     Y = X.copy()
-    mut_pow = 1.0 / (eta + 1.0)
     k = 0
     for i in range(n):
         for j in range(m):
             x, lo, hi = X[i, j], xl[j], xu[j]
             if mut[i, j]:
-                delta1 = (x - lo) / (hi - lo)
-                delta2 = (hi - x) / (hi - lo)
-                r = u[k]
+                dq = V[k] - 1.0 if u[k] <= 0.5 else 1.0 - V[k]
                 k += 1
-                if r <= 0.5:
-                    xy = 1.0 - delta1
-                    val = 2.0 * r + (1.0 - 2.0 * r) * (xy ** (eta + 1.0))
-                    dq = val ** mut_pow - 1.0
-                else:
-                    xy = 1.0 - delta2
-                    val = 2.0 * (1.0 - r) + 2.0 * (r - 0.5) * (xy ** (eta + 1.0))
-                    dq = 1.0 - val ** mut_pow
                 x = x + dq * (hi - lo)
             if not mutated[i]:
                 continue
@@ -178,15 +267,19 @@ def _pm_children(X, xl, xu, eta, mut, u, mutated, rint):
     return Y
 
 
-def _pm_inputs(op, problem, shape, random_state, xl, xu):
+def _pm(op, problem, X, random_state, xl, xu, rint):
     """The random draws of ``Mutation.do`` with ``PolynomialMutation._do``
-    in pymoo's order: ``(eta, mut, u, mutated)`` for :func:`_pm_children`."""
-    mut = random_state.random(shape) < op.get_prob_var(problem)
+    in pymoo's order, the powers of ``mut_pm`` by NumPy, the rest by
+    numba: the mutated ``X``."""
+    mut = random_state.random(X.shape) < op.get_prob_var(problem)
     if (xl == xu).any():
         mut[:, xl == xu] = False
     u = random_state.random(int(np.count_nonzero(mut)))
-    mutated = random_state.random(size=shape[0]) <= float(_value(op.prob))
-    return float(_value(op.eta)), mut, u, mutated
+    mutated = random_state.random(size=X.shape[0]) <= float(_value(op.prob))
+    eta = float(_value(op.eta))
+    P = _power(_pm_xy(X, xl, xu, mut, u), eta + 1.0)
+    V = _power(_pm_val(P, u), 1.0 / (eta + 1.0))
+    return _pm_children(X, xl, xu, mut, u, V, mutated, rint)
 
 
 def pm_mutation(op, problem, X, random_state, bounds=None):
@@ -195,8 +288,7 @@ def pm_mutation(op, problem, X, random_state, bounds=None):
     ``prob``, before the operator's own repair. ``bounds``: the problem's
     ``(xl, xu)`` as floats, if at hand."""
     xl, xu = _bounds(problem) if bounds is None else bounds
-    X = X.astype(float)
-    return _pm_children(X, xl, xu, *_pm_inputs(op, problem, X.shape, random_state, xl, xu), False)
+    return _pm(op, problem, X.astype(float), random_state, xl, xu, False)
 
 
 def discrete_supported(crossover, mutation, problem) -> bool:
@@ -212,12 +304,10 @@ def discrete_variation(crossover, mutation, problem, X, random_state, bounds=Non
     """Crossover then mutation, each with its rounding, as pymoo applies
     them (``Crossover.do``, ``RoundingRepair``, ``Mutation.do``,
     ``RoundingRepair``) to parents ``X`` (2, n_matings, n_var): the
-    ``(2 n_matings, n_var)`` integer children, in two numba passes."""
+    ``(2 n_matings, n_var)`` integer children."""
     xl, xu = _bounds(problem) if bounds is None else bounds
-    X = X.astype(float, copy=False)
-    Q = _sbx_children(*_sbx_inputs(crossover, X, random_state, xl, xu), True)
-    pm = _pm_inputs(mutation, problem, Q.shape, random_state, xl, xu)
-    return _pm_children(Q, xl, xu, *pm, True).astype(int)
+    Q = _sbx(crossover, X.astype(float, copy=False), random_state, xl, xu, True)
+    return _pm(mutation, problem, Q, random_state, xl, xu, True).astype(int)
 
 
 def _bounds(problem):
