@@ -25,7 +25,7 @@ ROOT = Path(__file__).resolve().parents[1]
 
 #: The engine-equivalence tests: operator twins against pymoo's operators,
 #: FastNSGA2 against paper_nsga2 (every mode, the bundled scenario, every
-#: encoding), and the check below of the subprocess's own NumPy.
+#: encoding), and the checks below of the subprocess's own NumPy.
 EQUIVALENCE = [
     "tests/test_fast_nsga2.py::test_sbx_twin_is_bit_identical",
     "tests/test_fast_nsga2.py::test_pm_twin_is_bit_identical",
@@ -35,6 +35,7 @@ EQUIVALENCE = [
     "tests/test_fast_nsga2.py::test_bundled_scenario_matches_paper_nsga2_and_generic_operators",
     "tests/test_fast_nsga2.py::test_every_encoding_is_pymoos_nsga2_bit_for_bit",
     "tests/test_simd_dispatch.py::test_numpy_runs_the_dispatch_path_it_was_given",
+    "tests/test_simd_dispatch.py::test_numpy_power_of_an_element_ignores_its_array",
 ]
 
 
@@ -76,6 +77,26 @@ def test_numpy_runs_the_dispatch_path_it_was_given():
     for e in (-16.0, 1.0 / 16.0, 21.0, -3.5):
         libm = np.array([math.pow(x, e) for x in base])
         np.testing.assert_array_equal(np.power(base, np.full(len(base), e)), libm)
+
+
+@pytest.mark.parametrize("exponent", [-16.0, -3.5, 1.0 / 16.0, 21.0])
+def test_numpy_power_of_an_element_ignores_its_array(exponent):
+    """What the twins rely on (they power other arrays than pymoo does: both
+    betas in one call, only the branch pymoo keeps): ``np.power`` of an
+    element is the same in an array of any length, at any position, in a
+    strided view, with the exponent an array or a scalar."""
+    rng = np.random.default_rng(1)
+    base = np.concatenate([1.0 + 30.0 * rng.random(300), 2.0 * rng.random(300)])
+    rng.shuffle(base)
+    whole = np.power(base, np.full(len(base), exponent))
+    for n in range(1, 41):
+        for start in range(0, 60, 7):
+            part = base[start:start + n]
+            np.testing.assert_array_equal(np.power(part, np.full(n, exponent)),
+                                          whole[start:start + n])
+            np.testing.assert_array_equal(np.power(part.copy(), exponent), whole[start:start + n])
+    for step in (2, 3, 8):
+        np.testing.assert_array_equal(np.power(base[::step], exponent), whole[::step])
 
 
 def _variant():
