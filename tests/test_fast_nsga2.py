@@ -302,14 +302,17 @@ def test_pm_twin_is_bit_identical(problem, op):
 def test_twins_are_bit_identical_on_real_valued_parents(problem, seed):
     """Real-valued genes (every power has a non-trivial base), some outside
     the bounds (negative beta, NaN alpha: pymoo's betaq of 0), odd sizes and
-    eta: the children, NaN where pymoo's are, and the generator's state."""
+    eta, eta 1 (exponents 0.5 and 2, which NumPy special-cases for a scalar
+    exponent but not for pymoo's array of exponents): the children, NaN where
+    pymoo's are, and the generator's state."""
     rng = np.random.default_rng(seed)
     n = int(rng.integers(1, 90))
     lo, hi = np.asarray(problem.xl, float), np.asarray(problem.xu, float)
     half = (hi - lo) / 2 * (1.3 if seed % 2 else 1.0)
     X = (lo + hi) / 2 + (2 * rng.random((2, n, problem.n_var)) - 1) * half
     eta = float(rng.uniform(1.5, 30))
-    for op in (SBX(eta=eta, prob=0.9, prob_var=0.7), SBX(eta=2.5, prob=1.0)):
+    for op in (SBX(eta=eta, prob=0.9, prob_var=0.7), SBX(eta=2.5, prob=1.0),
+               SBX(eta=1.0, prob=1.0)):
         a, b = np.random.default_rng(seed + 10), np.random.default_rng(seed + 10)
         with np.errstate(all="ignore"):
             off = op.do(problem, Population.new("X", X.reshape(-1, problem.n_var)),
@@ -317,7 +320,7 @@ def test_twins_are_bit_identical_on_real_valued_parents(problem, seed):
             twin = sbx_crossover(op, problem, X, b)
         np.testing.assert_array_equal(twin, off)
         assert a.random() == b.random()
-    for op in (PM(eta=eta, prob=0.8, prob_var=0.5), PM(eta=20, prob=1.0)):
+    for op in (PM(eta=eta, prob=0.8, prob_var=0.5), PM(eta=20, prob=1.0), PM(eta=1.0, prob=1.0)):
         a, b = np.random.default_rng(seed + 20), np.random.default_rng(seed + 20)
         with np.errstate(all="ignore"):
             mutated = op.do(problem, Population.new("X", X[0].copy()), random_state=a).get("X")

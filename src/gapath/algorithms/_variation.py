@@ -8,19 +8,26 @@ generation (refill rounds), most of a vectorised generation.
 :func:`sbx_crossover` and :func:`pm_mutation` compute the same children from
 the same random numbers: they draw from the generator in the same calls, of
 the same sizes, in the same order as pymoo's ``do`` and ``_do``, and leave
-it in the same state. Identity on every CPU: the powers are computed by the
-same NumPy call pymoo makes (``np.power`` of two contiguous float64 arrays,
-one call per power of ``calc_betaq``/``mut_pm`` for the whole generation),
-because NumPy dispatches that call to SIMD code on CPUs that have it (AVX-512:
-results that differ from the C library's ``pow`` in the last bit) and to
-``pow`` elsewhere, and its result for an element does not depend on the
-array's length or on the element's position (checked for lengths 1 to 40
-at many offsets and for strided views; a reversed view takes the ``pow``
-loop, so both sides pass fresh contiguous arrays). Everything else
-(bases, exponents, branches, children, clamping) is IEEE arithmetic in numba
-kernels around those calls (no fused multiply-add, IEEE division as NumPy's),
-so both return bit-identical arrays whatever SIMD NumPy picked. Only the
-branch pymoo keeps is powered for each element (pymoo powers both and masks).
+it in the same state.
+
+Identity on every CPU: every power is computed by the same NumPy call pymoo
+makes, ``np.power`` of two contiguous float64 arrays (bases and exponents),
+one call per power of ``calc_betaq``/``mut_pm`` for the whole batch of
+matings. NumPy dispatches that call to SIMD code on CPUs that have it
+(AVX-512: results that differ from the C library's ``pow``, which numba's
+``**`` calls, in the last bit) and to ``pow`` elsewhere, and its result for
+an element does not depend on the array's length or on the element's
+position (checked for lengths 1 to 40 at many offsets and for strided views;
+a reversed view takes the ``pow`` loop, so both sides pass fresh contiguous
+arrays). Hence the twins power only the branch pymoo keeps for each element
+(pymoo powers both and masks) and both betas of a gene in one call. The
+exponents are arrays, as pymoo's: with a scalar exponent NumPy computes
+``x ** 0.5``, ``x ** 2`` and ``x ** -1`` by ``sqrt``, ``x * x`` and ``1 / x``
+(eta 1 would differ). Everything else (bases, branches, children, clamping)
+is IEEE arithmetic in numba kernels around those calls (no fused
+multiply-add; IEEE division, as NumPy's), so twins and pymoo return
+bit-identical arrays whatever SIMD NumPy picked.
+
 :func:`sbx_supported` / :func:`pm_supported` say when an operator is one of
 them (gapath's DiscreteSBX and DiscretePM are);
 :class:`gapath.algorithms.FastNSGA2` sends any other operator through its
@@ -73,23 +80,23 @@ _NJIT = dict(cache=True, error_model="numpy")      # IEEE division, as NumPy's
 
 
 @numba.njit(**_NJIT)
-def _sbx_mask(X0, X1, xl, xu, r, prob_var):
+def _sbx_betas(X0, X1, xl, xu, r, prob_var, eta):
+    """``cross_sbx``'s mask ``cross`` (n, m) and the first power's bases and
+    exponents: the two ``beta`` of the ``k``-th crossed gene (in the order
+    of ``X[0][cross]``) at ``2 k`` (from the lower bound, child 1) and
+    ``2 k + 1`` (from the upper bound, child 2), each with exponent
+    ``-(eta + 1)``."""
     n, m = X0.shape
     cross = np.zeros((n, m), np.bool_)
+    n_cross = 0
     for i in range(n):
         for j in range(m):
-            cross[i, j] = (r[i, j] < prob_var and not abs(X0[i, j] - X1[i, j]) <= 1.0e-14
-                           and xl[j] != xu[j])
-    return cross
-
-
-@numba.njit(**_NJIT)
-def _sbx_betas(X0, X1, xl, xu, cross, n_cross):
-    """``cross_sbx``'s two ``beta`` of every crossed gene, in the order of
-    ``X[0][cross]``: ``B[:n_cross]`` from the lower bound (child 1),
-    ``B[n_cross:]`` from the upper bound (child 2)."""
-    n, m = X0.shape
+            c = (r[i, j] < prob_var and not abs(X0[i, j] - X1[i, j]) <= 1.0e-14
+                 and xl[j] != xu[j])
+            cross[i, j] = c
+            n_cross += c
     B = np.empty(2 * n_cross)
+    E = np.full(2 * n_cross, -(eta + 1.0))
     k = 0
     for i in range(n):
         for j in range(m):
@@ -99,32 +106,29 @@ def _sbx_betas(X0, X1, xl, xu, cross, n_cross):
                 y2 = b if a < b else a
                 delta = y2 - y1
                 B[k] = 1.0 + (2.0 * (y1 - xl[j]) / delta)
-                B[n_cross + k] = 1.0 + (2.0 * (xu[j] - y2) / delta)
-                k += 1
-    return B
+                B[k + 1] = 1.0 + (2.0 * (xu[j] - y2) / delta)
+                k += 2
+    return cross, B, E
 
 
 @numba.njit(**_NJIT)
-def _sbx_bases(P, u):
-    """``calc_betaq``'s base of the second power, given ``P = beta **
-    -(eta + 1)`` (laid out as :func:`_sbx_betas`) and the draws ``u``:
-    ``u alpha`` where ``u <= 1 / alpha``, ``1 / (2 - u alpha)`` where
-    ``u > 1 / alpha``, NaN where neither holds (alpha is NaN; pymoo's
-    ``betaq`` stays 0 there)."""
-    n_cross = len(u)
-    Z = np.empty(2 * n_cross)
-    for h in range(2):
-        for k in range(n_cross):
-            r = u[k]
-            alpha = 2.0 - P[h * n_cross + k]
-            if r <= 1.0 / alpha:
-                z = r * alpha
-            elif r > 1.0 / alpha:
-                z = 1.0 / (2.0 - r * alpha)
-            else:
-                z = np.nan
-            Z[h * n_cross + k] = z
-    return Z
+def _sbx_bases(P, u, eta):
+    """``calc_betaq``'s second power, given ``P = beta ** -(eta + 1)`` (laid
+    out as by :func:`_sbx_betas`) and the draws ``u``: its bases, ``u alpha``
+    where ``u <= 1 / alpha``, ``1 / (2 - u alpha)`` where ``u > 1 / alpha``,
+    NaN where neither holds (alpha is NaN; pymoo's ``betaq`` stays 0 there),
+    and its exponents ``1 / (eta + 1)``."""
+    Z = np.empty(len(P))
+    for k in range(len(P)):
+        r = u[k // 2]
+        alpha = 2.0 - P[k]
+        if r <= 1.0 / alpha:
+            Z[k] = r * alpha
+        elif r > 1.0 / alpha:
+            Z[k] = 1.0 / (2.0 - r * alpha)
+        else:
+            Z[k] = np.nan
+    return Z, np.full(len(P), 1.0 / (eta + 1.0))
 
 
 @numba.njit(**_NJIT)
@@ -134,7 +138,6 @@ def _sbx_children(X0, X1, xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w, ma
     nearest integer (half to even, as ``np.around``) when ``rint``. ``Q2``
     holds ``betaq`` (``Z ** (1 / (eta + 1))``, 0 where ``Z`` is NaN)."""
     n, m = X0.shape
-    n_cross = len(w)
     Q = np.empty((2 * n, m))
     k = 0
     for i in range(n):
@@ -145,9 +148,8 @@ def _sbx_children(X0, X1, xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w, ma
                 y1 = a if sm else b
                 y2 = b if sm else a
                 delta = y2 - y1
-                z1, z2 = Z[k], Z[n_cross + k]
-                bq1 = Q2[k] if z1 == z1 else 0.0
-                bq2 = Q2[n_cross + k] if z2 == z2 else 0.0
+                bq1 = Q2[2 * k] if Z[2 * k] == Z[2 * k] else 0.0
+                bq2 = Q2[2 * k + 1] if Z[2 * k + 1] == Z[2 * k + 1] else 0.0
                 c1 = 0.5 * ((y1 + y2) - bq1 * delta)
                 c2 = 0.5 * ((y1 + y2) + bq2 * delta)
                 ch1 = c1 if sm else c2
@@ -166,17 +168,10 @@ def _sbx_children(X0, X1, xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w, ma
     return Q
 
 
-def _power(base, exponent):
-    """``base ** exponent`` as pymoo computes it: one ``np.power`` of two
-    contiguous float64 arrays (NumPy picks its SIMD or its libm loop from
-    the CPU, for pymoo's call and this one alike)."""
-    return np.power(base, np.full(len(base), exponent))
-
-
 def _sbx(op, X, random_state, xl, xu, rint):
     """The random draws of ``Crossover.do`` with ``SimulatedBinaryCrossover._do``
-    in pymoo's order, the powers of ``cross_sbx`` by NumPy, the rest by
-    numba: the ``(2 n, m)`` children."""
+    in pymoo's order, the powers of ``cross_sbx`` by NumPy (see the module
+    docstring), the rest by numba: the ``(2 n, m)`` children."""
     _, n, m = X.shape
     mating = random_state.random(n) < float(_value(op.prob))
     if not mating.any():                           # pymoo does not call _do then
@@ -187,13 +182,11 @@ def _sbx(op, X, random_state, xl, xu, rint):
                                           (op.eta, op.prob_var, op.prob_exch, op.prob_bin))
     exch = random_state.random(n)                  # pymoo: random((n, 1)) > prob_exch
     r = random_state.random((n, m))
-    cross = _sbx_mask(X[0], X[1], xl, xu, r, prob_var)
-    n_cross = int(np.count_nonzero(cross))
-    u = random_state.random(n_cross)
-    w = random_state.random(n_cross)
-    P = _power(_sbx_betas(X[0], X[1], xl, xu, cross, n_cross), -(eta + 1.0))
-    Z = _sbx_bases(P, u)
-    Q2 = _power(Z, 1.0 / (eta + 1.0))
+    cross, B, E = _sbx_betas(X[0], X[1], xl, xu, r, prob_var, eta)
+    u = random_state.random(len(B) // 2)
+    w = random_state.random(len(B) // 2)
+    Z, E = _sbx_bases(np.power(B, E), u, eta)     # cross_sbx: np.power(beta, -(eta + 1.0))
+    Q2 = np.power(Z, E)                           # np.power(rand * alpha, 1.0 / (eta + 1.0)), ...
     return _sbx_children(X[0], X[1], xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w,
                          mating, rint)
 
@@ -209,9 +202,10 @@ def sbx_crossover(op, problem, X, random_state, bounds=None):
 
 
 @numba.njit(**_NJIT)
-def _pm_xy(X, xl, xu, mut, u):
-    """``mut_pm``'s ``xy`` of every mutated gene (in the order of
-    ``X[mut]``): ``1 - delta1`` where ``u <= 0.5``, else ``1 - delta2``."""
+def _pm_xy(X, xl, xu, mut, u, eta):
+    """``mut_pm``'s first power: its bases ``xy`` for every mutated gene (in
+    the order of ``X[mut]``), ``1 - delta1`` where ``u <= 0.5``, else ``1 -
+    delta2``, and its exponents ``eta + 1``."""
     n, m = X.shape
     xy = np.empty(len(u))
     k = 0
@@ -224,13 +218,13 @@ def _pm_xy(X, xl, xu, mut, u):
                 else:
                     xy[k] = 1.0 - (hi - x) / (hi - lo)
                 k += 1
-    return xy
+    return xy, np.full(len(u), eta + 1.0)
 
 
 @numba.njit(**_NJIT)
-def _pm_val(P, u):
-    """``mut_pm``'s ``val`` of every mutated gene, given ``P = xy **
-    (eta + 1)``."""
+def _pm_val(P, u, eta):
+    """``mut_pm``'s second power, given ``P = xy ** (eta + 1)``: its bases
+    ``val`` and its exponents ``1 / (eta + 1)``."""
     val = np.empty(len(u))
     for k in range(len(u)):
         r = u[k]
@@ -238,7 +232,7 @@ def _pm_val(P, u):
             val[k] = 2.0 * r + (1.0 - 2.0 * r) * P[k]
         else:
             val[k] = 2.0 * (1.0 - r) + 2.0 * (r - 0.5) * P[k]
-    return val
+    return val, np.full(len(u), 1.0 / (eta + 1.0))
 
 
 @numba.njit(**_NJIT)
@@ -269,16 +263,17 @@ def _pm_children(X, xl, xu, mut, u, V, mutated, rint):
 
 def _pm(op, problem, X, random_state, xl, xu, rint):
     """The random draws of ``Mutation.do`` with ``PolynomialMutation._do``
-    in pymoo's order, the powers of ``mut_pm`` by NumPy, the rest by
-    numba: the mutated ``X``."""
+    in pymoo's order, the powers of ``mut_pm`` by NumPy (see the module
+    docstring), the rest by numba: the mutated ``X``."""
     mut = random_state.random(X.shape) < op.get_prob_var(problem)
     if (xl == xu).any():
         mut[:, xl == xu] = False
     u = random_state.random(int(np.count_nonzero(mut)))
     mutated = random_state.random(size=X.shape[0]) <= float(_value(op.prob))
     eta = float(_value(op.eta))
-    P = _power(_pm_xy(X, xl, xu, mut, u), eta + 1.0)
-    V = _power(_pm_val(P, u), 1.0 / (eta + 1.0))
+    xy, E = _pm_xy(X, xl, xu, mut, u, eta)
+    val, E = _pm_val(np.power(xy, E), u, eta)     # mut_pm: np.power(xy, (eta + 1.0))
+    V = np.power(val, E)                          # np.power(val, mut_pow)
     return _pm_children(X, xl, xu, mut, u, V, mutated, rint)
 
 
