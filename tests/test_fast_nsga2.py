@@ -1,4 +1,4 @@
-"""FastNSGA2: the seeds' NSGA-II on arrays, inside pymoo."""
+"""FastNSGA2: Ahmed & Deb's NSGA-II on arrays, inside pymoo."""
 
 import time
 
