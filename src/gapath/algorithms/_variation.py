@@ -7,13 +7,33 @@ generation (refill rounds), most of a vectorised generation.
 
 :func:`sbx_crossover` and :func:`pm_mutation` compute the same children from
 the same random numbers: they draw from the generator in the same calls, of
-the same sizes, in the same order as pymoo's ``do`` and ``_do``, and do the
-same IEEE arithmetic element by element (``pow`` of the C library, no fused
-multiply-add), so they return bit-identical arrays and leave the generator
-in the same state. :func:`sbx_supported` / :func:`pm_supported` say when an
-operator is one of them (gapath's DiscreteSBX and DiscretePM are);
+the same sizes, in the same order as pymoo's ``do`` and ``_do``, and leave
+it in the same state.
+
+Identity on every CPU: every power is computed by the same NumPy call pymoo
+makes, ``np.power`` of two contiguous float64 arrays (bases and exponents),
+one call per power of ``calc_betaq``/``mut_pm`` for the whole batch of
+matings. NumPy dispatches that call to SIMD code on CPUs that have it
+(AVX-512: results that differ from the C library's ``pow``, which numba's
+``**`` calls, in the last bit) and to ``pow`` elsewhere, and its result for
+an element does not depend on the array's length or on the element's
+position (checked for lengths 1 to 40 at many offsets and for strided views;
+a reversed view takes the ``pow`` loop, so both sides pass fresh contiguous
+arrays). Hence the twins power only the branch pymoo keeps for each element
+(pymoo powers both and masks) and both betas of a gene in one call. The
+exponents are arrays, as pymoo's: with a scalar exponent NumPy computes
+``x ** 0.5``, ``x ** 2`` and ``x ** -1`` by ``sqrt``, ``x * x`` and ``1 / x``
+(eta 1 would differ). Everything else (bases, branches, children, clamping)
+is IEEE arithmetic in numba kernels around those calls (no fused
+multiply-add; IEEE division, as NumPy's), so twins and pymoo return
+bit-identical arrays whatever SIMD NumPy picked.
+
+:func:`sbx_supported` / :func:`pm_supported` say when an operator is one of
+them (gapath's DiscreteSBX and DiscretePM are);
 :class:`gapath.algorithms.FastNSGA2` sends any other operator through its
-own ``_do``. ``tests/test_fast_nsga2.py`` checks the equality.
+own ``_do``. ``tests/test_fast_nsga2.py`` checks the equality and
+``tests/test_simd_dispatch.py`` checks it again with NumPy's SIMD dispatch
+disabled.
 """
 
 from __future__ import annotations
@@ -56,30 +76,67 @@ def pm_supported(op, problem) -> bool:
             and not op.at_least_once and _scalars(op.eta, op.prob, op.get_prob_var(problem)))
 
 
-@numba.njit(cache=True)
-def _sbx_mask(X0, X1, xl, xu, r, prob_var):
+_NJIT = dict(cache=True, error_model="numpy")      # IEEE division, as NumPy's
+
+
+@numba.njit(**_NJIT)
+def _sbx_betas(X0, X1, xl, xu, r, prob_var, eta):
+    """``cross_sbx``'s mask ``cross`` (n, m) and the first power's bases and
+    exponents: the two ``beta`` of the ``k``-th crossed gene (in the order
+    of ``X[0][cross]``) at ``2 k`` (from the lower bound, child 1) and
+    ``2 k + 1`` (from the upper bound, child 2), each with exponent
+    ``-(eta + 1)``."""
     n, m = X0.shape
     cross = np.zeros((n, m), np.bool_)
+    n_cross = 0
     for i in range(n):
         for j in range(m):
-            cross[i, j] = (r[i, j] < prob_var and not abs(X0[i, j] - X1[i, j]) <= 1.0e-14
-                           and xl[j] != xu[j])
-    return cross
+            c = (r[i, j] < prob_var and not abs(X0[i, j] - X1[i, j]) <= 1.0e-14
+                 and xl[j] != xu[j])
+            cross[i, j] = c
+            n_cross += c
+    B = np.empty(2 * n_cross)
+    E = np.full(2 * n_cross, -(eta + 1.0))
+    k = 0
+    for i in range(n):
+        for j in range(m):
+            if cross[i, j]:
+                a, b = X0[i, j], X1[i, j]
+                y1 = a if a < b else b
+                y2 = b if a < b else a
+                delta = y2 - y1
+                B[k] = 1.0 + (2.0 * (y1 - xl[j]) / delta)
+                B[k + 1] = 1.0 + (2.0 * (xu[j] - y2) / delta)
+                k += 2
+    return cross, B, E
 
 
-@numba.njit(cache=True, inline="always")
-def _betaq(beta, eta, u):
-    alpha = 2.0 - beta ** (-(eta + 1.0))
-    if u <= 1.0 / alpha:
-        return (u * alpha) ** (1.0 / (eta + 1.0))
-    return (1.0 / (2.0 - u * alpha)) ** (1.0 / (eta + 1.0))
+@numba.njit(**_NJIT)
+def _sbx_bases(P, u, eta):
+    """``calc_betaq``'s second power, given ``P = beta ** -(eta + 1)`` (laid
+    out as by :func:`_sbx_betas`) and the draws ``u``: its bases, ``u alpha``
+    where ``u <= 1 / alpha``, ``1 / (2 - u alpha)`` where ``u > 1 / alpha``,
+    NaN where neither holds (alpha is NaN; pymoo's ``betaq`` stays 0 there),
+    and its exponents ``1 / (eta + 1)``."""
+    Z = np.empty(len(P))
+    for k in range(len(P)):
+        r = u[k // 2]
+        alpha = 2.0 - P[k]
+        if r <= 1.0 / alpha:
+            Z[k] = r * alpha
+        elif r > 1.0 / alpha:
+            Z[k] = 1.0 / (2.0 - r * alpha)
+        else:
+            Z[k] = np.nan
+    return Z, np.full(len(P), 1.0 / (eta + 1.0))
 
 
-@numba.njit(cache=True)
-def _sbx_children(X0, X1, xl, xu, eta, prob_bin, exch, prob_exch, cross, u, w, mating, rint):
+@numba.njit(**_NJIT)
+def _sbx_children(X0, X1, xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w, mating, rint):
     """Children ``(2 n, m)``: SBX children of the crossed matings (clamped
     to the bounds), copies of the parents for the others; rounded to the
-    nearest integer (half to even, as ``np.around``) when ``rint``."""
+    nearest integer (half to even, as ``np.around``) when ``rint``. ``Q2``
+    holds ``betaq`` (``Z ** (1 / (eta + 1))``, 0 where ``Z`` is NaN)."""
     n, m = X0.shape
     Q = np.empty((2 * n, m))
     k = 0
@@ -91,10 +148,10 @@ def _sbx_children(X0, X1, xl, xu, eta, prob_bin, exch, prob_exch, cross, u, w, m
                 y1 = a if sm else b
                 y2 = b if sm else a
                 delta = y2 - y1
-                beta = 1.0 + (2.0 * (y1 - xl[j]) / delta)
-                c1 = 0.5 * ((y1 + y2) - _betaq(beta, eta, u[k]) * delta)
-                beta = 1.0 + (2.0 * (xu[j] - y2) / delta)
-                c2 = 0.5 * ((y1 + y2) + _betaq(beta, eta, u[k]) * delta)
+                bq1 = Q2[2 * k] if Z[2 * k] == Z[2 * k] else 0.0
+                bq2 = Q2[2 * k + 1] if Z[2 * k + 1] == Z[2 * k + 1] else 0.0
+                c1 = 0.5 * ((y1 + y2) - bq1 * delta)
+                c2 = 0.5 * ((y1 + y2) + bq2 * delta)
                 ch1 = c1 if sm else c2
                 ch2 = c2 if sm else c1
                 pb = 0.0 if exch[i] > prob_exch else prob_bin
@@ -111,24 +168,27 @@ def _sbx_children(X0, X1, xl, xu, eta, prob_bin, exch, prob_exch, cross, u, w, m
     return Q
 
 
-def _sbx_inputs(op, X, random_state, xl, xu):
+def _sbx(op, X, random_state, xl, xu, rint):
     """The random draws of ``Crossover.do`` with ``SimulatedBinaryCrossover._do``
-    in pymoo's order, as the arguments of :func:`_sbx_children`."""
+    in pymoo's order, the powers of ``cross_sbx`` by NumPy (see the module
+    docstring), the rest by numba: the ``(2 n, m)`` children."""
     _, n, m = X.shape
     mating = random_state.random(n) < float(_value(op.prob))
     if not mating.any():                           # pymoo does not call _do then
         none = np.zeros(0)
-        return (X[0], X[1], xl, xu, 0.0, 0.0, np.zeros(n), 1.0, np.zeros((n, m), np.bool_),
-                none, none, mating)
+        return _sbx_children(X[0], X[1], xl, xu, 0.0, np.zeros(n), 1.0,
+                             np.zeros((n, m), np.bool_), none, none, none, mating, rint)
     eta, prob_var, prob_exch, prob_bin = (float(_value(v)) for v in
                                           (op.eta, op.prob_var, op.prob_exch, op.prob_bin))
     exch = random_state.random(n)                  # pymoo: random((n, 1)) > prob_exch
     r = random_state.random((n, m))
-    cross = _sbx_mask(X[0], X[1], xl, xu, r, prob_var)
-    n_cross = int(np.count_nonzero(cross))
-    u = random_state.random(n_cross)
-    w = random_state.random(n_cross)
-    return X[0], X[1], xl, xu, eta, prob_bin, exch, prob_exch, cross, u, w, mating
+    cross, B, E = _sbx_betas(X[0], X[1], xl, xu, r, prob_var, eta)
+    u = random_state.random(len(B) // 2)
+    w = random_state.random(len(B) // 2)
+    Z, E = _sbx_bases(np.power(B, E), u, eta)     # cross_sbx: np.power(beta, -(eta + 1.0))
+    Q2 = np.power(Z, E)                           # np.power(rand * alpha, 1.0 / (eta + 1.0)), ...
+    return _sbx_children(X[0], X[1], xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w,
+                         mating, rint)
 
 
 def sbx_crossover(op, problem, X, random_state, bounds=None):
@@ -138,35 +198,58 @@ def sbx_crossover(op, problem, X, random_state, bounds=None):
     operator's own repair. ``bounds``: the problem's ``(xl, xu)`` as floats,
     if at hand."""
     xl, xu = _bounds(problem) if bounds is None else bounds
-    X = X.astype(float, copy=False)
-    return _sbx_children(*_sbx_inputs(op, X, random_state, xl, xu), False)
+    return _sbx(op, X.astype(float, copy=False), random_state, xl, xu, False)
 
 
-@numba.njit(cache=True)
-def _pm_children(X, xl, xu, eta, mut, u, mutated, rint):
+@numba.njit(**_NJIT)
+def _pm_xy(X, xl, xu, mut, u, eta):
+    """``mut_pm``'s first power: its bases ``xy`` for every mutated gene (in
+    the order of ``X[mut]``), ``1 - delta1`` where ``u <= 0.5``, else ``1 -
+    delta2``, and its exponents ``eta + 1``."""
+    n, m = X.shape
+    xy = np.empty(len(u))
+    k = 0
+    for i in range(n):
+        for j in range(m):
+            if mut[i, j]:
+                x, lo, hi = X[i, j], xl[j], xu[j]
+                if u[k] <= 0.5:
+                    xy[k] = 1.0 - (x - lo) / (hi - lo)
+                else:
+                    xy[k] = 1.0 - (hi - x) / (hi - lo)
+                k += 1
+    return xy, np.full(len(u), eta + 1.0)
+
+
+@numba.njit(**_NJIT)
+def _pm_val(P, u, eta):
+    """``mut_pm``'s second power, given ``P = xy ** (eta + 1)``: its bases
+    ``val`` and its exponents ``1 / (eta + 1)``."""
+    val = np.empty(len(u))
+    for k in range(len(u)):
+        r = u[k]
+        if r <= 0.5:
+            val[k] = 2.0 * r + (1.0 - 2.0 * r) * P[k]
+        else:
+            val[k] = 2.0 * (1.0 - r) + 2.0 * (r - 0.5) * P[k]
+    return val, np.full(len(u), 1.0 / (eta + 1.0))
+
+
+@numba.njit(**_NJIT)
+def _pm_children(X, xl, xu, mut, u, V, mutated, rint):
     """``X`` with the genes ``mut`` of the rows ``mutated`` moved by
-    polynomial mutation (pymoo's ``mut_pm``, bounds clamped); the mutated
-    rows rounded to the nearest integer when ``rint``."""
+    polynomial mutation (pymoo's ``mut_pm``, bounds clamped), given ``V =
+    val ** (1 / (eta + 1))``; the mutated rows rounded to the nearest
+    integer when ``rint``."""
     n, m = X.shape
     Y = X.copy()
-    mut_pow = 1.0 / (eta + 1.0)
     k = 0
     for i in range(n):
         for j in range(m):
             x, lo, hi = X[i, j], xl[j], xu[j]
             if mut[i, j]:
-                delta1 = (x - lo) / (hi - lo)
-                delta2 = (hi - x) / (hi - lo)
-                r = u[k]
+                dq = V[k] - 1.0 if u[k] <= 0.5 else 1.0 - V[k]
                 k += 1
-                if r <= 0.5:
-                    xy = 1.0 - delta1
-                    val = 2.0 * r + (1.0 - 2.0 * r) * (xy ** (eta + 1.0))
-                    dq = val ** mut_pow - 1.0
-                else:
-                    xy = 1.0 - delta2
-                    val = 2.0 * (1.0 - r) + 2.0 * (r - 0.5) * (xy ** (eta + 1.0))
-                    dq = 1.0 - val ** mut_pow
                 x = x + dq * (hi - lo)
             if not mutated[i]:
                 continue
@@ -178,15 +261,20 @@ def _pm_children(X, xl, xu, eta, mut, u, mutated, rint):
     return Y
 
 
-def _pm_inputs(op, problem, shape, random_state, xl, xu):
+def _pm(op, problem, X, random_state, xl, xu, rint):
     """The random draws of ``Mutation.do`` with ``PolynomialMutation._do``
-    in pymoo's order: ``(eta, mut, u, mutated)`` for :func:`_pm_children`."""
-    mut = random_state.random(shape) < op.get_prob_var(problem)
+    in pymoo's order, the powers of ``mut_pm`` by NumPy (see the module
+    docstring), the rest by numba: the mutated ``X``."""
+    mut = random_state.random(X.shape) < op.get_prob_var(problem)
     if (xl == xu).any():
         mut[:, xl == xu] = False
     u = random_state.random(int(np.count_nonzero(mut)))
-    mutated = random_state.random(size=shape[0]) <= float(_value(op.prob))
-    return float(_value(op.eta)), mut, u, mutated
+    mutated = random_state.random(size=X.shape[0]) <= float(_value(op.prob))
+    eta = float(_value(op.eta))
+    xy, E = _pm_xy(X, xl, xu, mut, u, eta)
+    val, E = _pm_val(np.power(xy, E), u, eta)     # mut_pm: np.power(xy, (eta + 1.0))
+    V = np.power(val, E)                          # np.power(val, mut_pow)
+    return _pm_children(X, xl, xu, mut, u, V, mutated, rint)
 
 
 def pm_mutation(op, problem, X, random_state, bounds=None):
@@ -195,8 +283,7 @@ def pm_mutation(op, problem, X, random_state, bounds=None):
     ``prob``, before the operator's own repair. ``bounds``: the problem's
     ``(xl, xu)`` as floats, if at hand."""
     xl, xu = _bounds(problem) if bounds is None else bounds
-    X = X.astype(float)
-    return _pm_children(X, xl, xu, *_pm_inputs(op, problem, X.shape, random_state, xl, xu), False)
+    return _pm(op, problem, X.astype(float), random_state, xl, xu, False)
 
 
 def discrete_supported(crossover, mutation, problem) -> bool:
@@ -212,12 +299,10 @@ def discrete_variation(crossover, mutation, problem, X, random_state, bounds=Non
     """Crossover then mutation, each with its rounding, as pymoo applies
     them (``Crossover.do``, ``RoundingRepair``, ``Mutation.do``,
     ``RoundingRepair``) to parents ``X`` (2, n_matings, n_var): the
-    ``(2 n_matings, n_var)`` integer children, in two numba passes."""
+    ``(2 n_matings, n_var)`` integer children."""
     xl, xu = _bounds(problem) if bounds is None else bounds
-    X = X.astype(float, copy=False)
-    Q = _sbx_children(*_sbx_inputs(crossover, X, random_state, xl, xu), True)
-    pm = _pm_inputs(mutation, problem, Q.shape, random_state, xl, xu)
-    return _pm_children(Q, xl, xu, *pm, True).astype(int)
+    Q = _sbx(crossover, X.astype(float, copy=False), random_state, xl, xu, True)
+    return _pm(mutation, problem, Q, random_state, xl, xu, True).astype(int)
 
 
 def _bounds(problem):
