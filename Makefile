@@ -7,7 +7,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install --disable-pip-version-check -q -c constraints.txt
 
-.PHONY: demo test bench clean
+.PHONY: demo test bench wheel clean
 
 $(BIN)/python:
 	$(PYTHON) -c 'import sys; assert sys.version_info[:2] == (3, 11), "gapath needs Python 3.11, found " + sys.version' 
@@ -34,5 +34,17 @@ test: $(VENV)/.dev-installed
 bench: $(VENV)/.bench-installed
 	@for f in benchmarks/bench_*.py; do echo "== $$f"; $(BIN)/python $$f || exit 1; done
 
+# Build the wheel and sdist, install the wheel into a clean venv (pinned
+# dependencies) and run the demo from it, outside the source tree.
+WHEEL_VENV := build/wheel-venv
+wheel: $(VENV)/.dev-installed
+	rm -rf dist $(WHEEL_VENV)
+	$(BIN)/python -m build --outdir dist .
+	$(PYTHON) -m venv $(WHEEL_VENV)
+	$(WHEEL_VENV)/bin/python -m pip install --disable-pip-version-check -q -c constraints.txt dist/gapath-*.whl
+	cd build && wheel-venv/bin/gapath demo --quiet --pop 40 --gen 5 --out wheel-demo
+	test -s build/wheel-demo/front.csv && test -s build/wheel-demo/summary.json
+	@echo "wheel ok: $$(ls dist)"
+
 clean:
-	rm -rf $(VENV) gapath-demo .pytest_cache
+	rm -rf $(VENV) gapath-demo .pytest_cache build dist

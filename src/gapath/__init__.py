@@ -3,7 +3,7 @@
 from gapath.errors import ConfigError, GapathError, MapError, NoPathError
 from gapath.workspace import Workspace, default_workspace, dense_workspace, random_workspace
 
-__version__ = "0.1.0"
+__version__ = "0.2.0.dev0"
 
 __all__ = [
     "ConfigError",
