@@ -32,8 +32,11 @@ API_MODULES = [
     ("Package", ["gapath", "gapath.errors"]),
     ("Maps and objectives", ["gapath.workspace", "gapath.loaders", "gapath.objectives",
                              "gapath.costmap"]),
-    ("The genetic algorithm", ["gapath.encodings", "gapath.problems", "gapath.operators",
-                               "gapath.algorithms", "gapath.front", "gapath.metrics"]),
+    ("The genetic algorithm", ["gapath.encodings", "gapath.encodings.base",
+                               "gapath.encodings.integer", "gapath.encodings.binary",
+                               "gapath.encodings.mixed", "gapath.encodings.absolute",
+                               "gapath.problems", "gapath.operators", "gapath.algorithms",
+                               "gapath.front", "gapath.metrics"]),
     ("Planners", ["gapath.planners", "gapath.planners.astar", "gapath.planners.dstar_lite",
                   "gapath.planners.exact", "gapath.planners.pareto",
                   "gapath.planners.weighted_sum", "gapath.planners.hybrid_astar",
@@ -45,10 +48,10 @@ API_MODULES = [
                      "gapath.experiments.dask_config"]),
 ]
 
-#: Packages whose public names are re-exports documented on their modules'
-#: pages above: their page shows the package docstring only (documenting the
-#: names twice would make two targets for one name).
-DOCSTRING_ONLY = {"gapath.planners", "gapath.experiments"}
+#: Packages whose re-exported names are documented on their modules' pages
+#: above: their page documents only what the package itself defines (its
+#: ``__all__`` ignored), so no name is documented twice.
+OWN_MEMBERS_ONLY = {"gapath.encodings", "gapath.planners", "gapath.experiments"}
 
 project = "gapath"
 author = "the gapath authors"
@@ -66,7 +69,6 @@ autodoc_member_order = "bysource"
 numpydoc_show_class_members = False  # autodoc documents the members itself
 numpydoc_xref_param_type = False
 myst_heading_anchors = 3
-suppress_warnings = ["myst.header"]  # pages that start below level 1 (the includes)
 
 html_theme = "alabaster"
 html_title = f"gapath {release}"
@@ -100,7 +102,7 @@ def write_api_pages() -> None:
             index.append(f"   {mod}")
             keep.add(f"{mod}.rst")
             title = f"``{mod}``"
-            options = "   :no-members:\n" if mod in DOCSTRING_ONLY else ""
+            options = "   :ignore-module-all:\n" if mod in OWN_MEMBERS_ONLY else ""
             _write(folder / f"{mod}.rst",
                    f"{title}\n{'=' * len(title)}\n\n.. automodule:: {mod}\n{options}")
         index.append("")
