@@ -56,8 +56,7 @@ OWN_MEMBERS_ONLY = {"gapath.encodings", "gapath.planners", "gapath.experiments"}
 project = "gapath"
 author = "the gapath authors"
 copyright = "gapath authors, MIT licence"
-release = re.search(r'^__version__ = "([^"]+)"', (ROOT / "src/gapath/__init__.py").read_text(),
-                    re.M).group(1)
+release = __import__("gapath").__version__
 
 extensions = ["sphinx.ext.autodoc", "numpydoc", "myst_parser"]
 source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
@@ -138,7 +137,7 @@ def write_notebook_pages() -> None:
                f"# {stem.replace('_', ' ')}\n\n"
                f"Notebook: {{download}}`notebooks/{name} <../../notebooks/{name}>` "
                f"(in the repository's `notebooks/` folder).\n\n"
-               f"{what}.\n\n"
+               f"{what[:1].upper()}{what[1:]}.\n\n"
                f"With `GAPATH_QUICK=1` in the environment: {quick}.\n")
     toc = "\n".join(n.removesuffix(".ipynb") for n in notebooks)
     _write(folder / "index.md",
