@@ -7,7 +7,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install --disable-pip-version-check -q -c constraints.txt
 
-.PHONY: demo test bench wheel clean
+.PHONY: demo test bench docs wheel clean
 
 $(BIN)/python:
 	$(PYTHON) -c 'import sys; assert sys.version_info[:2] == (3, 11), "gapath needs Python 3.11, found " + sys.version' 
@@ -17,9 +17,14 @@ $(VENV)/.installed: $(BIN)/python pyproject.toml constraints.txt
 	$(PIP) -e .
 	touch $@
 
-$(VENV)/.dev-installed: $(VENV)/.installed
-	$(PIP) -e '.[dev]'
+$(VENV)/.docs-installed: $(VENV)/.installed
+	$(PIP) -e '.[docs]'
 	touch $@
+
+# the suite builds the docs (tests/test_docs.py): dev includes the docs tools
+$(VENV)/.dev-installed: $(VENV)/.installed
+	$(PIP) -e '.[dev,docs]'
+	touch $@ $(VENV)/.docs-installed
 
 $(VENV)/.bench-installed: $(VENV)/.dev-installed
 	$(PIP) -e '.[dev,bench]'
@@ -29,7 +34,7 @@ demo: $(VENV)/.installed
 	$(BIN)/gapath demo
 
 test: $(VENV)/.dev-installed
-	$(BIN)/python -m pytest
+	GAPATH_REQUIRE_DOCS=1 $(BIN)/python -m pytest
 
 bench: $(VENV)/.bench-installed
 	@for f in benchmarks/bench_*.py; do echo "== $$f"; $(BIN)/python $$f || exit 1; done
@@ -46,5 +51,9 @@ wheel: $(VENV)/.dev-installed
 	test -s build/wheel-demo/front.csv && test -s build/wheel-demo/summary.json
 	@echo "wheel ok: $$(ls dist)"
 
+# the site, warnings as errors; open docs/_build/html/index.html
+docs: $(VENV)/.docs-installed
+	$(BIN)/python -m sphinx -W --keep-going -q -b html docs docs/_build/html
+
 clean:
-	rm -rf $(VENV) gapath-demo .pytest_cache build dist
+	rm -rf $(VENV) gapath-demo .pytest_cache build dist docs/_build docs/api docs/notebooks

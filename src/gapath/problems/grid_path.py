@@ -41,9 +41,9 @@ class GridPathProblem(Problem):
         layers, sum over the steps for ``solar``); they get the same penalty
         as the other objectives.
 
-    Outputs
-    -------
-    ``F`` (N, n_obj); ``G`` (N, 1) in constraint mode; per individual also
+    Notes
+    -----
+    Outputs: ``F`` (N, n_obj); ``G`` (N, 1) in constraint mode; per individual also
     ``smoothness`` (total turn, radians) and ``interfering`` (count), kept by
     pymoo on the individuals (``pop.get("smoothness")``).
 
