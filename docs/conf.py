@@ -41,7 +41,9 @@ API_MODULES = [
                   "gapath.planners.exact", "gapath.planners.pareto",
                   "gapath.planners.weighted_sum", "gapath.planners.hybrid_astar",
                   "gapath.planners.rrt"]),
-    ("Dynamic environments", ["gapath.dynamic"]),
+    ("Dynamic environments", ["gapath.dynamic", "gapath.dynamic.prediction",
+                              "gapath.dynamic.world", "gapath.dynamic.planners",
+                              "gapath.dynamic.results", "gapath.dynamic.simulation"]),
     ("Experiments", ["gapath.experiments", "gapath.experiments.spec",
                      "gapath.experiments.runner", "gapath.experiments.store",
                      "gapath.experiments.report", "gapath.experiments.multirun",
@@ -51,7 +53,7 @@ API_MODULES = [
 #: Packages whose re-exported names are documented on their modules' pages
 #: above: their page documents only what the package itself defines (its
 #: ``__all__`` ignored), so no name is documented twice.
-OWN_MEMBERS_ONLY = {"gapath.encodings", "gapath.planners", "gapath.experiments"}
+OWN_MEMBERS_ONLY = {"gapath.encodings", "gapath.planners", "gapath.experiments", "gapath.dynamic"}
 
 project = "gapath"
 author = "the gapath authors"
