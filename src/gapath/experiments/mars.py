@@ -561,7 +561,6 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-    import json
 
     cfg = dict(QUICK if args.quick else FULL)
     if args.n is not None:
@@ -573,8 +572,10 @@ def run(args) -> int:
     out = Path(args.out) if args.out else Path("gapath-mars-quick" if args.quick else "docs/results")
     sink = open(args.jsonl, "a") if args.jsonl else None
 
+    from gapath.results import dumps
+
     def emit(obj):
-        line = json.dumps(obj)
+        line = dumps(obj)
         if not args.quiet:
             print(line, flush=True)
         if sink is not None:
