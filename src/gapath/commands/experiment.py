@@ -53,6 +53,9 @@ def register(subparsers) -> None:
     r.add_argument("--out", required=False, default=None,
                    help="store directory (default: the spec's directory when SPEC is a store)")
     add_executor_options(r)
+    r.add_argument("--force", action="store_true",
+                   help="run SPEC in a store made from another spec, replacing its "
+                        "experiment.json (its runs whose keys match are reused)")
     r.add_argument("--no-report", action="store_true", help="do not write the report at the end")
     r.add_argument("--no-plots", action="store_true", help="report without plots")
     r.set_defaults(func=run_command)
@@ -83,7 +86,38 @@ def _spec_and_out(args):
         raise ConfigError("--out DIR is required when SPEC is a file")
     from gapath.experiments.spec import load_spec
 
-    return load_spec(path), Path(args.out)
+    spec, out = load_spec(path), Path(args.out)
+    if not getattr(args, "force", False):
+        _check_same_experiment(spec, out)
+    return spec, out
+
+
+def _check_same_experiment(spec, out: Path) -> None:
+    """Refuse to run ``spec`` in a store made from another spec (it would
+    replace the store's ``experiment.json``).
+
+    Raises
+    ------
+    ConfigError
+        Naming the store, its experiment and the keys that differ.
+    """
+    from gapath.errors import ConfigError
+    from gapath.experiments.spec import canonical_json
+    from gapath.experiments.store import ResultStore
+
+    store = ResultStore(out)
+    if not store.exists():
+        return
+    saved, new = store.spec().to_dict(), spec.to_dict()
+    if canonical_json(saved) == canonical_json(new):
+        return
+    differ = [k for k in sorted(set(saved) | set(new))
+              if canonical_json(saved.get(k)) != canonical_json(new.get(k))]
+    raise ConfigError(
+        f"--out {str(out)!r} holds the experiment {saved.get('name')!r} of another spec "
+        f"({', '.join(differ)} differ); give another --out, run 'gapath experiment run "
+        f"{out}' to resume it, or add --force to replace its experiment.json (stored runs "
+        f"whose keys match are reused)")
 
 
 def run_command(args) -> int:
@@ -107,7 +141,11 @@ def run_command(args) -> int:
         rep = report(out, plots=not args.no_plots)
         if not args.quiet:
             print(f"wrote {out}/summary.md, summary.csv ({len(rep.rows)} configurations)")
-    return 0 if res.failed == 0 else 1
+    if res.failed:                  # the runs ran and some failed: exit status 1
+        print(f"gapath: {res.failed} of {res.ran} runs failed; their errors are in "
+              f"{out}/runs/*.failed.json (run the same command to retry them)", file=sys.stderr)
+        return 1
+    return 0
 
 
 def status_command(args) -> int:

@@ -500,7 +500,9 @@ def register_experiment(subparsers) -> None:
     p.add_argument("--runs", type=int, default=None, help="runs per scenario and planner "
                                                           "(default: 100; 5 with --quick)")
     p.add_argument("--quick", action="store_true", help="5 runs per row, no field-of-view study")
-    p.add_argument("--out", default="docs/results", help="output directory (default: %(default)s)")
+    p.add_argument("--out", default="gapath-dynamic",
+                   help="output directory (default: %(default)s; docs/results holds the "
+                        "committed results)")
     p.add_argument("--planners", default=",".join(PLANNER_ORDER),
                    help="comma-separated planners (default: %(default)s)")
     p.add_argument("--scenarios", default=",".join(SCENARIO_ORDER),

@@ -141,7 +141,9 @@ def register_experiment(subparsers) -> None:
     p.add_argument("--pop", type=int, default=500)
     p.add_argument("--gen", type=int, default=500)
     p.add_argument("--quick", action="store_true", help=f"{QUICK['runs']} runs x pop {QUICK['pop_size']} x {QUICK['n_gen']} generations")
-    p.add_argument("--out", default="docs/results", help="output directory (default: %(default)s)")
+    p.add_argument("--out", default="gapath-encodings",
+                   help="output directory (default: %(default)s; docs/results holds the "
+                        "committed results)")
     p.set_defaults(func=_cli)
 
 
