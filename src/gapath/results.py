@@ -10,7 +10,6 @@ is written as ``null``, never as ``Infinity`` or ``NaN``.
 from __future__ import annotations
 
 import csv
-import functools
 import io
 import json
 import math
@@ -73,8 +72,8 @@ def dumps(obj, **kwargs) -> str:
     return json.dumps(json_safe(obj), allow_nan=False, **kwargs)
 
 
-@functools.lru_cache(maxsize=1)
 def _umask() -> int:
+    """The process's umask (read on every call: it may change)."""
     try:                                           # Linux: read it without changing it
         with open("/proc/self/status") as f:
             for line in f:
