@@ -326,9 +326,9 @@ def empty_front_error(workspace, n_gen: int, n_eval: int, runs: int = 1,
 #: float option must also be finite (``nan`` and ``inf`` parse as floats).
 NUMERIC_RANGES: dict[str, tuple] = {
     **{d: (0, True, None, False) for d in ("seed", "map_seed", "terrain_seed", "obstacles",
-                                            "stationary", "workers")},
+                                            "stationary", "workers", "large_runs")},
     **{d: (1, True, None, False) for d in ("pop", "gen", "runs", "iterations", "n", "size",
-                                            "ga_pop", "ga_gen", "large_runs", "max_labels")},
+                                            "ga_pop", "ga_gen", "max_labels")},
     "heading_bins": (4, True, None, False),
     **{d: (0, True, None, False) for d in ("sbx_eta", "penalty", "radius", "sensor_range")},
     **{d: (0, False, None, False) for d in ("wheelbase", "speed", "dt", "max_time", "step",

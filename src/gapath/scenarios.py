@@ -400,7 +400,7 @@ def dynamic_obstacles(workspace, seed: int = 0, *, n_stationary: int = 3, n_cros
     try:
         ref = _reference_path(workspace)
     except NoPathError as exc:
-        raise NoPathError(f"the map has no path from start to goal: {exc}") from None
+        raise ConfigError(f"the map has no path from start to goal: {exc}") from None
     S = np.concatenate([[0.0], np.cumsum(np.hypot(*np.diff(ref, axis=0).T))])
     L = S[-1]
     occ = np.array(workspace.occ, dtype=bool)

@@ -302,7 +302,7 @@ def _speed_range(text):
 
 def run(args) -> int:
     from gapath.dynamic import Robot, SimSettings, make_planner, simulate
-    from gapath.errors import EXIT_NO_RESULT, ConfigError
+    from gapath.errors import EXIT_NO_RESULT, ConfigError, NoPathError
     from gapath.results import atomic_write, dumps, versions
     from gapath.scenarios import make_scenario
 
@@ -314,8 +314,13 @@ def run(args) -> int:
                      n_wanderers=args.obstacles // 2, robot_speed=robot.speed,
                      sensor_range=robot.sensor_range,
                      speed_range=_speed_range(args.obstacle_speed))
-    sc = make_scenario(args.map, args.seed, map_seed=args.map_seed, start=args.start,
-                       goal=args.goal, **obstacles)
+    try:
+        sc = make_scenario(args.map, args.seed, map_seed=args.map_seed, start=args.start,
+                           goal=args.goal, **obstacles)
+    except ConfigError as exc:     # no path between start and goal: exit status 1, not 2
+        if isinstance(exc.__context__, NoPathError):
+            raise NoPathError(str(exc)) from None
+        raise
     planner_kw = {}
     if args.planner == "hybrid-astar":
         planner_kw = dict(heading_bins=args.heading_bins, arc_length=args.arc_length,
