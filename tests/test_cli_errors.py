@@ -432,6 +432,11 @@ def test_experiment_store_of_another_spec_needs_force(tmp_path, capsys):
     assert json.loads((store / "experiment.json").read_text())["name"] == "a"
     assert run(capsys, ["experiment", "run", b, *opts, "--force"])[0] == 0
     assert json.loads((store / "experiment.json").read_text())["name"] == "b"
+    other = tmp_path / "other"
+    assert run(capsys, ["experiment", "run", a, "--out", other, "--workers", 0, "--quiet",
+                        "--no-report"])[0] == 0
+    code, _, err = run(capsys, ["experiment", "run", other, *opts])   # a store as SPEC
+    assert code == EXIT_BAD_INPUT and "holds the experiment 'b' of another spec" in err
 
 
 def test_experiment_with_failed_runs_exits_1(tmp_path, capsys, monkeypatch):

@@ -80,13 +80,13 @@ def _spec_and_out(args):
 
     path = Path(args.spec)
     if path.is_dir():
-        store = ResultStore(path)
-        return store.spec(), Path(args.out) if args.out else path
-    if args.out is None:
+        spec, out = ResultStore(path).spec(), Path(args.out) if args.out else path
+    elif args.out is None:
         raise ConfigError("--out DIR is required when SPEC is a file")
-    from gapath.experiments.spec import load_spec
+    else:
+        from gapath.experiments.spec import load_spec
 
-    spec, out = load_spec(path), Path(args.out)
+        spec, out = load_spec(path), Path(args.out)
     if not getattr(args, "force", False):
         _check_same_experiment(spec, out)
     return spec, out
