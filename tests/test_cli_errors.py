@@ -468,3 +468,10 @@ def test_mars_terrain_is_labelled_and_a_missing_dtm_fails(tmp_path, capsys, monk
     text = mars._markdown(study, mars.study_stats(study.records))
     assert "seeded fractal terrain" in text and "was not found" in text
     assert "elevation windows of the HiRISE Mars DTM" not in text
+
+
+def test_argument_type_message_exits_2(tmp_path, capsys):
+    with pytest.raises(SystemExit, match="--map-seeds: expected non-negative integers") as info:
+        main(["experiment", "dense", "--quick", "--out", str(tmp_path), "--map-seeds", "x"])
+    assert info.value.code == EXIT_BAD_INPUT
+    assert "--map-seeds: expected non-negative integers" in capsys.readouterr().err

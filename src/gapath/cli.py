@@ -428,6 +428,16 @@ def _dispatch(args) -> int:
     return _run(args, workspace)
 
 
+def _usage_exit(exc: SystemExit) -> SystemExit:
+    """``SystemExit("message")`` (a command's own usage check) exits with
+    status 2 after printing its message, as argparse's errors do; its text
+    (``str(exc)``) is kept."""
+    if isinstance(exc.code, str):
+        print(exc.code, file=sys.stderr)
+        exc.code = EXIT_BAD_INPUT
+    return exc
+
+
 def main(argv=None) -> int:
     """Run the ``gapath`` command line on ``argv`` (default: ``sys.argv[1:]``)
     and return its exit status (see the module docstring); ``--help``,
@@ -439,12 +449,11 @@ def main(argv=None) -> int:
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:
-        if isinstance(exc.code, str):       # an argument type raised SystemExit("message")
-            print(exc.code, file=sys.stderr)
-            exc.code = EXIT_BAD_INPUT
-        raise
+        raise _usage_exit(exc)
     try:
         return _dispatch(args)
+    except SystemExit as exc:
+        raise _usage_exit(exc)
     except NoPathError as exc:
         return _no_result(exc, args)
     except GapathError as exc:
