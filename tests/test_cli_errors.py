@@ -69,6 +69,15 @@ def test_tiny_maps_are_solved(name, engine, tmp_path, capsys):
     assert strict_json(out / "summary.json")["front_size"] == len(records)
 
 
+def test_early_end_on_a_tiny_map_is_reported(tmp_path, capsys):
+    path = write(tmp_path, "free3.txt", TINY["free3"])
+    code, out, _ = run(capsys, ["solve", path, "--pop", 20, "--gen", 5, "--out", tmp_path / "o",
+                                "--no-plots"])
+    assert code == 0
+    n_gen = strict_json(tmp_path / "o" / "summary.json")["generations"]
+    assert n_gen < 5 and "stopped before generation 5" in out
+
+
 def test_sampling_stops_at_the_distinct_paths_of_a_tiny_map():
     from gapath import Workspace
     from gapath.operators import PlannerSampling

@@ -128,6 +128,10 @@ def _report(result, out_dir: Path) -> None:
     status = "interrupted after" if result.interrupted else "finished"
     print(f"{status} {result.n_gen} generations, {result.n_eval} evaluations, "
           f"{result.seconds:.1f} s; {len(front)} non-dominated feasible paths")
+    asked = result.settings.get("n_gen")
+    if not result.interrupted and isinstance(asked, int) and result.n_gen < asked:
+        print(f"  stopped before generation {asked}: mating found no path not yet in the "
+              f"population (the map has few distinct paths)")
     from gapath.plotting import marked_paths
 
     for label, i in marked_paths(front).items():
