@@ -436,7 +436,7 @@ def test_experiment_store_of_another_spec_needs_force(tmp_path, capsys):
     assert run(capsys, ["experiment", "run", a, *opts])[0] == 0          # resuming is fine
     code, _, err = run(capsys, ["experiment", "run", b, *opts])
     assert code == EXIT_BAD_INPUT
-    assert "holds the experiment 'a' of another spec (name, settings differ)" in err
+    assert "holds the experiment 'a' of another spec (name, settings differ; 1 of its 1 runs" in err
     assert "--force" in err
     assert json.loads((store / "experiment.json").read_text())["name"] == "a"
     assert run(capsys, ["experiment", "run", b, *opts, "--force"])[0] == 0
@@ -446,6 +446,12 @@ def test_experiment_store_of_another_spec_needs_force(tmp_path, capsys):
                         "--no-report"])[0] == 0
     code, _, err = run(capsys, ["experiment", "run", other, *opts])   # a store as SPEC
     assert code == EXIT_BAD_INPUT and "holds the experiment 'b' of another spec" in err
+    more = write(tmp_path, "B2.yaml", "name: b2\nmaps: [default]\nsettings: {pop_size: 12, "
+                                      "n_gen: 2}\nseeds: 3\n")       # the same experiment, grown
+    code, _, err = run(capsys, ["experiment", "run", more, "--out", store, "--workers", 0,
+                                "--no-report"])
+    assert code == 0 and "extending the experiment 'b'" in err and "2 new runs" in err
+    assert json.loads((store / "experiment.json").read_text())["seeds"] == [1, 2, 3]
 
 
 def test_experiment_with_failed_runs_exits_1(tmp_path, capsys, monkeypatch):

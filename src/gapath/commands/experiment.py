@@ -54,8 +54,9 @@ def register(subparsers) -> None:
                    help="store directory (default: the spec's directory when SPEC is a store)")
     add_executor_options(r)
     r.add_argument("--force", action="store_true",
-                   help="run SPEC in a store made from another spec, replacing its "
-                        "experiment.json (its runs whose keys match are reused)")
+                   help="run SPEC in a store of another experiment (one whose runs SPEC does "
+                        "not all include), replacing its experiment.json (its runs whose keys "
+                        "match are reused); a spec that only adds runs needs no --force")
     r.add_argument("--no-report", action="store_true", help="do not write the report at the end")
     r.add_argument("--no-plots", action="store_true", help="report without plots")
     r.set_defaults(func=run_command)
@@ -88,36 +89,51 @@ def _spec_and_out(args):
 
         spec, out = load_spec(path), Path(args.out)
     if not getattr(args, "force", False):
-        _check_same_experiment(spec, out)
+        _check_same_experiment(spec, out, quiet=getattr(args, "quiet", False))
     return spec, out
 
 
-def _check_same_experiment(spec, out: Path) -> None:
-    """Refuse to run ``spec`` in a store made from another spec (it would
-    replace the store's ``experiment.json``).
+def _check_same_experiment(spec, out: Path, quiet: bool = False) -> None:
+    """Refuse to run ``spec`` in a store made from another experiment (it
+    would replace the store's ``experiment.json``).
+
+    The same experiment may grow: a spec that keeps every run of the stored
+    one (more seeds, more grid values, more maps; the name may change) is
+    accepted, and said so unless ``quiet``.
 
     Raises
     ------
     ConfigError
-        Naming the store, its experiment and the keys that differ.
+        Naming the store, its experiment and the keys that differ, when
+        ``spec`` leaves out runs of the stored experiment.
     """
     from gapath.errors import ConfigError
-    from gapath.experiments.spec import canonical_json
+    from gapath.experiments.spec import canonical_json, run_key
     from gapath.experiments.store import ResultStore
 
     store = ResultStore(out)
     if not store.exists():
         return
-    saved, new = store.spec().to_dict(), spec.to_dict()
+    stored_spec = store.spec()
+    saved, new = stored_spec.to_dict(), spec.to_dict()
     if canonical_json(saved) == canonical_json(new):
         return
     differ = [k for k in sorted(set(saved) | set(new))
               if canonical_json(saved.get(k)) != canonical_json(new.get(k))]
+    old_keys = {run_key(r) for r in stored_spec.runs()}
+    new_keys = {run_key(r) for r in spec.runs()}
+    if old_keys <= new_keys:
+        if not quiet:
+            print(f"gapath: extending the experiment {saved.get('name')!r} in {out} "
+                  f"({', '.join(differ)} changed): {len(new_keys - old_keys)} new runs",
+                  file=sys.stderr)
+        return
     raise ConfigError(
         f"--out {str(out)!r} holds the experiment {saved.get('name')!r} of another spec "
-        f"({', '.join(differ)} differ); give another --out, run 'gapath experiment run "
-        f"{out}' to resume it, or add --force to replace its experiment.json (stored runs "
-        f"whose keys match are reused)")
+        f"({', '.join(differ)} differ; {len(old_keys - new_keys)} of its {len(old_keys)} runs "
+        f"are not in SPEC); give another --out, run 'gapath experiment run {out}' to resume "
+        f"it, or add --force to replace its experiment.json (stored runs whose keys match are "
+        f"reused)")
 
 
 def run_command(args) -> int:
