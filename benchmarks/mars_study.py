@@ -28,7 +28,10 @@ from gapath.experiments.mars import add_arguments, run
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     add_arguments(parser)
-    return run(parser.parse_args(argv))
+    args = parser.parse_args(argv)
+    if args.out is None and not args.quick:   # this script refreshes the committed results
+        args.out = "docs/results"
+    return run(args)
 
 
 if __name__ == "__main__":

@@ -74,8 +74,8 @@ def test_solve_three_objectives_and_start_goal(text_map, tmp_path):
     (["solve", "{map}", "--start", "9,0"], "start (9, 0) is outside the 8x10 grid"),
     (["solve", "{map}", "--goal", "1,3"], "goal (1, 3) is on an obstacle"),
     (["solve", "{map}", "--objectives", "length,speed"], "unknown objective 'speed'"),
-    (["solve", "{map}", "--pop", "0"], "pop_size must be a positive integer"),
-    (["solve", "{map}", "--gen", "-3"], "n_gen must be a positive integer"),
+    (["solve", "{map}", "--pop", "0"], "--pop must be an integer >= 1, got 0"),
+    (["solve", "{map}", "--gen", "-3"], "--gen must be an integer >= 1, got -3"),
     (["solve", "{map}", "--encoding", "gray"], "unknown encoding 'gray'"),
     (["solve", "{bad}"], "line 2"),
 ])

@@ -103,11 +103,36 @@ def test_yaml_and_toml_specs_expand_to_the_same_runs(tmp_path):
     ("[settings]\npop_size = \"big\"\n", ".toml", r"e\.toml: settings\.pop_size: expected an integer, got 'big'"),
     ("", ".yaml", r"e\.yaml: the experiment spec is empty"),
     ("a = 1", ".ini", r"unknown spec format"),
+    ("maps: [{default: {start: [31, 40]}}]\n", ".yaml",
+     r"e\.yaml: maps\[0\]\.default: start \(31, 40\) is outside the 32x32 grid"),
+    ("maps: [{default: {goal: [0, 0]}}]\n", ".yaml", r"maps\[0\]\.default: goal \(0, 0\) is on an obstacle"),
+    ("maps: [{random: {shape: [8, 8], obstacles: 5, seed: run, goal: [0, 8]}}]\n", ".yaml",
+     r"maps\[0\]\.random: goal \(0, 8\) is outside the 8x8 grid"),
+    ("maps: [{dense: {n: 8, p0: 0.2, start: [3, 3], goal: [3, 3]}}]\n", ".yaml",
+     r"maps\[0\]\.dense: start and goal share a column"),
 ])
 def test_spec_errors_name_the_file_and_the_key(tmp_path, text, suffix, match):
     path = tmp_path / f"e{suffix}"
     path.write_text(text)
     with pytest.raises(ConfigError, match=match):
+        load_spec(path)
+
+
+def test_map_file_start_and_goal_checked_when_the_spec_is_read(tmp_path):
+    (tmp_path / "m.txt").write_text("....\n.#..\n....\n")
+    for entry, match in [("{file: {path: m.txt, start: [1, 1]}}", r"maps\[0\]\.file: .*start \(1, 1\) is on an obstacle"),
+                         ("{file: {path: m.txt, goal: [3, 0]}}", r"maps\[0\]\.file: .*goal \(3, 0\) is outside the 3x4 grid")]:
+        (tmp_path / "e.yaml").write_text(f"maps: [{entry}]\n")
+        with pytest.raises(ConfigError, match=match):
+            load_spec(tmp_path / "e.yaml")
+    (tmp_path / "e.yaml").write_text("maps: [{file: {path: m.txt, start: [2, 0], goal: [0, 3]}}]\n")
+    assert len(load_spec(tmp_path / "e.yaml").runs()) == 1
+
+
+def test_binary_spec_file_is_named(tmp_path):
+    path = tmp_path / "e.yaml"
+    path.write_bytes(bytes(range(128, 256)))
+    with pytest.raises(ConfigError, match=r"e\.yaml: not a text file"):
         load_spec(path)
 
 

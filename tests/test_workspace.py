@@ -5,6 +5,32 @@ from gapath import ConfigError, MapError, Workspace, default_workspace, dense_wo
 from gapath.encodings import Frame, IntegerEncoding, profiles_of_paths
 
 
+@pytest.mark.parametrize("value", ["no", "False", 0, 1, None, 0.0])
+def test_corner_cutting_must_be_a_bool(value):
+    with pytest.raises(ConfigError, match=f"corner_cutting must be True or False, got {value!r}"):
+        Workspace(np.zeros((3, 3), bool), corner_cutting=value)
+    with pytest.raises(ConfigError, match="corner_cutting must be True or False"):
+        default_workspace().replace(corner_cutting=value)
+    assert Workspace(np.zeros((3, 3), bool), corner_cutting=np.False_).corner_cutting is False
+
+
+def test_problem_of_an_array_names_workspace_and_from_array():
+    from gapath.problems import GridPathProblem
+
+    with pytest.raises(ConfigError, match=r"expects a gapath\.Workspace, got ndarray; .*"
+                                          r"gapath\.loaders\.from_array"):
+        GridPathProblem(np.zeros((4, 4), bool))
+
+
+@pytest.mark.parametrize("make", [lambda **kw: dense_workspace(8, 0.3, 1, **kw),
+                                  lambda **kw: random_workspace((8, 8), 5, 1, **kw)])
+def test_generators_check_start_and_goal(make):
+    with pytest.raises(ConfigError, match=r"start \(9, 0\) is outside the 8x8 grid"):
+        make(start=(9, 0))
+    with pytest.raises(ConfigError, match=r"goal \(0, -1\) is outside the 8x8 grid"):
+        make(goal=(0, -1))
+
+
 def test_defaults_and_repr():
     ws = Workspace(np.zeros((4, 6), bool))
     assert ws.start == (3, 0) and ws.goal == (0, 5)

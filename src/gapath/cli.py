@@ -2,17 +2,26 @@
 
 ``gapath solve MAP ...`` runs the seeds' NSGA-II on a map and writes
 ``front.csv``, ``paths.json``, ``summary.json``, ``front.png`` and
-``paths.png``; ``gapath demo`` does so on the bundled scenario. Bad input
-prints one clear message and exits with status 2 (no traceback).
+``paths.png``; ``gapath demo`` does so on the bundled scenario.
+
+Exit statuses, the same for every command (:mod:`gapath.errors`, README
+"Exit status"): 0 a result was found; 1 the search ran but found nothing
+feasible (the reason and what to try are printed); 2 bad input (one message
+naming the flag, file or value, no traceback); 3 an internal error (a bug:
+one message; ``GAPATH_TRACEBACK=1`` shows the traceback); 130 interrupted
+(partial results written).
 """
 
 from __future__ import annotations
 
 import argparse
+import math
+import os
 import sys
 from pathlib import Path
 
-from gapath.errors import ConfigError, GapathError
+from gapath.errors import (EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_NO_RESULT,
+                           ConfigError, GapathError, MapError, NoPathError)
 
 
 def _cell(text: str) -> tuple[int, int]:
@@ -73,9 +82,23 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
     p.add_argument("--quiet", action="store_true", help="no progress bar or report")
 
 
+def _version() -> str:
+    from importlib import metadata
+
+    try:
+        return metadata.version("gapath")
+    except metadata.PackageNotFoundError:          # a source tree on PYTHONPATH
+        from gapath import __version__
+
+        return __version__
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="gapath", description="Multi-objective grid path planning with pymoo.")
+        prog="gapath", description="Multi-objective grid path planning with pymoo.",
+        epilog="exit status: 0 a result was found, 1 the search found nothing feasible "
+               "(the reason is printed), 2 bad input, 3 internal error, 130 interrupted")
+    parser.add_argument("--version", action="version", version=f"gapath {_version()}")
     sub = parser.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("solve", help="run NSGA-II on a map and write its Pareto front")
@@ -105,6 +128,10 @@ def _report(result, out_dir: Path) -> None:
     status = "interrupted after" if result.interrupted else "finished"
     print(f"{status} {result.n_gen} generations, {result.n_eval} evaluations, "
           f"{result.seconds:.1f} s; {len(front)} non-dominated feasible paths")
+    asked = result.settings.get("n_gen")
+    if not result.interrupted and isinstance(asked, int) and result.n_gen < asked:
+        print(f"  stopped before generation {asked}: mating found no path not yet in the "
+              f"population (the map has few distinct paths)")
     from gapath.plotting import marked_paths
 
     for label, i in marked_paths(front).items():
@@ -124,7 +151,10 @@ def _reference(args, workspace):
     bad = [n for n in names if n not in OBJECTIVE_NAMES]
     if bad:
         raise ConfigError(f"unknown objective {bad[0]!r}; expected some of {', '.join(OBJECTIVE_NAMES)}")
-    return reference_front(workspace, names, args.reference)
+    try:
+        return reference_front(workspace, names, args.reference)
+    except (ConfigError, MapError) as exc:
+        raise type(exc)(f"--reference: {exc}") from None
 
 
 def _quality(args, reference, F) -> dict:
@@ -168,7 +198,12 @@ def _run(args, workspace) -> int:
     if not args.quiet:
         _report(result, out_dir)
         _print_quality(extra)
-    return 130 if result.interrupted else 0
+    if result.interrupted:
+        return EXIT_INTERRUPTED
+    if len(result.front) == 0:
+        raise empty_front_error(workspace, result.n_gen, result.n_eval,
+                                free_hint=_exact_free_command(args))
+    return 0
 
 
 def _write_convergence(tracker, out_dir: Path, plots: bool) -> None:
@@ -208,31 +243,241 @@ def _multirun(args, workspace, kwargs, out_dir: Path, reference) -> int:
         print(f"merged front of {len(m.runs)} runs: {len(m.front)} paths; wrote {out_dir}/front.csv, "
               f"paths.json, summary.json and {out_dir}/runs/<seed>/")
         _print_quality(extra)
-    return 130 if m.interrupted else 0
+    if m.interrupted:
+        return EXIT_INTERRUPTED
+    if len(m.front) == 0:
+        raise empty_front_error(workspace, sum(r.n_gen for r in m.runs),
+                                sum(r.n_eval for r in m.runs), runs=len(m.runs),
+                                free_hint=_exact_free_command(args))
+    return 0
+
+
+def no_path_error(workspace, *, monotone: bool = True, free_hint: str | None = None):
+    """Why no feasible path joins the workspace's start and goal, as a
+    :class:`NoPathError` with a hint, or None when a path of the asked kind
+    exists.
+
+    Start and goal in separate free regions: no path at all (the hint names
+    ``--corner-cutting`` when allowing it would join them). With
+    ``monotone``, a map whose every route steps back a column: no
+    column-monotone path (the hint is ``free_hint``).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gapath import Workspace
+    >>> occ = np.array([[0, 1, 0], [0, 1, 0], [0, 1, 0]], bool)
+    >>> print(no_path_error(Workspace(occ, (2, 0), (0, 2))))
+    no path joins (2, 0) and (0, 2) at all: they lie in separate free regions of the 3x3 map (8-connected, corner cutting allowed)
+    >>> no_path_error(Workspace(np.zeros((3, 3), bool))) is None
+    True
+    """
+    from gapath.planners.astar import astar
+
+    s, g = tuple(workspace.start), tuple(workspace.goal)
+    try:
+        astar(workspace)
+    except NoPathError:
+        h, w = workspace.shape
+        rule = "allowed" if workspace.corner_cutting else "not allowed"
+        hint = "check the map, --start and --goal"
+        if not workspace.corner_cutting:
+            try:
+                astar(workspace.replace(corner_cutting=True))
+                hint = "try --corner-cutting (diagonal moves past blocked corners join them)"
+            except NoPathError:
+                pass
+        return NoPathError(f"no path joins {s} and {g} at all: they lie in separate free regions "
+                           f"of the {h}x{w} map (8-connected, corner cutting {rule})", hint=hint)
+    if not monotone:
+        return None
+    from gapath.planners.weighted_sum import weighted_sum_path
+
+    try:
+        weighted_sum_path(workspace)
+    except NoPathError:
+        return NoPathError(f"no column-monotone path joins {s} and {g}; every route must step "
+                           f"back a column", hint=free_hint)
+    return None
+
+
+def _exact_free_command(args) -> str:
+    cmd = ["gapath", "exact", getattr(args, "map", "default"), "--mode", "free"]
+    for flag in ("start", "goal"):
+        cell = getattr(args, flag, None)
+        if cell is not None:
+            cmd += [f"--{flag}", f"{cell[0]},{cell[1]}"]
+    return "try `" + " ".join(cmd) + "` (the exact front of all 8-connected paths)"
+
+
+def empty_front_error(workspace, n_gen: int, n_eval: int, runs: int = 1,
+                      free_hint: str | None = None) -> NoPathError:
+    """The :class:`NoPathError` of a GA run whose front is empty: no
+    column-monotone path exists (:func:`no_path_error`; ``free_hint`` says
+    what to try), or the GA found none of those that do."""
+    err = no_path_error(workspace, free_hint=free_hint or "try `gapath exact MAP --mode free`")
+    if err is not None:
+        return err
+    what = f"{runs} runs" if runs != 1 else "the run"
+    return NoPathError(
+        f"the GA found no feasible path ({what}: {n_gen} generations, {n_eval} evaluations), "
+        f"although column-monotone paths join {tuple(workspace.start)} and {tuple(workspace.goal)}",
+        hint="try --seed-from weighted (the default), or a larger --pop or --gen")
+
+
+#: Ranges of the numeric options of every command, by argparse ``dest``:
+#: ``(low, low_included, high, high_included)``, None for no bound. Every
+#: float option must also be finite (``nan`` and ``inf`` parse as floats).
+NUMERIC_RANGES: dict[str, tuple] = {
+    **{d: (0, True, None, False) for d in ("seed", "map_seed", "terrain_seed", "obstacles",
+                                            "stationary", "workers", "large_runs")},
+    **{d: (1, True, None, False) for d in ("pop", "gen", "runs", "iterations", "n", "size",
+                                            "ga_pop", "ga_gen", "max_labels")},
+    "heading_bins": (4, True, None, False),
+    **{d: (0, True, None, False) for d in ("sbx_eta", "penalty", "radius", "sensor_range")},
+    **{d: (0, False, None, False) for d in ("wheelbase", "speed", "dt", "max_time", "step",
+                                             "arc_length", "heuristic_weight")},
+    "goal_bias": (0, True, 1, True),
+    "fov": (0, False, 180, True),
+    "max_steer": (0, False, 90, False),
+}
+
+
+def check_numbers(args) -> None:
+    """Check every numeric option of the parsed ``args``: floats finite, and
+    values within :data:`NUMERIC_RANGES`.
+
+    Raises
+    ------
+    ConfigError
+        Naming the flag, the expected range and the value.
+
+    Examples
+    --------
+    >>> check_numbers(argparse.Namespace(sbx_eta=float("nan")))
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: --sbx-eta must be a finite number, got nan
+    >>> check_numbers(argparse.Namespace(seed=-1))
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: --seed must be an integer >= 0, got -1
+    """
+    for dest, value in vars(args).items():
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            continue
+        flag = "--" + dest.replace("_", "-")
+        kind = "an integer" if isinstance(value, int) else "a number"
+        if isinstance(value, float) and not math.isfinite(value):
+            raise ConfigError(f"{flag} must be a finite number, got {value!r}")
+        if dest not in NUMERIC_RANGES:
+            continue
+        lo, lo_in, hi, hi_in = NUMERIC_RANGES[dest]
+        below = lo is not None and (value < lo if lo_in else value <= lo)
+        above = hi is not None and (value > hi if hi_in else value >= hi)
+        if below or above:
+            if hi is None:
+                want = f"{'>=' if lo_in else '>'} {lo}"
+            else:
+                want = f"in {'[' if lo_in else '('}{lo}, {hi}{']' if hi_in else ')'}"
+            raise ConfigError(f"{flag} must be {kind} {want}, got {value!r}")
+
+
+def _default_hint(args) -> str | None:
+    """What to try when ``gapath plan`` or ``simulate`` found no path."""
+    planner = getattr(args, "planner", None) if args.command == "plan" else None
+    if args.command == "simulate":
+        return "check the map, --start and --goal"
+    if planner in ("rrt", "rrt-star"):
+        return f"try more --iterations (now {args.iterations}) or another --seed"
+    if planner == "hybrid-astar":
+        return ("try a smaller --radius or a larger --max-steer (a tighter turn), or check "
+                "--start and --goal")
+    if planner is None:
+        return None
+    if getattr(args, "corner_cutting", None) is False:
+        return "check the map, --start and --goal, or try --corner-cutting"
+    return "check the map, --start and --goal"
+
+
+def _no_result(exc: NoPathError, args) -> int:
+    hint = exc.hint if getattr(exc, "hint", None) else _default_hint(args)
+    hint = f" -- {hint}" if hint else ""
+    print(f"gapath: {exc}{hint}", file=sys.stderr)
+    return EXIT_NO_RESULT
+
+
+def _dispatch(args) -> int:
+    check_numbers(args)
+    if getattr(args, "dem", None) is not None:
+        from gapath.costmap import check_dem_file
+
+        try:
+            check_dem_file(args.dem)
+        except ConfigError as exc:
+            raise ConfigError(f"--dem: {exc}") from None
+    out = getattr(args, "out", None)
+    if out is not None:
+        from gapath.results import check_output_dir
+
+        check_output_dir(out)
+    if getattr(args, "func", None) is not None:
+        return args.func(args)
+    if args.command == "solve":
+        workspace = _load(args.map, args.start, args.goal, args.corner_cutting)
+    else:
+        from gapath.workspace import default_workspace
+
+        workspace = default_workspace()
+    return _run(args, workspace)
+
+
+def _usage_exit(exc: SystemExit) -> SystemExit:
+    """``SystemExit("message")`` (a command's own usage check) exits with
+    status 2 after printing its message, as argparse's errors do; its text
+    (``str(exc)``) is kept."""
+    if isinstance(exc.code, str):
+        print(exc.code, file=sys.stderr)
+        exc.code = EXIT_BAD_INPUT
+    return exc
 
 
 def main(argv=None) -> int:
+    """Run the ``gapath`` command line on ``argv`` (default: ``sys.argv[1:]``)
+    and return its exit status (see the module docstring); ``--help``,
+    ``--version`` and usage errors raise ``SystemExit`` as argparse does."""
     import matplotlib
 
     matplotlib.use("Agg")  # the CLI only writes image files (library modules leave the backend alone)
     parser = build_parser()
-    args = parser.parse_args(argv)
     try:
-        if getattr(args, "func", None) is not None:
-            return args.func(args)
-        if args.command == "solve":
-            workspace = _load(args.map, args.start, args.goal, args.corner_cutting)
-        else:
-            from gapath.workspace import default_workspace
-
-            workspace = default_workspace()
-        return _run(args, workspace)
+        args = parser.parse_args(argv)
+    except SystemExit as exc:
+        raise _usage_exit(exc)
+    try:
+        return _dispatch(args)
+    except SystemExit as exc:
+        raise _usage_exit(exc)
+    except NoPathError as exc:
+        return _no_result(exc, args)
     except GapathError as exc:
         print(f"gapath: error: {exc}", file=sys.stderr)
-        return 2
+        return EXIT_BAD_INPUT
+    except KeyboardInterrupt:
+        print("gapath: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED
     except OSError as exc:
-        print(f"gapath: error: {exc}", file=sys.stderr)
-        return 2
+        name = f"{exc.filename}: " if exc.filename and str(exc.filename) not in str(exc.strerror) else ""
+        print(f"gapath: error: {name}{exc.strerror or exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except Exception as exc:  # a bug: one message, the traceback on request
+        if os.environ.get("GAPATH_TRACEBACK"):
+            import traceback
+
+            traceback.print_exc()
+        print(f"gapath: internal error: {type(exc).__name__}: {exc} (a bug in gapath; set "
+              f"GAPATH_TRACEBACK=1 to see the traceback)", file=sys.stderr)
+        return EXIT_INTERNAL
 
 
 if __name__ == "__main__":  # pragma: no cover

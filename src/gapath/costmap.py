@@ -153,6 +153,58 @@ def _check_cell(value, name, shape) -> tuple[int, int]:
 # terrain sources
 # ---------------------------------------------------------------------------
 
+def _dem_error(p: Path, exc: BaseException) -> ConfigError:
+    if isinstance(exc, FileNotFoundError):
+        return ConfigError(f"DEM file {str(p)!r} does not exist")
+    if isinstance(exc, OSError):
+        return ConfigError(f"DEM file {str(p)!r} cannot be read ({exc.strerror or exc})")
+    if str(exc) == "object array":
+        return ConfigError(f"DEM file {str(p)!r} holds Python objects (pickled), which gapath "
+                           f"does not load; save a numeric array with numpy.save")
+    what = "a NumPy .npy array" if p.suffix == ".npy" else "a NumPy .npz archive of arrays"
+    return ConfigError(f"DEM file {str(p)!r} is not {what} (not that format, or truncated)")
+
+
+def check_dem_file(path) -> Path:
+    """Check that ``path`` names a readable ``.npy`` array (or ``.npz``
+    archive) of numbers, reading only its header.
+
+    Raises
+    ------
+    ConfigError
+        Naming the file: another extension, a missing or unreadable file, or
+        content that is not a NumPy array of numbers.
+
+    Examples
+    --------
+    >>> check_dem_file("missing.npy")
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: DEM file 'missing.npy' does not exist
+    """
+    import zipfile
+
+    p = Path(path)
+    if p.suffix not in (".npy", ".npz"):
+        raise ConfigError(f"DEM file {str(p)!r} must be .npy or .npz, got {p.suffix!r}")
+    try:
+        if p.suffix == ".npz":
+            with zipfile.ZipFile(p) as z:
+                if not any(n.endswith(".npy") for n in z.namelist()):
+                    raise ValueError("no arrays")
+            return p
+        with open(p, "rb") as f:
+            version = np.lib.format.read_magic(f)
+            read = (np.lib.format.read_array_header_1_0 if version == (1, 0)
+                    else np.lib.format.read_array_header_2_0)
+            _, _, dtype = read(f)
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
+        raise _dem_error(p, exc) from None
+    if dtype.hasobject:
+        raise _dem_error(p, ValueError("object array"))
+    return p
+
+
 def load_dem(path) -> np.ndarray:
     """An elevation raster from a ``.npy`` file or a ``.npz`` archive (its
     ``elevation`` member, else its first array).
@@ -160,19 +212,21 @@ def load_dem(path) -> np.ndarray:
     Raises
     ------
     ConfigError
-        If the file has another extension or holds no 2-D numeric array.
-    OSError
-        If the file cannot be read.
+        If the file has another extension, is missing or unreadable, or
+        holds no 2-D numeric array (pickled objects are never loaded).
     """
-    p = Path(path)
-    if p.suffix == ".npy":
-        arr = np.load(p, allow_pickle=False)
-    elif p.suffix == ".npz":
-        with np.load(p, allow_pickle=False) as z:
-            key = "elevation" if "elevation" in z.files else z.files[0]
-            arr = z[key]
-    else:
-        raise ConfigError(f"DEM file {str(p)!r} must be .npy or .npz, got {p.suffix!r}")
+    import zipfile
+
+    p = check_dem_file(path)
+    try:
+        if p.suffix == ".npy":
+            arr = np.load(p, allow_pickle=False)
+        else:
+            with np.load(p, allow_pickle=False) as z:
+                key = "elevation" if "elevation" in z.files else z.files[0]
+                arr = z[key]
+    except (OSError, ValueError, EOFError, zipfile.BadZipFile, IndexError) as exc:
+        raise _dem_error(p, exc) from None
     return _check_layer(f"dem {p.name}", arr, None, allow_negative=True)
 
 

@@ -1,11 +1,29 @@
-"""Exceptions raised by gapath.
+"""Exceptions raised by gapath, and the exit statuses of the ``gapath`` CLI.
 
 Every error a user can cause by bad input is a subclass of :class:`ValueError`
 so that ``except ValueError`` keeps working, and carries a message that names
 the file, line or argument and the offending value.
+
+The CLI maps them to its exit statuses (README, "Exit status"):
+:class:`NoPathError` to :data:`EXIT_NO_RESULT` (the search ran and found
+nothing feasible), every other :class:`GapathError` to
+:data:`EXIT_BAD_INPUT`.
 """
 
 from __future__ import annotations
+
+#: A result was found (and written).
+EXIT_OK = 0
+#: The search ran but found nothing feasible (no path; a simulated robot that
+#: did not reach its goal; an experiment with failed runs). The reason is printed.
+EXIT_NO_RESULT = 1
+#: Bad input: an argument, a file or a value (one message naming it).
+EXIT_BAD_INPUT = 2
+#: An internal error (a bug in gapath): one message, no traceback unless
+#: ``GAPATH_TRACEBACK=1`` is set.
+EXIT_INTERNAL = 3
+#: Interrupted (Ctrl-C); the partial results are written.
+EXIT_INTERRUPTED = 130
 
 
 class GapathError(Exception):
@@ -24,4 +42,23 @@ class ConfigError(GapathError, ValueError):
 
 
 class NoPathError(GapathError, ValueError):
-    """No feasible path exists between start and goal."""
+    """No feasible path exists between start and goal, or the search found none.
+
+    Parameters
+    ----------
+    message : str
+        The reason (which path set, which cells).
+    hint : str, optional
+        What to do about it ("try --mode free"); the CLI prints it after the
+        reason.
+
+    Examples
+    --------
+    >>> e = NoPathError("no path joins (0, 0) and (0, 4)", hint="check --start and --goal")
+    >>> str(e), e.hint
+    ('no path joins (0, 0) and (0, 4)', 'check --start and --goal')
+    """
+
+    def __init__(self, message: str = "", hint: str | None = None):
+        super().__init__(message)
+        self.hint = hint

@@ -54,7 +54,8 @@ def plot_front(front, ax=None, reference=None, title=None):
     ax.set_xlabel(names[0])
     ax.set_ylabel(names[1] if len(names) > 1 else "")
     ax.set_title(title or f"front ({len(F)} paths)")
-    ax.legend(fontsize=8)
+    if ax.get_legend_handles_labels()[0]:          # an empty front has nothing to label
+        ax.legend(fontsize=8)
     return ax
 
 

@@ -24,7 +24,7 @@ def read_front_csv(path, objectives=None) -> np.ndarray:
     Raises
     ------
     MapError
-        If the file is missing or malformed (names the file and line).
+        If the file is missing, binary or malformed (names the file and line).
     ConfigError
         If its columns are not the requested objectives.
     """
@@ -33,6 +33,9 @@ def read_front_csv(path, objectives=None) -> np.ndarray:
         rows = list(csv.reader(path.read_text().splitlines()))
     except OSError as exc:
         raise MapError(f"{path}: cannot read reference front ({exc.strerror})") from None
+    except UnicodeDecodeError as exc:
+        raise MapError(f"{path}: not a text front.csv (undecodable byte at offset {exc.start}); "
+                       f"expected a CSV file as written by 'gapath exact' or 'gapath solve'") from None
     if not rows:
         raise MapError(f"{path}: empty reference front (expected a header of objective names)")
     header = [h.strip() for h in rows[0]]

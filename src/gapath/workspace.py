@@ -103,7 +103,8 @@ class Workspace:
         If ``occ`` is not a non-empty 2-D boolean (or 0/1) array.
     ConfigError
         If start or goal is outside the grid or on an obstacle, if they are
-        equal, or if ``cell_size`` is not positive.
+        equal, if ``cell_size`` is not positive, or if ``corner_cutting`` is
+        not a bool (``"no"`` would otherwise read as True).
 
     Examples
     --------
@@ -136,6 +137,8 @@ class Workspace:
         if not np.isfinite(cs) or cs <= 0:
             raise ConfigError(f"cell_size must be a positive number, got {cell_size!r}")
         self.cell_size = cs
+        if not isinstance(corner_cutting, (bool, np.bool_)):
+            raise ConfigError(f"corner_cutting must be True or False, got {corner_cutting!r}")
         self.corner_cutting = bool(corner_cutting)
         self.name = str(name)
         self.start = _as_cell((h - 1, 0) if start is None else start, "start", (h, w))
@@ -306,8 +309,8 @@ def dense_workspace(n: int | tuple[int, int], p0: float, seed: int = 0, *,
     if not (0.0 <= float(p0) <= 1.0):
         raise ConfigError(f"p0 must be in [0, 1], got {p0!r}")
     rng = np.random.default_rng(seed)
-    start = (h - 1, 0) if start is None else tuple(start)
-    goal = (0, w - 1) if goal is None else tuple(goal)
+    start = _as_cell((h - 1, 0) if start is None else start, "start", (h, w))
+    goal = _as_cell((0, w - 1) if goal is None else goal, "goal", (h, w))
     path = random_monotone_path((h, w), start, goal, rng)
     occ = rng.random((h, w)) < p0
     occ[path[:, 0], path[:, 1]] = False
@@ -329,8 +332,8 @@ def random_workspace(shape, n_obstacles: int, seed: int = 0, *, start=None, goal
     if k < 0:
         raise ConfigError(f"n_obstacles must be >= 0, got {n_obstacles!r}")
     rng = np.random.default_rng(seed)
-    start = (h - 1, 0) if start is None else tuple(start)
-    goal = (0, w - 1) if goal is None else tuple(goal)
+    start = _as_cell((h - 1, 0) if start is None else start, "start", (h, w))
+    goal = _as_cell((0, w - 1) if goal is None else goal, "goal", (h, w))
     path = random_monotone_path((h, w), start, goal, rng)
     free = np.ones(h * w, bool)
     free[path[:, 0] * w + path[:, 1]] = False

@@ -5,8 +5,10 @@ seeded dynamic-environment simulation (:mod:`gapath.dynamic`) on ``MAP``
 (``maze``, ``warehouse`` or any map file gapath reads) and writes
 ``trajectory.json`` (:meth:`gapath.dynamic.SimResult.to_json`),
 ``summary.json``, ``run.png`` and, with ``--gif``, ``run.gif``. The exit
-status is 0 when the robot reached the goal and 1 for a failed run (its
-reason is printed and stored); bad input exits with 2.
+status is 0 when the robot reached the goal and 1 for a run that failed to
+reach it (its reason is printed, also with ``--quiet``, and stored); no path
+between start and goal exits with 1 too, bad input with 2 (README, "Exit
+status").
 
 ``gapath plan`` (:mod:`gapath.commands.plan`, another module) plans one path
 on a map. This module does not register a ``plan`` parser; it offers the
@@ -25,7 +27,6 @@ hybrid A* and RRT / RRT* planners to it:
 from __future__ import annotations
 
 import argparse
-import json
 import math
 import time
 from dataclasses import dataclass, field
@@ -223,15 +224,15 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
     """Write ``front.csv`` (one row: length, turning, clearance),
     ``paths.json``, ``summary.json`` and (with ``plots``) ``paths.png`` into
     ``out_dir``; returns the files."""
-    from gapath.results import atomic_write
+    from gapath.results import atomic_write, dumps
 
     out = Path(out_dir)
     files = [out / "front.csv", out / "paths.json", out / "summary.json"]
     names = list(outcome.objectives)
     atomic_write(files[0], ",".join(names) + "\n"
                  + ",".join(repr(float(outcome.objectives[n])) for n in names) + "\n")
-    atomic_write(files[1], json.dumps(outcome.records(), indent=1) + "\n")
-    atomic_write(files[2], json.dumps(outcome.summary(workspace), indent=1, sort_keys=True) + "\n")
+    atomic_write(files[1], dumps(outcome.records(), indent=1) + "\n")
+    atomic_write(files[2], dumps(outcome.summary(workspace), indent=1, sort_keys=True) + "\n")
     if plots:
         import matplotlib.pyplot as plt
 
@@ -301,8 +302,8 @@ def _speed_range(text):
 
 def run(args) -> int:
     from gapath.dynamic import Robot, SimSettings, make_planner, simulate
-    from gapath.errors import ConfigError
-    from gapath.results import atomic_write, versions
+    from gapath.errors import EXIT_NO_RESULT, ConfigError, NoPathError
+    from gapath.results import atomic_write, dumps, versions
     from gapath.scenarios import make_scenario
 
     if args.obstacles < 0 or args.stationary < 0:
@@ -313,8 +314,13 @@ def run(args) -> int:
                      n_wanderers=args.obstacles // 2, robot_speed=robot.speed,
                      sensor_range=robot.sensor_range,
                      speed_range=_speed_range(args.obstacle_speed))
-    sc = make_scenario(args.map, args.seed, map_seed=args.map_seed, start=args.start,
-                       goal=args.goal, **obstacles)
+    try:
+        sc = make_scenario(args.map, args.seed, map_seed=args.map_seed, start=args.start,
+                           goal=args.goal, **obstacles)
+    except ConfigError as exc:     # no path between start and goal: exit status 1, not 2
+        if isinstance(exc.__context__, NoPathError):
+            raise NoPathError(str(exc)) from None
+        raise
     planner_kw = {}
     if args.planner == "hybrid-astar":
         planner_kw = dict(heading_bins=args.heading_bins, arc_length=args.arc_length,
@@ -336,7 +342,7 @@ def run(args) -> int:
                       for o in sc.moving]
     if res.obstacles is not None:
         data["obstacle_positions"] = np.round(np.nan_to_num(res.obstacles, nan=-1e9), 4).tolist()
-    atomic_write(out / "trajectory.json", json.dumps(data) + "\n")
+    atomic_write(out / "trajectory.json", dumps(data) + "\n")
     c = robot.car
     summary = {
         **res.summary(),
@@ -350,7 +356,7 @@ def run(args) -> int:
                      "dt": settings.dt},
         "versions": versions(),
     }
-    atomic_write(out / "summary.json", json.dumps(summary, indent=1, sort_keys=True, default=float)
+    atomic_write(out / "summary.json", dumps(summary, indent=1, sort_keys=True, default=float)
                  + "\n")
     written = ["trajectory.json", "summary.json"]
     if not args.no_plots:
@@ -371,4 +377,10 @@ def run(args) -> int:
               f"{1000 * res.global_plan_seconds:.1f} ms, {res.n_replans} replans "
               f"({1000 * sum(res.replan_seconds):.1f} ms), {res.count('halt')} halts\n"
               f"wrote {out}/" + ", ".join(written))
-    return 0 if res.success else 1
+    if not res.success:                      # the run happened and failed: exit status 1
+        import sys
+
+        print(f"gapath: the robot did not reach the goal: {res.reason} (t = {res.time:.1f} s; "
+              f"written to {out}/)", file=sys.stderr)
+        return EXIT_NO_RESULT
+    return 0

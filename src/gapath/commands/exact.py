@@ -48,12 +48,20 @@ def exact_path_front(workspace, objectives, mode):
 
 def run(args) -> int:
     from gapath.cli import _load
+    from gapath.errors import NoPathError
     from gapath.results import versions, write_front
 
     ws = _load(args.map, args.start, args.goal, args.corner_cutting)
     objectives = [o.strip() for o in args.objectives.split(",") if o.strip()]
     t0 = time.perf_counter()
-    front = exact_path_front(ws, objectives, args.mode)
+    try:
+        front = exact_path_front(ws, objectives, args.mode)
+    except NoPathError as exc:               # exit status 1, with the reason and what to try
+        from gapath.cli import no_path_error
+
+        why = no_path_error(ws, monotone=args.mode == "monotone",
+                            free_hint="try --mode free (the exact front of all 8-connected paths)")
+        raise (why or exc) from None
     seconds = time.perf_counter() - t0
     summary = {
         "settings": dict(map=ws.name, shape=list(ws.shape), start=list(ws.start), goal=list(ws.goal),

@@ -53,6 +53,10 @@ def register(subparsers) -> None:
     r.add_argument("--out", required=False, default=None,
                    help="store directory (default: the spec's directory when SPEC is a store)")
     add_executor_options(r)
+    r.add_argument("--force", action="store_true",
+                   help="run SPEC in a store of another experiment (one whose runs SPEC does "
+                        "not all include), replacing its experiment.json (its runs whose keys "
+                        "match are reused); a spec that only adds runs needs no --force")
     r.add_argument("--no-report", action="store_true", help="do not write the report at the end")
     r.add_argument("--no-plots", action="store_true", help="report without plots")
     r.set_defaults(func=run_command)
@@ -77,13 +81,59 @@ def _spec_and_out(args):
 
     path = Path(args.spec)
     if path.is_dir():
-        store = ResultStore(path)
-        return store.spec(), Path(args.out) if args.out else path
-    if args.out is None:
+        spec, out = ResultStore(path).spec(), Path(args.out) if args.out else path
+    elif args.out is None:
         raise ConfigError("--out DIR is required when SPEC is a file")
-    from gapath.experiments.spec import load_spec
+    else:
+        from gapath.experiments.spec import load_spec
 
-    return load_spec(path), Path(args.out)
+        spec, out = load_spec(path), Path(args.out)
+    if not getattr(args, "force", False):
+        _check_same_experiment(spec, out, quiet=getattr(args, "quiet", False))
+    return spec, out
+
+
+def _check_same_experiment(spec, out: Path, quiet: bool = False) -> None:
+    """Refuse to run ``spec`` in a store made from another experiment (it
+    would replace the store's ``experiment.json``).
+
+    The same experiment may grow: a spec that keeps every run of the stored
+    one (more seeds, more grid values, more maps; the name may change) is
+    accepted, and said so unless ``quiet``.
+
+    Raises
+    ------
+    ConfigError
+        Naming the store, its experiment and the keys that differ, when
+        ``spec`` leaves out runs of the stored experiment.
+    """
+    from gapath.errors import ConfigError
+    from gapath.experiments.spec import canonical_json, run_key
+    from gapath.experiments.store import ResultStore
+
+    store = ResultStore(out)
+    if not store.exists():
+        return
+    stored_spec = store.spec()
+    saved, new = stored_spec.to_dict(), spec.to_dict()
+    if canonical_json(saved) == canonical_json(new):
+        return
+    differ = [k for k in sorted(set(saved) | set(new))
+              if canonical_json(saved.get(k)) != canonical_json(new.get(k))]
+    old_keys = {run_key(r) for r in stored_spec.runs()}
+    new_keys = {run_key(r) for r in spec.runs()}
+    if old_keys <= new_keys:
+        if not quiet:
+            print(f"gapath: extending the experiment {saved.get('name')!r} in {out} "
+                  f"({', '.join(differ)} changed): {len(new_keys - old_keys)} new runs",
+                  file=sys.stderr)
+        return
+    raise ConfigError(
+        f"--out {str(out)!r} holds the experiment {saved.get('name')!r} of another spec "
+        f"({', '.join(differ)} differ; {len(old_keys - new_keys)} of its {len(old_keys)} runs "
+        f"are not in SPEC); give another --out, run 'gapath experiment run {out}' to resume "
+        f"it, or add --force to replace its experiment.json (stored runs whose keys match are "
+        f"reused)")
 
 
 def run_command(args) -> int:
@@ -107,7 +157,11 @@ def run_command(args) -> int:
         rep = report(out, plots=not args.no_plots)
         if not args.quiet:
             print(f"wrote {out}/summary.md, summary.csv ({len(rep.rows)} configurations)")
-    return 0 if res.failed == 0 else 1
+    if res.failed:                  # the runs ran and some failed: exit status 1
+        print(f"gapath: {res.failed} of {res.ran} runs failed; their errors are in "
+              f"{out}/runs/*.failed.json (run the same command to retry them)", file=sys.stderr)
+        return 1
+    return 0
 
 
 def status_command(args) -> int:

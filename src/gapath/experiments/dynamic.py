@@ -33,7 +33,6 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import math
 import statistics
 import time
@@ -43,6 +42,7 @@ from pathlib import Path
 import numpy as np
 
 from gapath.errors import ConfigError
+from gapath.results import dumps
 
 __all__ = ["DynamicStudy", "LABELS", "PLANNER_ORDER", "SCENARIO_ORDER", "SEED_TABLES", "register_experiment",
            "run", "run_fov", "write_outputs"]
@@ -107,7 +107,7 @@ class DynamicStudy:
 
     def jsonl(self) -> str:
         """One JSON line per table row, with the issue's :func:`targets`."""
-        return "".join(json.dumps({"benchmark": "dynamic_study", **r, "targets": targets(r)}) + "\n"
+        return "".join(dumps({"benchmark": "dynamic_study", **r, "targets": targets(r)}) + "\n"
                        for r in self.table)
 
     def to_markdown(self) -> str:
@@ -406,7 +406,7 @@ def write_outputs(study: DynamicStudy, out_dir, *, gif: bool = True, png: bool =
         w.writeheader()
         w.writerows(fov_rows)
         table_csv += "\n" + buf.getvalue()
-        jsonl += "".join(json.dumps({"benchmark": "dynamic_study_fov", **r}) + "\n"
+        jsonl += "".join(dumps({"benchmark": "dynamic_study_fov", **r}) + "\n"
                          for r in fov_rows)
     for name, data in ((f"{stem}.md", md), (f"{stem}.csv", table_csv),
                        (f"{stem}.jsonl", jsonl)):
@@ -500,7 +500,9 @@ def register_experiment(subparsers) -> None:
     p.add_argument("--runs", type=int, default=None, help="runs per scenario and planner "
                                                           "(default: 100; 5 with --quick)")
     p.add_argument("--quick", action="store_true", help="5 runs per row, no field-of-view study")
-    p.add_argument("--out", default="docs/results", help="output directory (default: %(default)s)")
+    p.add_argument("--out", default="gapath-dynamic",
+                   help="output directory (default: %(default)s; docs/results holds the "
+                        "committed results)")
     p.add_argument("--planners", default=",".join(PLANNER_ORDER),
                    help="comma-separated planners (default: %(default)s)")
     p.add_argument("--scenarios", default=",".join(SCENARIO_ORDER),

@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import csv
 import io
-import json
 import time
 from pathlib import Path
 
@@ -26,7 +25,7 @@ import numpy as np
 from gapath.experiments.multirun import multirun
 from gapath.metrics import coverage, hv_ratio
 from gapath.planners.exact import monotone_front
-from gapath.results import atomic_write
+from gapath.results import atomic_write, dumps
 
 ENCODING_ORDER = ("integer", "mixed", "binary", "absolute")
 PROTOCOLS = {"seeds": "none", "seeded": "weighted"}
@@ -119,7 +118,7 @@ def write_outputs(result, out_dir) -> list[Path]:
     w.writerows(rows)
     atomic_write(out / "encodings.csv", buf.getvalue())
     atomic_write(out / "encodings.md", _markdown(result))
-    atomic_write(out / "encodings.json", json.dumps(rows, indent=1) + "\n")
+    atomic_write(out / "encodings.json", dumps(rows, indent=1) + "\n")
     protocols = list(dict.fromkeys(r["protocol"] for r in rows))
     fig, axes = plt.subplots(1, len(protocols), figsize=(5.5 * len(protocols), 4.5), squeeze=False)
     for ax, protocol in zip(axes[0], protocols):
@@ -142,7 +141,9 @@ def register_experiment(subparsers) -> None:
     p.add_argument("--pop", type=int, default=500)
     p.add_argument("--gen", type=int, default=500)
     p.add_argument("--quick", action="store_true", help=f"{QUICK['runs']} runs x pop {QUICK['pop_size']} x {QUICK['n_gen']} generations")
-    p.add_argument("--out", default="docs/results", help="output directory (default: %(default)s)")
+    p.add_argument("--out", default="gapath-encodings",
+                   help="output directory (default: %(default)s; docs/results holds the "
+                        "committed results)")
     p.set_defaults(func=_cli)
 
 
@@ -150,7 +151,7 @@ def _cli(args) -> int:
     runs, pop, gen = ((QUICK["runs"], QUICK["pop_size"], QUICK["n_gen"]) if args.quick
                       else (args.runs, args.pop, args.gen))
     result = run(runs=runs, pop_size=pop, n_gen=gen,
-                 progress=lambda r: print(json.dumps(r), flush=True))
+                 progress=lambda r: print(dumps(r), flush=True))
     for f in write_outputs(result, args.out):
         print(f"wrote {f}")
     return 0

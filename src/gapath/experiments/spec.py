@@ -303,7 +303,22 @@ def _normalise_map(value, where: _Where, key: str, base_dir: Path) -> dict:
         if not isinstance(args["corner_cutting"], bool):
             raise where.error(f"{k}.corner_cutting", f"expected true or false, got {args['corner_cutting']!r}")
         out["corner_cutting"] = args["corner_cutting"]
-    return {kind: out}
+    entry = {kind: out}
+    _check_map(entry, where, k)
+    return entry
+
+
+def _check_map(entry: dict, where: _Where, key: str) -> None:
+    """Build the map once, so that a start or goal off the grid or on an
+    obstacle (or any bad generator argument) fails when the spec is read,
+    not in every run. A generator with ``seed: run`` is built with seed 0
+    (generators keep the start and goal free whatever the seed)."""
+    from gapath.errors import GapathError
+
+    try:
+        build_workspace(entry, seed=0)
+    except GapathError as exc:
+        raise where.error(key, str(exc)) from None
 
 
 def _map_seed(value, where: _Where, key: str):
@@ -641,6 +656,9 @@ def load_spec(path) -> ExperimentSpec:
         text = path.read_text()
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read the experiment spec ({exc.strerror})") from None
+    except UnicodeDecodeError as exc:
+        raise ConfigError(f"{path}: not a text file (undecodable byte at offset {exc.start}); "
+                          f"expected a YAML, TOML or JSON experiment spec") from None
     suffix = path.suffix.lower()
     if suffix in (".yaml", ".yml"):
         try:

@@ -23,7 +23,7 @@ import os
 from pathlib import Path
 
 from gapath.errors import ConfigError
-from gapath.results import atomic_write
+from gapath.results import atomic_write, dumps
 
 __all__ = ["ResultStore", "store_versions"]
 
@@ -52,7 +52,7 @@ def _versions() -> tuple:
 
 
 def _dumps(obj) -> str:
-    return json.dumps(obj, sort_keys=True, separators=(",", ":")) + "\n"
+    return dumps(obj, sort_keys=True, separators=(",", ":")) + "\n"
 
 
 class ResultStore:
@@ -81,7 +81,7 @@ class ResultStore:
         file when there is one) and the package versions."""
         self.runs_dir.mkdir(parents=True, exist_ok=True)
         atomic_write(self.root / "experiment.json",
-                     json.dumps(spec.to_dict(), indent=1, sort_keys=True) + "\n")
+                     dumps(spec.to_dict(), indent=1, sort_keys=True) + "\n")
         if spec.source and Path(spec.source).resolve() != (self.root / "experiment.json").resolve():
             src = Path(spec.source)
             try:
@@ -89,7 +89,7 @@ class ResultStore:
             except OSError:
                 pass
         atomic_write(self.root / "versions.json",
-                     json.dumps(store_versions(), indent=1, sort_keys=True) + "\n")
+                     dumps(store_versions(), indent=1, sort_keys=True) + "\n")
 
     def exists(self) -> bool:
         """True when the directory holds an experiment."""

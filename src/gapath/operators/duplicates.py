@@ -15,8 +15,15 @@ def _row_keys(A: np.ndarray) -> np.ndarray:
 
 def duplicate_mask(keys: np.ndarray, other: np.ndarray | None = None) -> np.ndarray:
     """Boolean mask of the rows of ``keys`` that repeat an earlier row, or,
-    when ``other`` is given, a row of ``other``. Sorting, O(N log N)."""
+    when ``other`` is given, a row of ``other``. Sorting, O(N log N).
+
+    Empty ``keys`` give an empty mask; an empty ``other`` is the same as none.
+    """
     n = len(keys)
+    if n == 0:
+        return np.zeros(0, dtype=bool)
+    if other is not None and len(other) == 0:
+        other = None
     both = keys if other is None else np.concatenate([other, keys])
     _, inverse = np.unique(_row_keys(both), return_inverse=True)
     first = np.full(inverse.max() + 1, len(both))

@@ -63,6 +63,13 @@ class GridPathProblem(Problem):
 
     def __init__(self, workspace, objectives=("length", "vulnerability"), encoding="integer",
                  constraints="penalty", penalty=1000.0, costmap=None, **kwargs):
+        from gapath.workspace import Workspace
+
+        if not isinstance(workspace, Workspace):
+            raise ConfigError(
+                f"GridPathProblem expects a gapath.Workspace, got {type(workspace).__name__}; "
+                f"build one from an array with gapath.loaders.from_array(array, start, goal) "
+                f"(or gapath.Workspace(occ, start, goal))")
         names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
         names = [n.strip() for n in names]
         layer_names = () if costmap is None else costmap.objective_names

@@ -67,6 +67,14 @@ class PlannerSampling(Sampling):
     they decode to a path not yet in the population, so duplicate
     elimination never shrinks the population below its size.
 
+    A small map may have fewer distinct paths than the population (a 3x3
+    free grid has nine column-monotone paths). The sampler then returns
+    every distinct path it found, fewer rows than asked: it stops after
+    :attr:`stall_rounds` random rounds in a row that add no new path (or
+    100 rounds in all). It never pads with copies, which duplicate
+    elimination would drop anyway; both engines run on the smaller
+    population.
+
     Parameters
     ----------
     source : ``"weighted"`` (default), ``"exact"``, ``"astar"`` or ``"none"``
@@ -86,6 +94,9 @@ class PlannerSampling(Sampling):
     >>> X.shape
     (50, 31)
     """
+
+    #: Random rounds in a row without a new path after which sampling stops.
+    stall_rounds = 10
 
     def __init__(self, source: str = "weighted", n_weights: int = 9, max_share: float = 0.5,
                  random: Sampling | None = None):
@@ -124,13 +135,15 @@ class PlannerSampling(Sampling):
 
         X = X[~duplicate_mask(keys(X))] if len(X) else X
         sampling = self._random_sampling(problem)
+        stalled = 0
         for _ in range(100):
             missing = n_samples - len(X)
-            if missing <= 0:
+            if missing <= 0 or stalled >= self.stall_rounds:
                 break
             R = sampling._do(problem, 2 * missing, random_state=random_state)
             R = encoding.edge_fix(R, random_state).astype(X.dtype)
             R = R[~duplicate_mask(keys(R), keys(X) if len(X) else None)]
             R = R[~duplicate_mask(keys(R))][:missing]
+            stalled = 0 if len(R) else stalled + 1
             X = np.concatenate([X, R])
         return X
