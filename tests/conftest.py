@@ -1,26 +1,16 @@
-import os
-from pathlib import Path
-
 import numpy as np
 import pytest
+from data_files import TESTS_DATA
 
 from gapath import Workspace
 
 
-def shared_data() -> Path | None:
-    env = os.environ.get("GAPATH_SHARED_DATA")
-    for p in ([Path(env)] if env else []) + [Path(__file__).resolve().parents[2] / "shared" / "data"]:
-        if p.is_dir():
-            return p
-    return None
-
-
 @pytest.fixture
 def data_dir():
-    d = shared_data()
-    if d is None:
-        pytest.skip("shared data folder not found")
-    return d
+    """``tests/data`` (the small real maps, scenario files and the Mars DTM
+    committed with the tests). For the large optional files use
+    :func:`data_files.data_path`, which also looks in ../shared/data."""
+    return TESTS_DATA
 
 
 def random_grid(rng, h, w, density=0.2, start=None, goal=None, **kw):

@@ -19,12 +19,12 @@ from __future__ import annotations
 import dataclasses
 import heapq
 import math
-import os
 import threading
 from pathlib import Path
 
 import numpy as np
 import pytest
+from data_files import glob_data
 
 from gapath import ConfigError, NoPathError, Workspace
 from gapath.planners._grid import (DC, DR, HELD, NOT_HELD, can_step, move_mask,
@@ -35,21 +35,12 @@ SQRT2 = math.sqrt(2.0)
 
 
 # ---------------------------------------------------------------------------
-# shared data
+# real data (tests/data, plus ../shared/data when present)
 # ---------------------------------------------------------------------------
 
-def _shared_data() -> Path | None:
-    candidates = [Path(__file__).resolve().parents[2] / "shared" / "data"]
-    if os.environ.get("GAPATH_SHARED_DATA"):
-        candidates.append(Path(os.environ["GAPATH_SHARED_DATA"]))
-    for folder in candidates:
-        if (folder / "movingai").is_dir():
-            return folder
-    return None
-
-
-DATA = _shared_data()
-SCEN_FILES = sorted((DATA / "movingai").glob("*/*.scen")) if DATA else []
+#: Every ``.scen`` file of tests/data (the small maps, always there) and of
+#: the optional shared data folder (the 256x256 and 512x512 maps), once each.
+SCEN_FILES = glob_data("movingai/*/*.scen")
 
 
 def _load_movingai_sample(scen_path: Path):
@@ -154,7 +145,6 @@ def random_grid(rng, max_side=14):
 # MovingAI benchmark sample
 # ---------------------------------------------------------------------------
 
-@pytest.mark.skipif(not SCEN_FILES, reason="shared MovingAI data not found")
 @pytest.mark.parametrize("scen_path", SCEN_FILES, ids=lambda p: f"{p.parent.name}/{p.name}")
 def test_movingai_sample_matches_optimal(scen_path):
     occ, scens = _load_movingai_sample(scen_path)

@@ -9,11 +9,10 @@ sequence set the replans expand fewer cells than the fresh searches.
 from __future__ import annotations
 
 import math
-import os
-from pathlib import Path
 
 import numpy as np
 import pytest
+from data_files import data_path
 
 from gapath import ConfigError, NoPathError, Workspace
 from gapath.planners.astar import astar
@@ -107,28 +106,13 @@ def test_replan_matches_fresh_astar(corner_cutting, moves):
     assert replan_expansions < fresh_expansions, (replan_expansions, fresh_expansions)
 
 
-def _shared_data() -> Path | None:
-    candidates = [Path(__file__).resolve().parents[2] / "shared" / "data"]
-    if os.environ.get("GAPATH_SHARED_DATA"):
-        candidates.append(Path(os.environ["GAPATH_SHARED_DATA"]))
-    for folder in candidates:
-        if (folder / "movingai").is_dir():
-            return folder
-    return None
-
-
-DATA = _shared_data()
-
-
-@pytest.mark.skipif(DATA is None or not (DATA / "movingai/mapf/den312d.map").is_file(),
-                    reason="shared MovingAI data not found")
 def test_movingai_map_with_blocked_path_cells():
     """den312d (65x81): a scenario's path is cut again and again."""
     try:
         from gapath.loaders import load_movingai, load_scenarios
     except ImportError:  # pragma: no cover - before gapath.loaders existed
         pytest.skip("gapath.loaders not available")
-    scen = load_scenarios(DATA / "movingai/mapf/den312d-random-1.scen")[-1]
+    scen = load_scenarios(data_path("movingai/mapf/den312d-random-1.scen"))[-1]
     ws = load_movingai(scen.resolve_map(), scen.start, scen.goal, corner_cutting=False)
     planner = DStarLite(ws)
     res = planner.plan()

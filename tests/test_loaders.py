@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import math
-import os
 from pathlib import Path
 
 import numpy as np
 import pytest
+from data_files import TESTS_DATA, data_path
 from PIL import Image
 
 from gapath.errors import ConfigError, MapError
@@ -27,19 +27,12 @@ from gapath.loaders import (
 from gapath.workspace import Workspace, default_workspace, random_workspace
 
 
-def _shared_data() -> Path | None:
-    candidates = [Path(__file__).resolve().parents[2] / "shared" / "data"]
-    if os.environ.get("GAPATH_SHARED_DATA"):
-        candidates.append(Path(os.environ["GAPATH_SHARED_DATA"]))
-    return next((p for p in candidates if p.is_dir()), None)
-
-
 @pytest.fixture(scope="module")
 def data() -> Path:
-    folder = _shared_data()
-    if folder is None:
-        pytest.skip("shared test data not found (../shared/data or $GAPATH_SHARED_DATA)")
-    return folder
+    """``tests/data``: the small real maps (always in the repository). The
+    large ones (512x512, Berlin, Willow) are optional: ``data_path(name)``
+    finds them in ../shared/data or $GAPATH_SHARED_DATA, or skips."""
+    return TESTS_DATA
 
 
 def write(tmp_path: Path, name: str, content: str | bytes) -> Path:
@@ -58,7 +51,7 @@ def assert_error(exc_info, *fragments):
 
 
 # ---------------------------------------------------------------------------
-# real data (counts from shared/data/README.md)
+# real data (counts from tests/data/README.md and ../shared/data/README.md)
 # ---------------------------------------------------------------------------
 
 #: map -> (rows, cols), free cells ('.'), blocked cells ('@' + 'T')
@@ -108,6 +101,18 @@ ROS_MAPS = {
 }
 
 
+def test_bundled_data_is_byte_identical(data):
+    """tests/data holds unmodified upstream files (SHA256SUMS, README there)."""
+    import hashlib
+
+    lines = (data / "SHA256SUMS").read_text().splitlines()
+    listed = {name: digest for digest, name in (line.split("  ", 1) for line in lines)}
+    on_disk = {p.relative_to(data).as_posix() for p in data.rglob("*") if p.is_file()}
+    assert on_disk - set(listed) == {"README.md", "SHA256SUMS", ".gitattributes"}
+    for name, digest in listed.items():
+        assert hashlib.sha256((data / name).read_bytes()).hexdigest() == digest, name
+
+
 def free_corners(occ: np.ndarray) -> tuple[tuple[int, int], tuple[int, int]]:
     """The last and the first free cell in row-major order (start, goal)."""
     free = np.argwhere(~occ)
@@ -117,7 +122,7 @@ def free_corners(occ: np.ndarray) -> tuple[tuple[int, int], tuple[int, int]]:
 @pytest.mark.parametrize("name", MAPS)
 def test_movingai_maps_cell_counts(data, name):
     shape, n_free, n_blocked = MAPS[name]
-    occ = load_occupancy(data / "movingai" / name)
+    occ = load_occupancy(data_path(f"movingai/{name}"))
     assert occ.shape == shape
     assert int((~occ).sum()) == n_free
     assert int(occ.sum()) == n_blocked
@@ -125,7 +130,7 @@ def test_movingai_maps_cell_counts(data, name):
 
 @pytest.mark.parametrize("name", MAPS)
 def test_movingai_maps_load_as_workspaces(data, name):
-    path = data / "movingai" / name
+    path = data_path(f"movingai/{name}")
     start, goal = free_corners(load_occupancy(path))
     ws = load_movingai(path, start, goal, corner_cutting=False)
     assert ws.shape == MAPS[name][0]
@@ -136,7 +141,7 @@ def test_movingai_maps_load_as_workspaces(data, name):
 
 
 def test_berlin_0_has_crlf_and_loads(data):
-    path = data / "movingai/grid/Berlin_0_256.map"
+    path = data_path("movingai/grid/Berlin_0_256.map")
     assert b"\r\n" in path.read_bytes()
     assert load_occupancy(path).shape == (256, 256)
 
@@ -150,14 +155,15 @@ def test_random_32_32_20_tree_is_blocked(data):
 
 @pytest.mark.parametrize("name", SCENARIOS)
 def test_scenario_files(data, name):
-    scenarios = load_scenarios(data / "movingai" / name)
+    scen_path = data_path(f"movingai/{name}")
+    scenarios = load_scenarios(scen_path)
     assert len(scenarios) == SCENARIOS[name]
     assert all(isinstance(s, Scenario) for s in scenarios)
     assert len({s.map for s in scenarios}) == 1
     first = scenarios[0]
     assert "/" not in first.map and first.map.endswith(".map")
     map_path = first.resolve_map()
-    assert map_path.parent == (data / "movingai" / name).parent
+    assert map_path.parent == scen_path.parent
     occ = load_occupancy(map_path)
     assert all((s.height, s.width) == occ.shape for s in scenarios)
     starts = np.array([s.start for s in scenarios])
@@ -166,7 +172,7 @@ def test_scenario_files(data, name):
         assert (cells >= 0).all() and (cells < occ.shape).all()
         assert not occ[cells[:, 0], cells[:, 1]].any()
     assert all(s.bucket == math.floor(s.optimal / 4) for s in scenarios)
-    assert first.line == 2 and first.source == data / "movingai" / name
+    assert first.line == 2 and first.source == scen_path
 
 
 def test_scenario_fields_swap_x_y(data):
@@ -180,7 +186,7 @@ def test_scenario_fields_swap_x_y(data):
 @pytest.mark.parametrize("name", ROS_MAPS)
 def test_ros_maps(data, name):
     shape, resolution = ROS_MAPS[name]
-    path = data / "ros" / name
+    path = data_path(f"ros/{name}")
     occ = load_occupancy(path)
     assert occ.shape == shape
     start, goal = free_corners(occ)
@@ -214,9 +220,9 @@ def test_lse_arena_gimp_comment_and_no_unknown(data):
 
 
 def test_willow_grey_levels(data):
-    values = np.asarray(Image.open(data / "ros/willow_full/willow-full.pgm"))
+    values = np.asarray(Image.open(data_path("ros/willow_full/willow-full.pgm")))
     # p = (255 - v) / 255 > 0.65  <=>  v <= 89;  p < 0.196  <=>  v >= 206
-    path = data / "ros/willow_full/willow-full.yaml"
+    path = data_path("ros/willow_full/willow-full.yaml")
     assert int(load_occupancy(path, unknown="free").sum()) == int((values <= 89).sum())
     assert int((~load_occupancy(path)).sum()) == int((values >= 206).sum())
 

@@ -84,7 +84,9 @@ def paper_nsga2(pop_size: int = 500, *, encoding: str = "integer",
     Returns
     -------
     PathNSGA2 (a pymoo ``NSGA2``). Pass the termination to
-    ``pymoo.optimize.minimize``, not here (NSGA2 overwrites it).
+    ``pymoo.optimize.minimize``, not here (NSGA2 overwrites it). The
+    algorithm pickles before and after ``minimize``, and so does pymoo's
+    result (checkpoints, multiprocessing).
 
     Raises
     ------
@@ -104,6 +106,9 @@ def paper_nsga2(pop_size: int = 500, *, encoding: str = "integer",
     >>> res = minimize(p, paper_nsga2(20, encoding="binary"), ("n_gen", 2), seed=1)
     >>> res.pop.get("X").dtype
     dtype('bool')
+    >>> import pickle
+    >>> pickle.loads(pickle.dumps(res)).F.shape == res.F.shape
+    True
     """
     try:
         pop_size = int(pop_size)

@@ -1,5 +1,5 @@
 """pymoo problems over grid paths."""
 
-from gapath.problems.grid_path import GridPathProblem
+from gapath.problems.grid_path import GenomeWarning, GridPathProblem
 
-__all__ = ["GridPathProblem"]
+__all__ = ["GenomeWarning", "GridPathProblem"]

@@ -50,6 +50,48 @@ def compare_rank_smoothness_crowding(pop, P, random_state=None, algorithm=None, 
     return winner[:, None]
 
 
+class TournamentComparison:
+    """:func:`compare_rank_smoothness_crowding` as the ``func_comp`` of a
+    pymoo ``TournamentSelection``, with its keys cached per population.
+
+    A module-level callable (not a closure), so that the selection, the
+    algorithm and pymoo's result pickle (checkpoints, multiprocessing). The
+    cache is not pickled nor copied: a copy starts with an empty one.
+
+    Parameters
+    ----------
+    tiebreak : compare smoothness between equal ranks.
+
+    Examples
+    --------
+    >>> import pickle
+    >>> comp = pickle.loads(pickle.dumps(TournamentComparison(tiebreak=False)))
+    >>> comp.tiebreak
+    False
+    """
+
+    def __init__(self, tiebreak: bool = True):
+        self.tiebreak = bool(tiebreak)
+        self._cache = ColumnCache()
+
+    def _keys(self, pop):
+        return tournament_keys(pop, self.tiebreak)
+
+    def __call__(self, pop, P, **kwargs):
+        keys = self._cache.get(pop, self._keys)
+        return compare_rank_smoothness_crowding(pop, P, tiebreak=self.tiebreak, keys=keys,
+                                                **kwargs)
+
+    def __getstate__(self):
+        return {"tiebreak": self.tiebreak}
+
+    def __setstate__(self, state):
+        self.__init__(state["tiebreak"])
+
+    def __repr__(self) -> str:
+        return f"TournamentComparison(tiebreak={self.tiebreak})"
+
+
 class SmoothnessTournament(TournamentSelection):
     """Binary tournament of :func:`compare_rank_smoothness_crowding`.
 
@@ -59,11 +101,5 @@ class SmoothnessTournament(TournamentSelection):
     """
 
     def __init__(self, tiebreak: bool = True):
-        cache = ColumnCache()
-
-        def func_comp(pop, P, **kwargs):
-            keys = cache.get(pop, lambda p: tournament_keys(p, tiebreak))
-            return compare_rank_smoothness_crowding(pop, P, tiebreak=tiebreak, keys=keys, **kwargs)
-
-        super().__init__(func_comp=func_comp, pressure=2)
+        super().__init__(func_comp=TournamentComparison(tiebreak), pressure=2)
         self.tiebreak = tiebreak
