@@ -263,7 +263,9 @@ def test_save_movingai_round_trip(tmp_path, ws):
     assert text.startswith("type octile\nheight 7\nwidth 9\nmap\n")
     assert text.count("@") == 20 and "\r" not in text
     again = load_movingai(path, ws.start, ws.goal)
-    assert again == ws
+    assert again.corner_cutting is False            # MovingAI's rule, whatever was saved
+    assert again == ws.replace(corner_cutting=False)
+    assert load_movingai(path, ws.start, ws.goal, corner_cutting=True) == ws
     save_movingai(ws.occ.astype(int), tmp_path / "array.map")
     assert (tmp_path / "array.map").read_text() == text
 

@@ -96,6 +96,8 @@ class Workspace:
     corner_cutting : if False a diagonal move needs both orthogonally
         adjacent cells free (MovingAI convention); default True (SPEC).
     name : a label used in outputs.
+    frame : optional :class:`gapath.loaders.MapFrame`, the map's world frame
+        (ROS maps; None when the grid has no world frame).
 
     Raises
     ------
@@ -113,7 +115,7 @@ class Workspace:
     """
 
     def __init__(self, occ, start=None, goal=None, *, cell_size: float = 1.0,
-                 corner_cutting: bool = True, name: str = "workspace"):
+                 corner_cutting: bool = True, name: str = "workspace", frame=None):
         arr = np.asarray(occ)
         if arr.ndim != 2 or arr.shape[0] == 0 or arr.shape[1] == 0:
             raise MapError(f"occupancy must be a non-empty 2-D array, got shape {arr.shape}")
@@ -138,6 +140,7 @@ class Workspace:
         self.cell_size = cs
         self.corner_cutting = bool(corner_cutting)
         self.name = str(name)
+        self.frame = frame
         self.start = _as_cell((h - 1, 0) if start is None else start, "start", (h, w))
         self.goal = _as_cell((0, w - 1) if goal is None else goal, "goal", (h, w))
         for label, cell in (("start", self.start), ("goal", self.goal)):
@@ -169,10 +172,10 @@ class Workspace:
 
     def replace(self, **changes) -> "Workspace":
         """A copy with some of ``occ, start, goal, cell_size, corner_cutting,
-        name`` replaced."""
+        name, frame`` replaced."""
         kw = dict(occ=self._occ, start=self.start, goal=self.goal,
                   cell_size=self.cell_size, corner_cutting=self.corner_cutting,
-                  name=self.name)
+                  name=self.name, frame=self.frame)
         unknown = set(changes) - set(kw)
         if unknown:
             raise ConfigError(f"unknown workspace field(s): {sorted(unknown)}")
@@ -360,5 +363,5 @@ def default_workspace() -> Workspace:
     """
     from gapath.loaders import load_movingai
 
-    ws = load_movingai(DEFAULT_SCENARIO)
+    ws = load_movingai(DEFAULT_SCENARIO, corner_cutting=True)   # SPEC's rule, not MovingAI's
     return ws.replace(name="default-32x32-173")

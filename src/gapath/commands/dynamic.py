@@ -25,7 +25,9 @@ hybrid A* and RRT / RRT* planners to it:
 from __future__ import annotations
 
 import argparse
+import contextlib
 import json
+import re
 import math
 import time
 from dataclasses import dataclass, field
@@ -91,6 +93,30 @@ def add_planner_choices(parser=None) -> tuple[str, ...]:
     return PLANNER_CHOICES
 
 
+#: Planner and car parameters by the CLI flag that sets them.
+FLAG_NAMES = {"max_iter": "--iterations", "goal_bias": "--goal-bias", "step": "--step",
+              "radius": "--radius", "wheelbase": "--wheelbase", "speed": "--speed",
+              "max_steer": "--max-steer", "heading_bins": "--heading-bins",
+              "arc_length": "--arc-length", "heuristic_weight": "--heuristic-weight"}
+
+
+@contextlib.contextmanager
+def cli_vocabulary():
+    """Re-raise a planner's :class:`~gapath.errors.ConfigError` about one
+    of its parameters (``"max_iter must be ..."``) with the flag that sets
+    it (``"--iterations must be ..."``)."""
+    from gapath.errors import ConfigError
+
+    try:
+        yield
+    except ConfigError as exc:
+        message = str(exc)
+        m = re.match(r"(\w+) must", message)
+        if m is None or m.group(1) not in FLAG_NAMES:
+            raise
+        raise ConfigError(FLAG_NAMES[m.group(1)] + message[len(m.group(1)):]) from None
+
+
 def car_from_args(args):
     """A :class:`~gapath.planners.hybrid_astar.CarModel` from parsed options
     (missing options take the defaults)."""
@@ -99,11 +125,16 @@ def car_from_args(args):
 
     steer = getattr(args, "max_steer", 34.4)
     try:
-        steer = math.radians(float(steer))
+        degrees = float(steer)
     except (TypeError, ValueError):
         raise ConfigError(f"--max-steer must be a number of degrees, got {steer!r}") from None
-    return CarModel(wheelbase=getattr(args, "wheelbase", 0.6), max_steer=steer,
-                    speed=getattr(args, "speed", 1.0), radius=getattr(args, "radius", 0.3))
+    if not 0.0 < degrees < 90.0:
+        raise ConfigError(f"--max-steer must be between 0 and 90 degrees (both excluded), "
+                          f"got {degrees:g}")
+    with cli_vocabulary():
+        return CarModel(wheelbase=getattr(args, "wheelbase", 0.6),
+                        max_steer=math.radians(degrees), speed=getattr(args, "speed", 1.0),
+                        radius=getattr(args, "radius", 0.3))
 
 
 @dataclass(eq=False)
@@ -181,13 +212,19 @@ def plan_with(name: str, workspace, args) -> PlanOutcome:
         If no path was found.
     """
     from gapath.errors import ConfigError
-    from gapath.planners.hybrid_astar import HybridAStar
-    from gapath.planners.rrt import rrt
 
     if name not in PLANNER_CHOICES:
         raise ConfigError(f"unknown planner {name!r}; this module plans with "
                           f"{', '.join(PLANNER_CHOICES)}")
     car = car_from_args(args)
+    with cli_vocabulary():
+        return _plan_with(name, workspace, args, car)
+
+
+def _plan_with(name, workspace, args, car) -> PlanOutcome:
+    from gapath.planners.hybrid_astar import HybridAStar
+    from gapath.planners.rrt import rrt
+
     cs = workspace.cell_size
     t0 = time.perf_counter()
     if name == "hybrid-astar":
@@ -230,7 +267,16 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
     names = list(outcome.objectives)
     atomic_write(files[0], ",".join(names) + "\n"
                  + ",".join(repr(float(outcome.objectives[n])) for n in names) + "\n")
-    atomic_write(files[1], json.dumps(outcome.records(), indent=1) + "\n")
+    records = outcome.records()
+    frame = getattr(workspace, "frame", None)
+    if frame is not None:   # also in the map's world frame (ROS maps: metres, y up)
+        cs = workspace.cell_size
+        p = np.asarray(outcome.poses, dtype=float)
+        xy = frame.to_world(p[:, [1, 0]] / cs)
+        records[0]["world"] = frame.to_world(outcome.cells).round(6).tolist()
+        records[0]["world_poses"] = np.column_stack(
+            [xy, np.mod(frame.yaw - p[:, 2] + np.pi, 2 * np.pi) - np.pi]).round(6).tolist()
+    atomic_write(files[1], json.dumps(records, indent=1) + "\n")
     atomic_write(files[2], json.dumps(outcome.summary(workspace), indent=1, sort_keys=True) + "\n")
     if plots:
         import matplotlib.pyplot as plt
@@ -321,12 +367,13 @@ def run(args) -> int:
                           heuristic_weight=args.heuristic_weight)
     elif args.planner in ("rrt", "rrt-star"):
         planner_kw = dict(max_iter=args.iterations, step=args.step, goal_bias=args.goal_bias)
-    planner = make_planner(args.planner, **planner_kw)
-    start = sc.start
-    if args.heading is not None:
-        start = (start[0], start[1], math.radians(args.heading))
-    res = simulate(sc.workspace, planner, robot, sc.stationary, sc.moving, settings, start,
-                   args.seed)
+    with cli_vocabulary():
+        planner = make_planner(args.planner, **planner_kw)
+        start = sc.start
+        if args.heading is not None:
+            start = (start[0], start[1], math.radians(args.heading))
+        res = simulate(sc.workspace, planner, robot, sc.stationary, sc.moving, settings, start,
+                       args.seed)
     out = Path(args.out)
     data = res.to_json()
     data["stationary"] = [{"cells": o.cells.tolist(), "appear_at": o.appear_at}
