@@ -1,6 +1,6 @@
 """The ``gapath`` command line.
 
-``gapath solve MAP ...`` runs the seeds' NSGA-II on a map and writes
+``gapath solve MAP ...`` runs Ahmed & Deb's NSGA-II on a map and writes
 ``front.csv``, ``paths.json``, ``summary.json``, ``front.png`` and
 ``paths.png``; ``gapath demo`` does so on the bundled scenario. Bad input
 prints one clear message and exits with status 2 (no traceback).
@@ -68,8 +68,8 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
     p.add_argument("--seed-from", choices=("weighted", "exact", "astar", "none"), default="weighted",
                    help="initial population: shortest, safest and weighted-sum monotone paths "
                         "plus random ones (weighted), the exact monotone front (exact), A* "
-                        "paths projected onto monotone paths (astar), or all random as in the "
-                        "seeds' protocol (none) (default: %(default)s)")
+                        "paths projected onto monotone paths (astar), or all random as in "
+                        "Ahmed & Deb's protocol (none) (default: %(default)s)")
     p.add_argument("--engine", choices=("fast", "pymoo"), default="fast",
                    help="NSGA-II engine: FastNSGA2 on arrays (fast) or stock pymoo NSGA2 (pymoo); "
                         "same results for the same seed (default: %(default)s)")
@@ -100,7 +100,7 @@ def build_parser() -> argparse.ArgumentParser:
     _add_run_options(p, pop=500, gen=500, out="gapath-out")
     p.set_defaults(func=_solve)
 
-    d = sub.add_parser("demo", help="the bundled scenario with the seeds' settings")
+    d = sub.add_parser("demo", help="the bundled scenario with Ahmed & Deb's settings")
     _add_run_options(d, pop=500, gen=500, out="gapath-demo")
 
     from gapath.commands import register_all

@@ -288,7 +288,7 @@ def _check_shape(shape):
 
 def dense_workspace(n: int | tuple[int, int], p0: float, seed: int = 0, *,
                     start=None, goal=None, name: str | None = None) -> Workspace:
-    """The seeds' dense protocol (Ahmed & Deb, section 6).
+    """Ahmed & Deb's dense protocol (section 6).
 
     A random column-monotone path from start to goal is drawn first; then
     every other cell becomes an obstacle with probability ``p0``. ``p0 = 1``
@@ -355,7 +355,7 @@ DEFAULT_SCENARIO_RECIPE = dict(shape=(32, 32), n_obstacles=173, seed=2013)
 
 def default_workspace() -> Workspace:
     """The bundled default scenario: 32x32, 173 random obstacles, start
-    bottom-left, goal top-right (the seeds' Fig. 3 set-up).
+    bottom-left, goal top-right (Ahmed & Deb's Fig. 3 set-up).
 
     It is stored as a MovingAI map in the package (``gapath/data``) so that it
     does not depend on NumPy's random streams; it was made by

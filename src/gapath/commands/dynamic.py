@@ -345,6 +345,25 @@ def _speed_range(text):
     return lo, hi
 
 
+def _check_planner_flags(args, workspace, car, planner_kw) -> None:
+    """Bad planner flags are bad input (exit 2), not a failed run: the
+    simulation would report a planner that cannot start as blocked."""
+    from gapath.errors import ConfigError
+
+    if args.planner in ("rrt", "rrt-star"):
+        if not args.iterations >= 1:
+            raise ConfigError(f"--iterations must be a positive integer, got {args.iterations}")
+        if args.step is not None and not (math.isfinite(args.step) and args.step > 0):
+            raise ConfigError(f"--step must be a positive number of world units, got {args.step:g}")
+        if not 0.0 <= args.goal_bias <= 1.0:
+            raise ConfigError(f"--goal-bias must be in [0.0, 1.0], got {args.goal_bias:g}")
+    elif args.planner == "hybrid-astar":
+        from gapath.planners.hybrid_astar import HybridAStar
+
+        with cli_vocabulary():
+            HybridAStar(workspace, car, **planner_kw)
+
+
 def run(args) -> int:
     from gapath.dynamic import Robot, SimSettings, make_planner, simulate
     from gapath.errors import ConfigError
@@ -367,6 +386,7 @@ def run(args) -> int:
                           heuristic_weight=args.heuristic_weight)
     elif args.planner in ("rrt", "rrt-star"):
         planner_kw = dict(max_iter=args.iterations, step=args.step, goal_bias=args.goal_bias)
+    _check_planner_flags(args, sc.workspace, robot.car, planner_kw)
     with cli_vocabulary():
         planner = make_planner(args.planner, **planner_kw)
         start = sc.start
