@@ -97,7 +97,9 @@ def add_planner_choices(parser=None) -> tuple[str, ...]:
 FLAG_NAMES = {"max_iter": "--iterations", "goal_bias": "--goal-bias", "step": "--step",
               "radius": "--radius", "wheelbase": "--wheelbase", "speed": "--speed",
               "max_steer": "--max-steer", "heading_bins": "--heading-bins",
-              "arc_length": "--arc-length", "heuristic_weight": "--heuristic-weight"}
+              "arc_length": "--arc-length", "heuristic_weight": "--heuristic-weight",
+              "sensor_range": "--sensor-range", "fov": "--fov", "dt": "--dt",
+              "max_time": "--max-time", "speed_range": "--obstacle-speed"}
 
 
 @contextlib.contextmanager
@@ -111,7 +113,7 @@ def cli_vocabulary():
         yield
     except ConfigError as exc:
         message = str(exc)
-        m = re.match(r"(\w+) must", message)
+        m = re.match(r"(\w+)(?= must| \()", message)
         if m is None or m.group(1) not in FLAG_NAMES:
             raise
         raise ConfigError(FLAG_NAMES[m.group(1)] + message[len(m.group(1)):]) from None
@@ -372,14 +374,17 @@ def run(args) -> int:
 
     if args.obstacles < 0 or args.stationary < 0:
         raise ConfigError("--obstacles and --stationary must be >= 0")
-    robot = Robot(car=car_from_args(args), sensor_range=args.sensor_range, fov=args.fov)
-    settings = SimSettings(dt=args.dt, max_time=args.max_time)
+    car = car_from_args(args)
+    with cli_vocabulary():
+        robot = Robot(car=car, sensor_range=args.sensor_range, fov=args.fov)
+        settings = SimSettings(dt=args.dt, max_time=args.max_time)
     obstacles = dict(n_stationary=args.stationary, n_crossers=(args.obstacles + 1) // 2,
                      n_wanderers=args.obstacles // 2, robot_speed=robot.speed,
                      sensor_range=robot.sensor_range,
                      speed_range=_speed_range(args.obstacle_speed))
-    sc = make_scenario(args.map, args.seed, map_seed=args.map_seed, start=args.start,
-                       goal=args.goal, **obstacles)
+    with cli_vocabulary():
+        sc = make_scenario(args.map, args.seed, map_seed=args.map_seed, start=args.start,
+                           goal=args.goal, **obstacles)
     planner_kw = {}
     if args.planner == "hybrid-astar":
         planner_kw = dict(heading_bins=args.heading_bins, arc_length=args.arc_length,
@@ -411,7 +416,7 @@ def run(args) -> int:
                      "start": list(sc.workspace.start), "goal": list(sc.workspace.goal),
                      "cell_size": sc.workspace.cell_size, "planner": args.planner,
                      "seed": args.seed, "map_seed": args.map_seed, "obstacles": obstacles,
-                     "robot": {"wheelbase": c.wheelbase, "max_steer_deg": math.degrees(c.max_steer),
+                     "robot": {"wheelbase": c.wheelbase, "max_steer_deg": round(math.degrees(c.max_steer), 6),
                                "speed": c.speed, "radius": c.radius,
                                "sensor_range": robot.sensor_range, "fov_deg": robot.fov},
                      "dt": settings.dt},
