@@ -446,3 +446,15 @@ def test_help_names_the_papers_not_the_seeds():
     joined = "\n".join(texts)
     assert "seeds'" not in joined
     assert "Ahmed & Deb" in joined
+
+
+def test_heading_on_a_ros_map_is_a_map_frame_yaw(data_dir, tmp_path):
+    path = data_dir / "ros/lse_arena/lse_arena.yaml"
+    out = tmp_path / "h"
+    # 90 degrees: north in the map frame, i.e. up the image
+    assert main(["plan", str(path), "--start", "50,10", "--goal", "10,12", "--planner",
+                 "hybrid-astar", "--radius", "0.05", "--wheelbase", "0.2", "--heading", "90",
+                 "--out", str(out), "--quiet", "--no-plots"]) == 0
+    rec = json.loads((out / "paths.json").read_text())[0]
+    assert rec["world_poses"][0][2] == pytest.approx(math.pi / 2)
+    assert rec["poses"][0][2] == pytest.approx(-math.pi / 2)      # planner frame: y down

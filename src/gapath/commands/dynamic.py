@@ -68,7 +68,8 @@ def add_planner_arguments(parser) -> None:
     _add(parser, "--speed", type=float, default=1.0,
          help="robot speed, world units per second (default: %(default)s)")
     _add(parser, "--heading", type=float, default=None,
-         help="start heading in degrees from +x (east) towards +y (south); default along "
+         help="start heading in degrees from +x (east) towards +y (south, down the map); on a "
+              "ROS map counter-clockwise from the map frame's +x (ROS yaw); default along "
               "the first steps of the grid shortest path")
     _add(parser, "--heading-bins", type=int, default=72,
          help="hybrid A*: heading bins of the discrete states (default: %(default)s)")
@@ -117,6 +118,15 @@ def cli_vocabulary():
         if m is None or m.group(1) not in FLAG_NAMES:
             raise
         raise ConfigError(FLAG_NAMES[m.group(1)] + message[len(m.group(1)):]) from None
+
+
+def planner_heading(workspace, degrees: float) -> float:
+    """The planners' heading (radians, from +x towards +y = down the map) of
+    a ``--heading`` in degrees: taken as is on grid maps, as a yaw
+    (counter-clockwise, y up) in the map frame of a ROS map."""
+    theta = math.radians(float(degrees))
+    frame = getattr(workspace, "frame", None)
+    return theta if frame is None else frame.yaw - theta
 
 
 def car_from_args(args):
@@ -237,7 +247,7 @@ def _plan_with(name, workspace, args, car) -> PlanOutcome:
         start = None
         if heading is not None:
             sr, sc = workspace.start
-            start = (sc * cs, sr * cs, math.radians(float(heading)))
+            start = (sc * cs, sr * cs, planner_heading(workspace, heading))
         res = planner.plan(start)
         poses = np.asarray(res.poses)
         info = {"expansions": res.expansions, "reached": res.reached, "cost": res.cost,
@@ -291,7 +301,10 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
         _base(workspace, ax)
         p = outcome.poses
         ax.plot(p[:, 0], p[:, 1], "-", color="tab:blue", lw=2)
-        ax.set_title(f"{outcome.planner}: length {outcome.objectives['length']:.2f}, "
+        from gapath.plotting import length_unit
+
+        ax.set_title(f"{outcome.planner}: length {outcome.objectives['length']:.2f} "
+                     f"{length_unit(workspace)}, "
                      f"turning {outcome.objectives['turning']:.2f} rad", fontsize=9)
         atomic_write(out / "paths.png", png_bytes(ax))
         files.append(out / "paths.png")
@@ -396,7 +409,7 @@ def run(args) -> int:
         planner = make_planner(args.planner, **planner_kw)
         start = sc.start
         if args.heading is not None:
-            start = (start[0], start[1], math.radians(args.heading))
+            start = (start[0], start[1], planner_heading(sc.workspace, args.heading))
         res = simulate(sc.workspace, planner, robot, sc.stationary, sc.moving, settings, start,
                        args.seed)
     out = Path(args.out)
