@@ -82,7 +82,9 @@ def movingai_workspace(name):
     for sc in load_scenarios(scen_file):
         if abs(sc.start[1] - sc.goal[1]) < 16:
             continue
-        ws = load_movingai(sc.resolve_map(), sc.start, sc.goal)
+        # corner_cutting=True: the rule these figures were recorded with (before
+        # MovingAI maps defaulted to MovingAI's own rule)
+        ws = load_movingai(sc.resolve_map(), sc.start, sc.goal, corner_cutting=True)
         try:
             return ws, monotone_front(ws), sc.line
         except NoPathError:

@@ -2,8 +2,8 @@
 
 * MovingAI: a deterministic sample of every ``.scen`` file under
   ``movingai/mapf`` and ``movingai/grid`` (every 25th line; every 100th for
-  the files with more than 2000 lines), maps loaded with
-  ``corner_cutting=False``; cost == column 9 within
+  the files with more than 2000 lines), maps loaded with their default rule
+  (MovingAI's: no corner cutting); cost == column 9 within
   ``abs(a - b) <= 1e-5 * max(1, b)`` (data/README.md).
 * Agreement with a brute-force Dijkstra (plain Python) on random small grids,
   both corner rules, with and without a cost layer.
@@ -51,7 +51,8 @@ def _load_movingai_sample(scen_path: Path):
         return _read_movingai_fallback(scen_path)
     scens = load_scenarios(scen_path)
     ref = next(s for s in scens if s.start != s.goal)
-    ws = load_movingai(ref.resolve_map(), ref.start, ref.goal, corner_cutting=False)
+    ws = load_movingai(ref.resolve_map(), ref.start, ref.goal)   # MovingAI's rule by default
+    assert ws.corner_cutting is False
     return ws.occ, [(s.start, s.goal, s.optimal) for s in scens]
 
 

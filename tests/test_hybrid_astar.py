@@ -182,7 +182,7 @@ def test_bad_settings_raise_config_error(wall_ws):
     with pytest.raises(ConfigError):
         HybridAStar(wall_ws, car="car")
     planner = HybridAStar(wall_ws)
-    with pytest.raises(ConfigError, match="start pose"):
+    with pytest.raises(ConfigError, match="start cell ROW,COL 8,11 heading 0 deg is in collision"):
         planner.plan((11.0, 8.0, 0.0))              # inside the wall
     with pytest.raises(ConfigError, match="goal"):
         planner.plan(None, (11.0, 8.0))

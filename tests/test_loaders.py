@@ -269,7 +269,9 @@ def test_save_movingai_round_trip(tmp_path, ws):
     assert text.startswith("type octile\nheight 7\nwidth 9\nmap\n")
     assert text.count("@") == 20 and "\r" not in text
     again = load_movingai(path, ws.start, ws.goal)
-    assert again == ws
+    assert again.corner_cutting is False            # MovingAI's rule, whatever was saved
+    assert again == ws.replace(corner_cutting=False)
+    assert load_movingai(path, ws.start, ws.goal, corner_cutting=True) == ws
     save_movingai(ws.occ.astype(int), tmp_path / "array.map")
     assert (tmp_path / "array.map").read_text() == text
 
@@ -666,3 +668,59 @@ def test_from_array_lists_and_errors():
     with pytest.raises(ConfigError) as exc_info:
         from_array([[0, 0], [1, 0]])
     assert_error(exc_info, "array", "start (1, 0)", "obstacle")
+
+
+# ---------------------------------------------------------------------------
+# the corner rule of each source, and the world frame of ROS maps
+# ---------------------------------------------------------------------------
+
+def test_corner_rule_follows_the_source(tmp_path, data):
+    from gapath.loaders import CORNER_RULES, corner_rule
+
+    grid = np.zeros((3, 4), bool)
+    np.save(tmp_path / "g.npy", grid)
+    save_movingai(grid, tmp_path / "g.map")
+    write(tmp_path, "g.txt", "....\n....\n....\n")
+    Image.fromarray(np.full((3, 4), 254, np.uint8)).save(tmp_path / "g.png")
+    write(tmp_path, "g.yaml", "image: g.png\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n"
+                              "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    expected = {"g.map": False, "g.yaml": False, "g.png": False, "g.txt": True, "g.npy": True}
+    for name, rule in expected.items():
+        path = tmp_path / name
+        assert load_map(path).corner_cutting is rule, name
+        assert corner_rule(name)[0] is rule
+        for override in (True, False):
+            assert load_map(path, corner_cutting=override).corner_cutting is override
+    assert load_movingai(tmp_path / "g.map").corner_cutting is False
+    assert load_ros(tmp_path / "g.yaml").corner_cutting is False
+    assert load_image(tmp_path / "g.png").corner_cutting is False
+    assert load_text(tmp_path / "g.txt").corner_cutting is True
+    assert load_npy(tmp_path / "g.npy").corner_cutting is True
+    assert from_array(grid).corner_cutting is True
+    assert default_workspace().corner_cutting is True       # stored as a .map, SPEC's rule
+    assert CORNER_RULES["movingai"] is False and CORNER_RULES["text"] is True
+    real = data / "movingai/mapf/random-32-32-20.map"
+    start, goal = free_corners(load_occupancy(real))
+    assert load_map(real, start, goal).corner_cutting is False
+    with pytest.raises(MapError, match="unknown map extension"):
+        corner_rule("g.bmp")
+
+
+def test_ros_maps_have_a_world_frame_others_do_not(tmp_path, data):
+    from gapath.loaders import map_frame
+
+    path = data / "ros/turtlebot3_world/map.yaml"
+    frame = map_frame(path)
+    assert (frame.x, frame.y, frame.yaw, frame.resolution) == (-10.0, -10.0, 0.0, 0.05)
+    assert (frame.height, frame.width) == (384, 384)
+    start, goal = free_corners(load_occupancy(path))
+    ws = load_ros(path, start, goal)
+    assert ws.frame == frame and ws.replace(name="x").frame == frame
+    assert ws.frame.extent() == pytest.approx((-10.0, -10.0, 9.2, 9.2))
+    # the world origin (0, 0) is 10 m right of and 10 m above the lower-left corner
+    assert frame.to_cell(0.0, 0.0) == (383 - 200, 200)
+    with pytest.raises(ConfigError, match="outside the map"):
+        frame.to_cell(-10.01, 0.0)
+    assert map_frame(data / "movingai/grid/arena.map") is None
+    assert load_map(data / "ros/turtlebot3_world/map.pgm", start, goal).frame is None
+    assert default_workspace().frame is None

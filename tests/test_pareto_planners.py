@@ -295,7 +295,8 @@ def test_cli_plan(tmp_path, data_dir):
     from gapath.cli import main
 
     out = tmp_path / "plan"
-    rc = main(["plan", "default", "--planner", "dstar-po", "--dem",
+    rc = main(["plan", "default", "--planner", "dstar-po", "--layers", "elevation,solar,risk",
+               "--dem",
                str(data_dir / "dem" / "mars_dtm.npy"), "--dem-method", "reflect",
                "--risk", "10,12", "--out", str(out), "--quiet"])
     assert rc == 0
@@ -314,4 +315,5 @@ def test_cli_plan(tmp_path, data_dir):
     assert (tmp_path / "l" / "front.csv").read_text().splitlines()[0] == "length"
     # bad input: one message, exit status 2
     assert main(["plan", "default", "--layers", "height", "--out", str(tmp_path / "x")]) == 2
-    assert main(["plan", "default", "--risk", "99,99", "--out", str(tmp_path / "x")]) == 2
+    assert main(["plan", "default", "--layers", "risk", "--risk", "99,99",
+                 "--out", str(tmp_path / "x")]) == 2

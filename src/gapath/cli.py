@@ -1,6 +1,6 @@
 """The ``gapath`` command line.
 
-``gapath solve MAP ...`` runs the seeds' NSGA-II on a map and writes
+``gapath solve MAP ...`` runs Ahmed & Deb's NSGA-II on a map and writes
 ``front.csv``, ``paths.json``, ``summary.json``, ``front.png`` and
 ``paths.png``; ``gapath demo`` does so on the bundled scenario.
 
@@ -20,29 +20,52 @@ import os
 import sys
 from pathlib import Path
 
-from gapath.errors import (EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_NO_RESULT,
-                           ConfigError, GapathError, MapError, NoPathError)
+from gapath.errors import (
+    EXIT_BAD_INPUT,
+    EXIT_INTERNAL,
+    EXIT_INTERRUPTED,
+    EXIT_NO_RESULT,
+    ConfigError,
+    GapathError,
+    MapError,
+    NoPathError,
+)
 
 
 def _cell(text: str) -> tuple[int, int]:
-    try:
-        r, c = (int(v) for v in text.split(","))
-    except ValueError:
-        raise argparse.ArgumentTypeError(f"expected ROW,COL (two integers), got {text!r}") from None
-    return r, c
+    from gapath.commands._args import cell
+
+    return cell(text)
 
 
-def _load(map_arg: str, start, goal, corner_cutting):
-    from gapath.workspace import default_workspace
+def _load(map_arg, start=None, goal=None, corner_cutting=None):
+    """The workspace of the map arguments: ``_load(args)`` with a parsed
+    namespace (MAP, --start/--goal, --start-xy/--goal-xy, --scen, corner
+    rule: :func:`gapath.commands._args.load_workspace`), or
+    ``_load(MAP, start, goal, corner_cutting)``."""
+    from gapath.commands._args import load_workspace
 
-    kw = {} if corner_cutting is None else {"corner_cutting": corner_cutting}
-    if map_arg == "default":
-        ws = default_workspace()
-        changes = {k: v for k, v in (("start", start), ("goal", goal)) if v is not None}
-        return ws.replace(**changes, **kw) if changes or kw else ws
-    from gapath.loaders import load_map
+    if isinstance(map_arg, argparse.Namespace):
+        return load_workspace(map_arg).workspace
+    args = argparse.Namespace(map=map_arg, start=start, goal=goal, corner_cutting=corner_cutting,
+                              start_xy=None, goal_xy=None, scen=None)
+    return load_workspace(args).workspace
 
-    return load_map(map_arg, start=start, goal=goal, **kw)
+
+def _solve(args) -> int:
+    """``gapath solve``: the map arguments, the run, then the corner rule and
+    the ``--scen`` optimum in the report and in ``summary.json``."""
+    from gapath.commands._args import load_workspace, shortest_in_csv, update_summary
+
+    choice = load_workspace(args)
+    code = _run(args, choice.workspace)
+    shortest = shortest_in_csv(Path(args.out) / "front.csv") if choice.scenario else None
+    update_summary(args.out, {"scenario": choice.scenario_record(shortest)}, choice.settings())
+    if not args.quiet:
+        print(choice.corner_line())
+        if choice.scenario is not None:
+            print(choice.scenario_line(shortest, "shortest length on the front"))
+    return code
 
 
 def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str | None) -> None:
@@ -62,8 +85,8 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
     p.add_argument("--seed-from", choices=("weighted", "exact", "astar", "none"), default="weighted",
                    help="initial population: shortest, safest and weighted-sum monotone paths "
                         "plus random ones (weighted), the exact monotone front (exact), A* "
-                        "paths projected onto monotone paths (astar), or all random as in the "
-                        "seeds' protocol (none) (default: %(default)s)")
+                        "paths projected onto monotone paths (astar), or all random as in "
+                        "Ahmed & Deb's protocol (none) (default: %(default)s)")
     p.add_argument("--engine", choices=("fast", "pymoo"), default="fast",
                    help="NSGA-II engine: FastNSGA2 on arrays (fast) or stock pymoo NSGA2 (pymoo); "
                         "same results for the same seed (default: %(default)s)")
@@ -102,18 +125,13 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("solve", help="run NSGA-II on a map and write its Pareto front")
-    p.add_argument("map", help="map file (.map, .yaml, .txt, .grid, .npy, .pgm, .png) "
-                               "or 'default' for the bundled 32x32 scenario")
-    p.add_argument("--start", type=_cell, help="start cell ROW,COL (default: bottom-left)")
-    p.add_argument("--goal", type=_cell, help="goal cell ROW,COL (default: top-right)")
-    cc = p.add_mutually_exclusive_group()
-    cc.add_argument("--corner-cutting", dest="corner_cutting", action="store_true", default=None,
-                    help="allow diagonal moves past blocked corners (the default)")
-    cc.add_argument("--no-corner-cutting", dest="corner_cutting", action="store_false",
-                    help="a diagonal move needs both orthogonal neighbours free (MovingAI)")
-    _add_run_options(p, pop=500, gen=500, out="gapath-out")
+    from gapath.commands._args import add_map_arguments
 
-    d = sub.add_parser("demo", help="the bundled scenario with the seeds' settings")
+    add_map_arguments(p)
+    _add_run_options(p, pop=500, gen=500, out="gapath-out")
+    p.set_defaults(func=_solve)
+
+    d = sub.add_parser("demo", help="the bundled scenario with Ahmed & Deb's settings")
     _add_run_options(d, pop=500, gen=500, out="gapath-demo")
 
     from gapath.commands import register_all
@@ -423,13 +441,9 @@ def _dispatch(args) -> int:
         check_output_dir(out)
     if getattr(args, "func", None) is not None:
         return args.func(args)
-    if args.command == "solve":
-        workspace = _load(args.map, args.start, args.goal, args.corner_cutting)
-    else:
-        from gapath.workspace import default_workspace
+    from gapath.workspace import default_workspace   # demo: every other command has its func
 
-        workspace = default_workspace()
-    return _run(args, workspace)
+    return _run(args, default_workspace())
 
 
 def _usage_exit(exc: SystemExit) -> SystemExit:

@@ -34,8 +34,15 @@ def _base(workspace, ax, stationary=(), appeared=None):
     ax.plot([gc * cs], [gr * cs], "*", color="gold", mec="k", ms=13, zorder=5)
     ax.set_xlim(-0.5 * cs, (w - 0.5) * cs)
     ax.set_ylim((h - 0.5) * cs, -0.5 * cs)
-    ax.set_xticks([])
-    ax.set_yticks([])
+    from gapath.plotting import label_map_axes
+
+    label_map_axes(ax, workspace, scale=cs, unit=_unit(workspace))
+
+
+def _unit(workspace) -> str:
+    """Length unit of a run: the simulation's world units are metres
+    (NO-MOPP's speeds in m/s, a cell ``cell_size`` metres wide)."""
+    return "m"
 
 
 def plot_run(workspace, result, stationary=(), ax=None, title=None, moving=True):
@@ -61,8 +68,8 @@ def plot_run(workspace, result, stationary=(), ax=None, title=None, moving=True)
         for k in range(result.obstacles.shape[1]):
             ob = result.obstacles[:, k]
             ax.plot(ob[:, 0], ob[:, 1], "-", color="tab:green", lw=0.8, alpha=0.6)
-    ax.set_title(title or f"{result.planner}: {result.reason}, {result.path_length:.1f} m",
-                 fontsize=9)
+    ax.set_title(title or f"{result.planner}: {result.reason}, {result.path_length:.1f} "
+                          f"{_unit(workspace)}", fontsize=9)
     ax.legend(fontsize=7, loc="lower right")
     return ax
 
@@ -78,7 +85,7 @@ def plot_paths(workspace, results: dict, stationary=(), ax=None, title=None):
         tr = res.trajectory
         mark = "" if res.success else f" ({res.reason})"
         ax.plot(tr[:, 1], tr[:, 2], "-", lw=1.8, color=PLANNER_COLOURS.get(name),
-                label=f"{name}: {res.path_length:.1f} m{mark}")
+                label=f"{name}: {res.path_length:.1f} {_unit(workspace)}{mark}")
     ax.set_title(title or workspace.name, fontsize=9)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     return ax

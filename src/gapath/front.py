@@ -1,6 +1,6 @@
 """Turning a population into the front a user sees.
 
-The seeds' post-processing: keep the feasible, non-dominated individuals and,
+Ahmed & Deb's post-processing: keep the feasible, non-dominated individuals and,
 among those that share an objective vector (SPEC's tolerance), the smoothest
 path.
 """

@@ -21,9 +21,16 @@ Choices shared by every loader
   an obstacle, cells are ``(row, col)``; MovingAI's ``(x, y)`` is ``(col, row)``.
 * ``start`` and ``goal`` default as in :class:`Workspace` (bottom-left,
   top-right); a text grid may mark them with ``S`` and ``G`` instead.
-* ``corner_cutting`` defaults to True everywhere (the SPEC default). The
-  optimal lengths of MovingAI ``.scen`` files assume *no* corner cutting, so
-  pass ``corner_cutting=False`` to validate against them.
+* ``corner_cutting=None`` (every loader's default) means the rule of the
+  map's source (SPEC, :data:`CORNER_RULES`): a MovingAI ``.map``, a ROS
+  map_server map and an occupancy image follow ``corner_cutting=False`` (a
+  diagonal move needs both orthogonal neighbours free: the optimal lengths of
+  MovingAI ``.scen`` files assume it, and a robot cannot pass between two
+  diagonal obstacles); text grids, ``.npy`` files and arrays keep
+  ``corner_cutting=True`` (Ahmed & Deb's grids). True or False overrides.
+* A ROS map keeps its world frame (:class:`MapFrame`, ``workspace.frame``:
+  origin and resolution from the yaml); other formats have none
+  (``workspace.frame is None``).
 * ``cell_size`` defaults to 1.0, except for ROS maps, where it is the yaml
   ``resolution`` (metres per cell). An explicit ``cell_size`` always wins.
 * ``unknown`` says what to do with the unknown cells of an occupancy image:
@@ -52,7 +59,10 @@ from gapath.errors import ConfigError, MapError
 from gapath.workspace import Workspace
 
 __all__ = [
+    "CORNER_RULES",
+    "MapFrame",
     "Scenario",
+    "corner_rule",
     "from_array",
     "load_image",
     "load_map",
@@ -62,6 +72,7 @@ __all__ = [
     "load_ros",
     "load_scenarios",
     "load_text",
+    "map_frame",
     "save_movingai",
 ]
 
@@ -70,6 +81,131 @@ UNKNOWN_POLICIES = ("blocked", "free")
 
 #: map_server defaults, used for an image loaded without a yaml file.
 ROS_DEFAULTS = dict(negate=False, occupied_thresh=0.65, free_thresh=0.196)
+
+#: The corner rule of each map source when ``corner_cutting`` is not given
+#: (SPEC): ``False`` = a diagonal move needs both orthogonal neighbours free.
+CORNER_RULES = {
+    "movingai": False,   # MovingAI's rule: its .scen optima assume it
+    "ros": False,        # a robot cannot pass between two diagonal obstacles
+    "image": False,      # an occupancy image is a robot map (map_server defaults)
+    "text": True,        # SPEC's default (Ahmed & Deb's grids)
+    "npy": True,
+    "array": True,
+}
+
+_SOURCE_LABELS = {"movingai": "MovingAI .map", "ros": "ROS map_server map",
+                  "image": "occupancy image", "text": "text grid", "npy": ".npy array",
+                  "array": "array"}
+
+
+def corner_rule(source: str) -> tuple[bool, str]:
+    """The default corner rule of a map source and a phrase naming it.
+
+    Parameters
+    ----------
+    source : str
+        A key of :data:`CORNER_RULES`, or a map file name (its extension
+        decides, as in :func:`load_map`).
+
+    Returns
+    -------
+    (bool, str)
+        ``corner_cutting`` and e.g. ``"the rule of a MovingAI .map"``.
+
+    Raises
+    ------
+    MapError
+        On an unknown extension.
+
+    Examples
+    --------
+    >>> corner_rule("arena.map")
+    (False, 'the rule of a MovingAI .map')
+    >>> corner_rule("grid.txt")[0]
+    True
+    """
+    key = source if source in CORNER_RULES else _SOURCES[_reader_for(Path(source))]
+    return CORNER_RULES[key], f"the rule of a {_SOURCE_LABELS[key]}"
+
+
+@dataclass(frozen=True)
+class MapFrame:
+    """Where the cells of a ROS map lie in its world frame (metres).
+
+    map_server's convention: ``origin = (x, y, yaw)`` is the pose of the
+    lower-left corner of the map (the corner of the *last* image row's first
+    pixel, since image row 0 is the top), ``resolution`` metres per cell; x
+    grows along the image columns and y *up* the image (towards row 0),
+    rotated by ``yaw`` about the origin.
+
+    Attributes
+    ----------
+    x, y, yaw : float
+        The yaml ``origin``.
+    resolution : float
+        Metres per cell.
+    height, width : int
+        Rows and columns of the grid.
+
+    Examples
+    --------
+    >>> f = MapFrame(-10.0, -10.0, 0.0, 0.05, 384, 384)
+    >>> f.to_world([(383, 0), (0, 383)]).round(3).tolist()
+    [[-9.975, -9.975], [9.175, 9.175]]
+    >>> f.to_cell(0.0, 0.0)
+    (183, 200)
+    """
+
+    x: float
+    y: float
+    yaw: float
+    resolution: float
+    height: int
+    width: int
+
+    def to_world(self, cells) -> np.ndarray:
+        """World points ``(x, y)`` of cell centres ``(row, col)``, an (n, 2) array."""
+        rc = np.asarray(cells, dtype=np.float64).reshape(-1, 2)
+        u = (rc[:, 1] + 0.5) * self.resolution
+        v = (self.height - rc[:, 0] - 0.5) * self.resolution
+        cos, sin = math.cos(self.yaw), math.sin(self.yaw)
+        return np.column_stack([self.x + cos * u - sin * v, self.y + sin * u + cos * v])
+
+    def to_cell(self, x: float, y: float, name: str = "point") -> tuple[int, int]:
+        """The cell ``(row, col)`` holding the world point ``(x, y)``.
+
+        Raises
+        ------
+        ConfigError
+            If the point is not finite or lies outside the map; the message
+            names ``name`` and the map's extent.
+        """
+        if not (math.isfinite(x) and math.isfinite(y)):
+            raise ConfigError(f"{name} must be finite metres X,Y, got {x!r},{y!r}")
+        cos, sin = math.cos(self.yaw), math.sin(self.yaw)
+        dx, dy = x - self.x, y - self.y
+        u, v = cos * dx + sin * dy, -sin * dx + cos * dy
+        col, up = math.floor(u / self.resolution), math.floor(v / self.resolution)
+        if not (0 <= col < self.width and 0 <= up < self.height):
+            (x0, y0), (x1, y1) = self.extent()[:2], self.extent()[2:]
+            raise ConfigError(f"{name} {x:g},{y:g} is outside the map, which covers x "
+                              f"{x0:g}..{x1:g} m and y {y0:g}..{y1:g} m"
+                              + (f" (yaw {math.degrees(self.yaw):.1f} deg)" if self.yaw else ""))
+        return self.height - 1 - up, col
+
+    def extent(self) -> tuple[float, float, float, float]:
+        """``(x_min, y_min, x_max, y_max)`` of the map in the frame (yaw 0:
+        the image's borders)."""
+        w, h = self.width * self.resolution, self.height * self.resolution
+        cos, sin = math.cos(self.yaw), math.sin(self.yaw)
+        xs = [self.x + cos * u - sin * v for u, v in ((0, 0), (w, 0), (0, h), (w, h))]
+        ys = [self.y + sin * u + cos * v for u, v in ((0, 0), (w, 0), (0, h), (w, h))]
+        return min(xs), min(ys), max(xs), max(ys)
+
+    def to_json(self) -> dict:
+        """The frame as ``summary.json`` stores it."""
+        return {"origin": [self.x, self.y, self.yaw], "resolution": self.resolution,
+                "units": "m"}
 
 
 # ---------------------------------------------------------------------------
@@ -134,6 +270,8 @@ class _Grid:
     cell_size: float | None = None      # from the file (ROS resolution)
     start: tuple[int, int] | None = None  # marked in the file (text S)
     goal: tuple[int, int] | None = None   # marked in the file (text G)
+    corner_cutting: bool = True          # the source's rule (CORNER_RULES)
+    frame: MapFrame | None = None        # world frame (ROS maps)
 
     def occupancy(self, policy: str) -> np.ndarray:
         """Obstacles, unknown cells included when ``policy`` is "blocked"."""
@@ -147,11 +285,12 @@ def _check_unknown(unknown) -> None:
         raise ConfigError(f"unknown must be 'blocked' or 'free', got {unknown!r}")
 
 
-def _workspace(occ, source, start, goal, *, corner_cutting, cell_size, name) -> Workspace:
+def _workspace(occ, source, start, goal, *, corner_cutting, cell_size, name,
+               frame=None) -> Workspace:
     """Build the Workspace, naming ``source`` in its errors."""
     try:
         return Workspace(occ, start, goal, cell_size=cell_size,
-                         corner_cutting=corner_cutting, name=name)
+                         corner_cutting=corner_cutting, name=name, frame=frame)
     except (ConfigError, MapError) as exc:
         message = str(exc)
         defaulted = [label for label, cell in (("start", start), ("goal", goal))
@@ -172,9 +311,9 @@ def _load(reader, path, start, goal, *, corner_cutting, cell_size, unknown, name
         grid.occupancy(unknown), path,
         grid.start if start is None else start,
         grid.goal if goal is None else goal,
-        corner_cutting=corner_cutting,
+        corner_cutting=grid.corner_cutting if corner_cutting is None else corner_cutting,
         cell_size=cell_size if cell_size is not None else (grid.cell_size or 1.0),
-        name=path.stem if name is None else name)
+        name=path.stem if name is None else name, frame=grid.frame)
 
 
 # ---------------------------------------------------------------------------
@@ -253,10 +392,10 @@ def _read_movingai(path: Path) -> _Grid:
         raise _map_error(path, f"found {len(rows)} rows, expected {height} (height on line 2)",
                          where)
     codes = _classify(rows, path, 5, _MOVINGAI_LEGEND)
-    return _Grid(blocked=codes == _BLOCKED)
+    return _Grid(blocked=codes == _BLOCKED, corner_cutting=CORNER_RULES["movingai"])
 
 
-def load_movingai(path, start=None, goal=None, *, corner_cutting=True, cell_size=None,
+def load_movingai(path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
                   unknown="blocked", name=None) -> Workspace:
     """Load a MovingAI benchmark ``.map`` file.
 
@@ -269,8 +408,10 @@ def load_movingai(path, start=None, goal=None, *, corner_cutting=True, cell_size
     path : str or path-like
     start, goal : (row, col), optional
         Default bottom-left and top-right, as in :class:`Workspace`.
-    corner_cutting : bool, default True
-        Pass False to reproduce the optimal lengths of MovingAI ``.scen`` files.
+    corner_cutting : bool, optional
+        Default False, MovingAI's rule (a diagonal move needs both orthogonal
+        neighbours free), which the optimal lengths of ``.scen`` files
+        assume; True allows diagonal moves past blocked corners.
     cell_size : float, optional
         Default 1.0.
     unknown : {"blocked", "free"}
@@ -359,8 +500,9 @@ class Scenario:
     start, goal : (row, col)
         MovingAI ``(x, y)`` swapped into SPEC order ``(y, x)``.
     optimal : float
-        Shortest 8-connected length **without corner cutting** (load the map
-        with ``corner_cutting=False`` to compare).
+        Shortest 8-connected length **without corner cutting** (the default
+        rule of a MovingAI ``.map``, so load the map without
+        ``corner_cutting`` to compare).
     source : Path
         The ``.scen`` file; ``line`` its 1-based line number.
     """
@@ -387,8 +529,7 @@ class Scenario:
         Examples
         --------
         >>> sc = load_scenarios("arena.map.scen")[0]                   # doctest: +SKIP
-        >>> ws = load_movingai(sc.resolve_map(), sc.start, sc.goal,  # doctest: +SKIP
-        ...                    corner_cutting=False)
+        >>> ws = load_movingai(sc.resolve_map(), sc.start, sc.goal)  # doctest: +SKIP
         """
         if folder is None:
             folder = Path(self.source).parent if self.source is not None else Path(".")
@@ -484,12 +625,12 @@ def _read_text(path: Path) -> _Grid:
         raise _map_error(path, "empty map, expected rows of '.' (free) and '#' or '@' (blocked)")
     _check_row_lengths(rows, path, 1, len(rows[0]), "the length of line 1")
     codes = _classify(rows, path, 1, _TEXT_LEGEND)
-    return _Grid(blocked=codes == _BLOCKED,
+    return _Grid(blocked=codes == _BLOCKED, corner_cutting=CORNER_RULES["text"],
                  start=_mark(codes, _START, "S", path, 1),
                  goal=_mark(codes, _GOAL, "G", path, 1))
 
 
-def load_text(path, start=None, goal=None, *, corner_cutting=True, cell_size=None,
+def load_text(path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
               unknown="blocked", name=None) -> Workspace:
     """Load a plain text grid.
 
@@ -503,7 +644,10 @@ def load_text(path, start=None, goal=None, *, corner_cutting=True, cell_size=Non
     path : str or path-like
     start, goal : (row, col), optional
         Default: the ``S``/``G`` marks, else bottom-left / top-right.
-    corner_cutting, cell_size, unknown, name
+    corner_cutting : bool, optional
+        Default True (SPEC's default for text grids); False for MovingAI's
+        rule.
+    cell_size, unknown, name
         As in :func:`load_movingai`.
 
     Returns
@@ -553,10 +697,10 @@ def _read_npy(path: Path) -> _Grid:
         raise _map_error(path, f"not a readable .npy array ({exc})") from None
     if not isinstance(array, np.ndarray):
         raise _map_error(path, "is an .npz archive, expected a single .npy array")
-    return _Grid(blocked=_check_array(array, path))
+    return _Grid(blocked=_check_array(array, path), corner_cutting=CORNER_RULES["npy"])
 
 
-def load_npy(path, start=None, goal=None, *, corner_cutting=True, cell_size=None,
+def load_npy(path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
              unknown="blocked", name=None) -> Workspace:
     """Load a NumPy ``.npy`` occupancy array (True/1 = obstacle).
 
@@ -566,7 +710,9 @@ def load_npy(path, start=None, goal=None, *, corner_cutting=True, cell_size=None
     Parameters
     ----------
     path : str or path-like
-    start, goal, corner_cutting, cell_size, unknown, name
+    corner_cutting : bool, optional
+        Default True (SPEC's default for arrays); False for MovingAI's rule.
+    start, goal, cell_size, unknown, name
         As in :func:`load_movingai`.
 
     Returns
@@ -591,7 +737,7 @@ def load_npy(path, start=None, goal=None, *, corner_cutting=True, cell_size=None
                  cell_size=cell_size, unknown=unknown, name=name)
 
 
-def from_array(array, start=None, goal=None, *, corner_cutting=True, cell_size=1.0,
+def from_array(array, start=None, goal=None, *, corner_cutting=None, cell_size=1.0,
                name="array") -> Workspace:
     """A workspace from an (H, W) array, True/1 for obstacles.
 
@@ -601,7 +747,9 @@ def from_array(array, start=None, goal=None, *, corner_cutting=True, cell_size=1
     Parameters
     ----------
     array : (H, W) array-like of bool, or of integers / floats 0 and 1
-    start, goal, corner_cutting, cell_size, name
+    corner_cutting : bool, optional
+        Default True (SPEC's default for arrays).
+    start, goal, cell_size, name
         As in :class:`Workspace`.
 
     Returns
@@ -621,6 +769,8 @@ def from_array(array, start=None, goal=None, *, corner_cutting=True, cell_size=1
     >>> from_array([[0, 0], [1, 0]], start=(1, 1), goal=(0, 0)).n_obstacles
     1
     """
+    if corner_cutting is None:
+        corner_cutting = CORNER_RULES["array"]
     return _workspace(_check_array(array, "array"), "array", start, goal,
                       corner_cutting=corner_cutting, cell_size=cell_size, name=name)
 
@@ -669,10 +819,11 @@ def _threshold(grey: np.ndarray, alpha: np.ndarray, *, negate: bool, occupied_th
 
 
 def _read_plain_image(path: Path) -> _Grid:
-    return _threshold(*_read_image(path), **ROS_DEFAULTS)
+    grid = _threshold(*_read_image(path), **ROS_DEFAULTS)
+    return replace(grid, corner_cutting=CORNER_RULES["image"])
 
 
-def load_image(path, start=None, goal=None, *, corner_cutting=True, cell_size=None,
+def load_image(path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
                unknown="blocked", name=None) -> Workspace:
     """Load an occupancy image (``.pgm``, ``.png``) with map_server defaults.
 
@@ -684,7 +835,10 @@ def load_image(path, start=None, goal=None, *, corner_cutting=True, cell_size=No
     Parameters
     ----------
     path : str or path-like
-    start, goal, corner_cutting, cell_size, name
+    corner_cutting : bool, optional
+        Default False, as a ROS map (a robot cannot pass between two
+        diagonal obstacles).
+    start, goal, cell_size, name
         As in :func:`load_movingai`.
     unknown : {"blocked", "free"}, default "blocked"
         What the unknown (grey) pixels become.
@@ -751,8 +905,8 @@ def _read_ros(path: Path) -> _Grid:
                         lambda v: isinstance(v, str) and v.strip())
     resolution = _yaml_value(meta, "resolution", path, "a positive number (metres per cell)",
                              lambda v: _is_number(v) and v > 0)
-    _yaml_value(meta, "origin", path, "[x, y, yaw]",
-                lambda v: isinstance(v, list) and len(v) == 3 and all(map(_is_number, v)))
+    origin = _yaml_value(meta, "origin", path, "[x, y, yaw]",
+                         lambda v: isinstance(v, list) and len(v) == 3 and all(map(_is_number, v)))
     negate = _yaml_value(meta, "negate", path, "0 or 1", lambda v: v in (0, 1))
     thresholds = {key: _yaml_value(meta, key, path, "a number in [0, 1]",
                                    lambda v: _is_number(v) and 0 <= v <= 1)
@@ -765,17 +919,20 @@ def _read_ros(path: Path) -> _Grid:
     except MapError as exc:
         raise _map_error(path, f"key 'image': {exc}") from None
     grid = _threshold(grey, alpha, negate=bool(negate), mode=mode, **thresholds)
-    return replace(grid, cell_size=float(resolution))
+    h, w = grey.shape
+    frame = MapFrame(*map(float, origin), float(resolution), int(h), int(w))
+    return replace(grid, cell_size=float(resolution), corner_cutting=CORNER_RULES["ros"],
+                   frame=frame)
 
 
-def load_ros(yaml_path, start=None, goal=None, *, corner_cutting=True, cell_size=None,
+def load_ros(yaml_path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
              unknown="blocked", name=None) -> Workspace:
     """Load a ROS map_server map (``.yaml`` description + image).
 
     Required keys, as map_server reads them: ``image`` (relative to the yaml
     file, or absolute), ``resolution`` (metres per pixel, becomes
-    ``cell_size``), ``origin`` (checked, not used: the workspace has no world
-    frame), ``negate``, ``occupied_thresh``, ``free_thresh``; optional
+    ``cell_size``), ``origin`` (with the resolution, the workspace's
+    :class:`MapFrame`, ``workspace.frame``), ``negate``, ``occupied_thresh``, ``free_thresh``; optional
     ``mode`` ``trinary`` (default) or ``scale``. A pixel of grey level ``v``
     has occupancy ``p = (255 - v) / 255`` (``v / 255`` with ``negate: 1``):
     occupied if ``p > occupied_thresh``, free if ``p < free_thresh``,
@@ -788,10 +945,12 @@ def load_ros(yaml_path, start=None, goal=None, *, corner_cutting=True, cell_size
     yaml_path : str or path-like
     start, goal : (row, col), optional
         Default bottom-left / top-right; on a mostly unknown map these are
-        usually blocked, so pass them explicitly.
-    corner_cutting : bool, default True
+        usually blocked, so pass them explicitly
+        (:meth:`MapFrame.to_cell` turns metres into cells).
+    corner_cutting : bool, optional
+        Default False: a robot cannot pass between two diagonal obstacles.
     cell_size : float, optional
-        Default: the yaml ``resolution``.
+        Default: the yaml ``resolution`` (the frame keeps the resolution).
     unknown : {"blocked", "free"}, default "blocked"
         What unknown cells become; blocked keeps a planner out of unexplored
         space.
@@ -814,8 +973,10 @@ def load_ros(yaml_path, start=None, goal=None, *, corner_cutting=True, cell_size
     Examples
     --------
     >>> ws = load_ros("lse_arena.yaml", start=(50, 10), goal=(10, 70))  # doctest: +SKIP
-    >>> ws.shape, ws.cell_size                                          # doctest: +SKIP
-    ((60, 80), 0.05)
+    >>> ws.shape, ws.cell_size, ws.corner_cutting                       # doctest: +SKIP
+    ((60, 80), 0.05, False)
+    >>> ws.frame.to_world([ws.start]).round(3).tolist()                # doctest: +SKIP
+    [[0.525, 0.475]]
     """
     return _load(_read_ros, yaml_path, start, goal, corner_cutting=corner_cutting,
                  cell_size=cell_size, unknown=unknown, name=name)
@@ -834,6 +995,10 @@ _READERS = {
 }
 
 
+_SOURCES = {_read_movingai: "movingai", _read_ros: "ros", _read_plain_image: "image",
+            _read_text: "text", _read_npy: "npy"}
+
+
 def _reader_for(path: Path):
     reader = _READERS.get(path.suffix.lower())
     if reader is None:
@@ -843,7 +1008,7 @@ def _reader_for(path: Path):
     return reader
 
 
-def load_map(path, start=None, goal=None, *, corner_cutting=True, cell_size=None,
+def load_map(path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
              unknown="blocked", name=None) -> Workspace:
     """Load a map file, the format chosen by its extension.
 
@@ -857,8 +1022,10 @@ def load_map(path, start=None, goal=None, *, corner_cutting=True, cell_size=None
     path : str or path-like
     start, goal : (row, col), optional
         Default bottom-left / top-right (text grids: their ``S``/``G``).
-    corner_cutting : bool, default True
-        SPEC default; pass False for MovingAI benchmark validation.
+    corner_cutting : bool, optional
+        Default: the rule of the map's source (:data:`CORNER_RULES`): False
+        for MovingAI ``.map``, ROS ``.yaml`` and images, True for text grids
+        and ``.npy``. True or False overrides it.
     cell_size : float, optional
         Default 1.0; for ROS maps the yaml ``resolution``.
     unknown : {"blocked", "free"}, default "blocked"
@@ -881,10 +1048,9 @@ def load_map(path, start=None, goal=None, *, corner_cutting=True, cell_size=None
 
     Examples
     --------
-    >>> ws = load_map("random-32-32-20.map", (31, 31), (0, 0),
-    ...               corner_cutting=False)                  # doctest: +SKIP
-    >>> ws.shape                                             # doctest: +SKIP
-    (32, 32)
+    >>> ws = load_map("random-32-32-20.map", (31, 31), (0, 0))  # doctest: +SKIP
+    >>> ws.shape, ws.corner_cutting                              # doctest: +SKIP
+    ((32, 32), False)
     """
     path = Path(path)
     return _load(_reader_for(path), path, start, goal, corner_cutting=corner_cutting,
@@ -920,3 +1086,24 @@ def load_occupancy(path, *, unknown="blocked") -> np.ndarray:
     _check_unknown(unknown)
     path = Path(path)
     return _reader_for(path)(path).occupancy(unknown)
+
+
+def map_frame(path) -> MapFrame | None:
+    """The world frame of a map file: a :class:`MapFrame` for a ROS
+    ``.yaml``, None for the other formats (they have no world frame).
+
+    Raises
+    ------
+    MapError, ConfigError
+        As :func:`load_map`.
+
+    Examples
+    --------
+    >>> map_frame("lse_arena.yaml").resolution     # doctest: +SKIP
+    0.05
+    >>> map_frame("arena.map") is None             # doctest: +SKIP
+    True
+    """
+    path = Path(path)
+    reader = _reader_for(path)
+    return reader(path).frame if reader is _read_ros else None

@@ -12,6 +12,74 @@ import numpy as np
 #: (label, colour) of the marked paths.
 MARKS = {"shortest": "tab:blue", "safest": "tab:green", "knee": "tab:red"}
 
+#: Units of the objectives in axis labels (``length`` is in the map's units:
+#: see :func:`objective_label`).
+OBJECTIVE_UNITS = {
+    "vulnerability": "obstacle potential, unitless",
+    "smoothness": "total turn, rad",
+    "turning": "total turn, rad",
+    "elevation": "mean normalised elevation, 0-1",
+    "solar": "solar cost summed over the steps",
+    "risk": "mean risk, unitless",
+}
+
+
+def length_unit(workspace=None) -> str:
+    """The unit of lengths on ``workspace``: metres with a world frame (ROS
+    maps), cells when a cell is 1, else cell-size units."""
+    if workspace is None:
+        return "cell-size units"
+    if getattr(workspace, "frame", None) is not None:
+        return "m"
+    return "cells" if workspace.cell_size == 1.0 else f"units of {workspace.cell_size:g} per cell"
+
+
+def objective_label(name: str, workspace=None) -> str:
+    """An axis label with units for objective ``name``.
+
+    Examples
+    --------
+    >>> objective_label("smoothness")
+    'smoothness (total turn, rad)'
+    """
+    if name in ("length", "clearance"):
+        return f"{name} ({length_unit(workspace)})"
+    unit = OBJECTIVE_UNITS.get(name)
+    return f"{name} ({unit})" if unit else name
+
+
+def label_map_axes(ax, workspace, scale: float = 1.0, unit: str | None = None) -> None:
+    """Axis labels (with units) of a map drawn with cell ``(row, col)`` at
+    ``(col * scale, row * scale)``, row 0 at the top.
+
+    A workspace with a world frame (ROS maps) gets ticks in metres in its
+    map frame (x along the columns, y up the image); others are labelled in
+    cells (``scale == 1``) or, with ``scale = cell_size``, in ``unit``
+    (default :func:`length_unit`).
+    """
+    frame = getattr(workspace, "frame", None)
+    if frame is not None and frame.yaw == 0.0:
+        from matplotlib.ticker import MaxNLocator
+
+        x0, y0, x1, y1 = frame.extent()
+        res, h = frame.resolution, frame.height
+        xs = [v for v in MaxNLocator(nbins=6).tick_values(x0, x1) if x0 <= v <= x1]
+        ys = [v for v in MaxNLocator(nbins=6).tick_values(y0, y1) if y0 <= v <= y1]
+        ax.set_xticks([((v - frame.x) / res - 0.5) * scale for v in xs],
+                      [f"{v:g}" for v in xs])
+        ax.set_yticks([(h - (v - frame.y) / res - 0.5) * scale for v in ys],
+                      [f"{v:g}" for v in ys])
+        ax.set_xlabel("x (m, map frame)")
+        ax.set_ylabel("y (m, map frame)")
+        return
+    if unit is None and scale == 1.0:
+        ax.set_xlabel("column (cells)")
+        ax.set_ylabel("row (cells, 0 at the top)")
+    else:
+        unit = unit or length_unit(workspace)
+        ax.set_xlabel(f"x = column x cell size ({unit})")
+        ax.set_ylabel(f"y = row x cell size ({unit}, 0 at the top)")
+
 
 def marked_paths(front) -> dict[str, int]:
     """Indices of the shortest, the safest (least vulnerable) and the knee
@@ -26,9 +94,10 @@ def marked_paths(front) -> dict[str, int]:
     return marks
 
 
-def plot_front(front, ax=None, reference=None, title=None):
+def plot_front(front, ax=None, reference=None, title=None, workspace=None):
     """Scatter the front's first two objectives (a third one as colour),
-    with the marked paths highlighted and an optional reference front.
+    with the marked paths highlighted and an optional reference front;
+    axis labels carry the units (lengths in the units of ``workspace``).
 
     Returns
     -------
@@ -46,13 +115,14 @@ def plot_front(front, ax=None, reference=None, title=None):
         y = F[:, 1] if F.shape[1] > 1 else np.zeros(len(F))
         if F.shape[1] > 2:
             sc = ax.scatter(F[:, 0], y, s=12, c=F[:, 2], cmap="viridis", label="front", zorder=3)
-            plt.colorbar(sc, ax=ax, label=names[2])
+            plt.colorbar(sc, ax=ax, label=objective_label(names[2], workspace))
         else:
             ax.scatter(F[:, 0], y, s=12, c="k", label="front", zorder=3)
         for label, i in marked_paths(front).items():
             ax.scatter([F[i, 0]], [y[i]], s=90, marker="*", color=MARKS[label], label=label, zorder=4)
-    ax.set_xlabel(names[0])
-    ax.set_ylabel(names[1] if len(names) > 1 else "")
+    ax.set_xlabel(objective_label(names[0], workspace))
+    ax.set_ylabel(objective_label(names[1], workspace) if len(names) > 1
+                  else "(one objective)")
     ax.set_title(title or f"front ({len(F)} paths)")
     if ax.get_legend_handles_labels()[0]:          # an empty front has nothing to label
         ax.legend(fontsize=8)
@@ -60,7 +130,8 @@ def plot_front(front, ax=None, reference=None, title=None):
 
 
 def plot_paths(workspace, front, ax=None, title=None):
-    """The map with the shortest, the safest and the knee path of ``front``.
+    """The map with the shortest, the safest and the knee path of ``front``,
+    axes in cells, or in metres in the map frame of a ROS map.
 
     Returns
     -------
@@ -77,6 +148,7 @@ def plot_paths(workspace, front, ax=None, title=None):
     (sr, sc), (gr, gc) = workspace.start, workspace.goal
     ax.plot([sc], [sr], "o", color="tab:orange", ms=8, label="start")
     ax.plot([gc], [gr], "s", color="tab:purple", ms=8, label="goal")
+    label_map_axes(ax, workspace)
     ax.set_title(title or workspace.name)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     return ax

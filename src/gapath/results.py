@@ -163,9 +163,14 @@ def write_front(out_dir, workspace, front, summary: dict, *, plots: bool = True)
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     atomic_write(out / "front.csv", front_csv(front))
-    atomic_write(out / "paths.json", dumps(front.records(), indent=1) + "\n")
+    records = front.records()
+    frame = getattr(workspace, "frame", None)
+    if frame is not None:   # the path in the map's world frame too (ROS maps: metres)
+        for rec in records:
+            rec["world"] = frame.to_world(rec["path"]).round(6).tolist()
+    atomic_write(out / "paths.json", dumps(records, indent=1) + "\n")
     if plots:
-        for name, draw in (("front.png", lambda: plotting.plot_front(front)),
+        for name, draw in (("front.png", lambda: plotting.plot_front(front, workspace=workspace)),
                            ("paths.png", lambda: plotting.plot_paths(workspace, front))):
             atomic_write(out / name, plotting.png_bytes(draw()))
     atomic_write(out / "summary.json", dumps(summary, indent=1, sort_keys=True) + "\n")

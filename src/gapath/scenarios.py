@@ -7,17 +7,17 @@ obstacles (:mod:`gapath.dynamic`). Everything is seeded.
 
 Maps
     :func:`complex_maze`
-        The seeds' "complex map": a maze of 4 m corridors and 1 m walls on a
+        NO-MOPP's "complex map": a maze of 4 m corridors and 1 m walls on a
         coarse lattice (a perfect maze by randomised depth-first search),
         braided by removing walls in a random order until the shortest grid
         path is at most ``max_detour`` times the straight-line distance.
-        The default 1.20 follows the seeds: their offline path was 1.245
+        The default 1.20 follows NO-MOPP: its offline path was 1.245
         times the direct distance (64.56 m / 51.86 m, Table I), which a
         perfect maze (detours of 2-4x) does not allow. Start and goal are
         cells of the bottom-left and top-right corridor cells chosen so that
         the straight-line distance is nearest ``target_distance`` (51.86 m).
     :func:`warehouse`
-        The seeds' "package pick-up in a warehouse": rows of shelves (2 m
+        NO-MOPP's "package pick-up in a warehouse": rows of shelves (2 m
         deep) separated by 4 m aisles and 4 m cross aisles, a loading dock
         with pallets at the bottom, the start at the dock (bottom left) and
         the goal in an aisle beside a shelf (the package) at the top right,
@@ -45,7 +45,7 @@ from gapath.workspace import Workspace
 __all__ = ["Scenario", "complex_maze", "dynamic_obstacles", "load_scenario_map", "make_scenario",
            "straight_line_distance", "warehouse", "SCENARIOS"]
 
-#: The seeds' straight-line start-goal distances (Tables I and II).
+#: NO-MOPP's straight-line start-goal distances (Tables I and II).
 SEED_DISTANCE = {"maze": 51.856, "warehouse": 62.1488}
 
 
@@ -94,7 +94,7 @@ def _check_int(value, name, lo):
 def complex_maze(seed: int = 0, *, rows: int = 8, cols: int = 8, corridor: int = 4,
                  max_detour: float = 1.20, target_distance: float = SEED_DISTANCE["maze"],
                  cell_size: float = 1.0) -> Workspace:
-    """A braided maze with wide corridors (the seeds' "complex map").
+    """A braided maze with wide corridors (NO-MOPP's "complex map").
 
     Parameters
     ----------
@@ -218,7 +218,7 @@ def warehouse(seed: int = 0, *, height: int = 48, width: int = 66, shelf_length:
     shelf_length, aisle, dock_depth : int
     missing : float in [0, 1), default 0.1
     pallets : int, default 6
-    target_distance : float, default 62.1488 (the seeds' Table II)
+    target_distance : float, default 62.1488 (NO-MOPP's Table II)
     cell_size : float, default 1.0
 
     Returns

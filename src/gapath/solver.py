@@ -16,7 +16,7 @@ from gapath.problems import GridPathProblem
 from gapath.progress import Callbacks, ProgressBar
 
 
-#: Engines that run the seeds' NSGA-II (same results for the same seed).
+#: Engines that run Ahmed & Deb's NSGA-II (same results for the same seed).
 ENGINES = {"fast": lambda pop_size, **kw: FastNSGA2(pop_size, **kw), "pymoo": paper_nsga2}
 
 
@@ -60,13 +60,13 @@ def _positive_int(value, name):
 
 
 def objective_mode(objectives, constraints=None, sbx_eta=None, tiebreak="smoothness") -> dict:
-    """The seeds' settings for the objective mode of ``objectives``.
+    """Ahmed & Deb's settings for the objective mode of ``objectives``.
 
     * two objectives: penalty handling, SBX eta 10, smoothness tie-break;
     * three objectives: the same with plain rank and crowding (pass
       ``tiebreak=None``);
     * one objective (length or vulnerability): ``interfering`` as a
-      constraint and SBX eta 2 (the seeds' single-objective comparison).
+      constraint and SBX eta 2 (Ahmed & Deb's single-objective comparison).
 
     Explicit values win over the mode's defaults.
     """
@@ -81,7 +81,7 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
           constraints=None, penalty=1000.0, pop_size=500, n_gen=500, seed=1,
           tiebreak="smoothness", sbx_eta=None, seed_from="weighted", engine="fast",
           progress=False, callback=None) -> SolveResult:
-    """Run the seeds' NSGA-II on ``workspace`` and return its front.
+    """Run Ahmed & Deb's NSGA-II on ``workspace`` and return its front.
 
     Parameters
     ----------
@@ -97,7 +97,7 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     seed_from : initial population: ``"weighted"`` (default: the shortest,
         the safest and weighted-sum optimal monotone paths, the rest random),
         ``"exact"`` (the exact monotone front), ``"astar"`` (A* paths
-        projected onto monotone paths) or ``"none"`` (all random: the seeds'
+        projected onto monotone paths) or ``"none"`` (all random: Ahmed & Deb's
         protocol). See :class:`gapath.operators.PlannerSampling`.
     engine : ``"fast"`` (default: :class:`gapath.algorithms.FastNSGA2`, the
         same NSGA-II on whole arrays, bit-identical results) or ``"pymoo"``

@@ -96,6 +96,8 @@ class Workspace:
     corner_cutting : if False a diagonal move needs both orthogonally
         adjacent cells free (MovingAI convention); default True (SPEC).
     name : a label used in outputs.
+    frame : optional :class:`gapath.loaders.MapFrame`, the map's world frame
+        (ROS maps; None when the grid has no world frame).
 
     Raises
     ------
@@ -114,7 +116,7 @@ class Workspace:
     """
 
     def __init__(self, occ, start=None, goal=None, *, cell_size: float = 1.0,
-                 corner_cutting: bool = True, name: str = "workspace"):
+                 corner_cutting: bool = True, name: str = "workspace", frame=None):
         arr = np.asarray(occ)
         if arr.ndim != 2 or arr.shape[0] == 0 or arr.shape[1] == 0:
             raise MapError(f"occupancy must be a non-empty 2-D array, got shape {arr.shape}")
@@ -141,6 +143,7 @@ class Workspace:
             raise ConfigError(f"corner_cutting must be True or False, got {corner_cutting!r}")
         self.corner_cutting = bool(corner_cutting)
         self.name = str(name)
+        self.frame = frame
         self.start = _as_cell((h - 1, 0) if start is None else start, "start", (h, w))
         self.goal = _as_cell((0, w - 1) if goal is None else goal, "goal", (h, w))
         for label, cell in (("start", self.start), ("goal", self.goal)):
@@ -172,10 +175,10 @@ class Workspace:
 
     def replace(self, **changes) -> "Workspace":
         """A copy with some of ``occ, start, goal, cell_size, corner_cutting,
-        name`` replaced."""
+        name, frame`` replaced."""
         kw = dict(occ=self._occ, start=self.start, goal=self.goal,
                   cell_size=self.cell_size, corner_cutting=self.corner_cutting,
-                  name=self.name)
+                  name=self.name, frame=self.frame)
         unknown = set(changes) - set(kw)
         if unknown:
             raise ConfigError(f"unknown workspace field(s): {sorted(unknown)}")
@@ -288,7 +291,7 @@ def _check_shape(shape):
 
 def dense_workspace(n: int | tuple[int, int], p0: float, seed: int = 0, *,
                     start=None, goal=None, name: str | None = None) -> Workspace:
-    """The seeds' dense protocol (Ahmed & Deb, section 6).
+    """Ahmed & Deb's dense protocol (section 6).
 
     A random column-monotone path from start to goal is drawn first; then
     every other cell becomes an obstacle with probability ``p0``. ``p0 = 1``
@@ -355,7 +358,7 @@ DEFAULT_SCENARIO_RECIPE = dict(shape=(32, 32), n_obstacles=173, seed=2013)
 
 def default_workspace() -> Workspace:
     """The bundled default scenario: 32x32, 173 random obstacles, start
-    bottom-left, goal top-right (the seeds' Fig. 3 set-up).
+    bottom-left, goal top-right (Ahmed & Deb's Fig. 3 set-up).
 
     It is stored as a MovingAI map in the package (``gapath/data``) so that it
     does not depend on NumPy's random streams; it was made by
@@ -363,5 +366,5 @@ def default_workspace() -> Workspace:
     """
     from gapath.loaders import load_movingai
 
-    ws = load_movingai(DEFAULT_SCENARIO)
+    ws = load_movingai(DEFAULT_SCENARIO, corner_cutting=True)   # SPEC's rule, not MovingAI's
     return ws.replace(name="default-32x32-173")

@@ -1,7 +1,7 @@
 """A vectorised NSGA-II engine inside pymoo.
 
 :class:`FastNSGA2` runs the NSGA-II of :func:`gapath.algorithms.paper_nsga2`
-(the seeds' configuration) on whole arrays instead of pymoo ``Individual``
+(Ahmed & Deb's configuration) on whole arrays instead of pymoo ``Individual``
 objects. It is a pymoo :class:`~pymoo.core.algorithm.Algorithm`: it runs
 through :func:`pymoo.optimize.minimize`, honours pymoo's terminations,
 callbacks, display and ``save_history``, and returns a normal pymoo
@@ -323,7 +323,7 @@ def _check_problem(problem) -> None:
 
 
 def _default_operators(encoding: str, **settings) -> dict:
-    """Sampling, crossover and mutation for ``encoding`` (the seeds'
+    """Sampling, crossover and mutation for ``encoding`` (Ahmed & Deb's
     settings) from :func:`gapath.operators.defaults.default_operators`."""
     try:
         from gapath.operators.defaults import default_operators
@@ -338,7 +338,7 @@ def _default_operators(encoding: str, **settings) -> dict:
 
 
 class FastNSGA2(Algorithm):
-    """NSGA-II of the seeds (:func:`gapath.algorithms.paper_nsga2`) on arrays.
+    """Ahmed & Deb's NSGA-II (:func:`gapath.algorithms.paper_nsga2`) on arrays.
 
     Per generation: binary tournaments (smaller constraint violation, then
     smaller rank, then smaller smoothness when the tie-break is on, then
@@ -359,7 +359,7 @@ class FastNSGA2(Algorithm):
     Parameters
     ----------
     pop_size : population size (seeds: 500).
-    tiebreak : ``"smoothness"`` (seeds' two-objective mode) or ``None``
+    tiebreak : ``"smoothness"`` (Ahmed & Deb's two-objective mode) or ``None``
         (plain rank and crowding, e.g. for three objectives).
     sampling : initial population: a pymoo ``Sampling``, an array of genomes
         or a ``Population``; default uniform random integers. As in pymoo,
@@ -534,7 +534,7 @@ class FastNSGA2(Algorithm):
 
     def _selection(self, n_matings: int, criteria) -> np.ndarray:
         """Binary tournaments: ``(n_matings, n_parents)`` row indices
-        (pymoo's ``TournamentSelection`` with the seeds' comparison)."""
+        (pymoo's ``TournamentSelection`` with Ahmed & Deb's comparison)."""
         n, n_parents = len(self._arrays), self.crossover.n_parents
         n_random = n_matings * n_parents * 2
         P = random_permutations(math.ceil(n_random / n), n, random_state=self.random_state)

@@ -56,14 +56,14 @@ def paper_nsga2(pop_size: int = 500, *, encoding: str = "integer",
                 tiebreak: str | None = "smoothness", sbx_prob: float = 0.9,
                 sbx_eta: float = 10, pm_eta: float = 20, pm_prob_var: float | None = None,
                 sampling=None, **kwargs) -> PathNSGA2:
-    """NSGA-II with the seeds' settings (Ahmed & Deb 2013, sections 2 and 5.2).
+    """NSGA-II with Ahmed & Deb's settings (2013, sections 2 and 5.2).
 
     The encoding's operators from :func:`gapath.operators.default_operators`
     (integer and absolute: discrete SBX, prob 0.9, eta 10, and discrete
     polynomial mutation, eta 20, per-gene probability 1/n for an n-column
     path; binary: two-point crossover and a bit-flip whose rate decays to a
     fifth; mixed: single-point and discrete SBX, bit-flip and discrete PM),
-    the seeds' edge-fixing repair, a binary tournament on (feasibility,
+    Ahmed & Deb's edge-fixing repair, a binary tournament on (feasibility,
     rank, smoothness, crowding), rank-and-smoothness survival and duplicate
     elimination by decoded path.
 
@@ -73,7 +73,7 @@ def paper_nsga2(pop_size: int = 500, *, encoding: str = "integer",
     encoding : the problem's encoding (``"integer"``, ``"binary"``,
         ``"mixed"`` or ``"absolute"``); the problem given to ``minimize``
         must use the same one.
-    tiebreak : ``"smoothness"`` (seeds' two-objective mode) or ``None``
+    tiebreak : ``"smoothness"`` (Ahmed & Deb's two-objective mode) or ``None``
         (plain rank and crowding, e.g. for three objectives).
     sbx_prob, sbx_eta, pm_eta, pm_prob_var : operator settings (see
         :func:`gapath.operators.default_operators`).

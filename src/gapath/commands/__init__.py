@@ -10,7 +10,7 @@ import importlib
 
 #: Modules that add sub-commands, in help order.
 MODULES: list[str] = ["gapath.commands.exact", "gapath.commands.experiment", "gapath.commands.dynamic",
-                      "gapath.commands.plan"]
+                      "gapath.commands.plan", "gapath.commands.scen"]
 
 
 def register_all(subparsers) -> None:

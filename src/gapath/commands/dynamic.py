@@ -26,8 +26,9 @@ hybrid A* and RRT / RRT* planners to it:
 
 from __future__ import annotations
 
-import argparse
+import contextlib
 import math
+import re
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -67,7 +68,8 @@ def add_planner_arguments(parser) -> None:
     _add(parser, "--speed", type=float, default=1.0,
          help="robot speed, world units per second (default: %(default)s)")
     _add(parser, "--heading", type=float, default=None,
-         help="start heading in degrees from +x (east) towards +y (south); default along "
+         help="start heading in degrees from +x (east) towards +y (south, down the map); on a "
+              "ROS map counter-clockwise from the map frame's +x (ROS yaw); default along "
               "the first steps of the grid shortest path")
     _add(parser, "--heading-bins", type=int, default=72,
          help="hybrid A*: heading bins of the discrete states (default: %(default)s)")
@@ -92,6 +94,41 @@ def add_planner_choices(parser=None) -> tuple[str, ...]:
     return PLANNER_CHOICES
 
 
+#: Planner and car parameters by the CLI flag that sets them.
+FLAG_NAMES = {"max_iter": "--iterations", "goal_bias": "--goal-bias", "step": "--step",
+              "radius": "--radius", "wheelbase": "--wheelbase", "speed": "--speed",
+              "max_steer": "--max-steer", "heading_bins": "--heading-bins",
+              "arc_length": "--arc-length", "heuristic_weight": "--heuristic-weight",
+              "sensor_range": "--sensor-range", "fov": "--fov", "dt": "--dt",
+              "max_time": "--max-time", "speed_range": "--obstacle-speed"}
+
+
+@contextlib.contextmanager
+def cli_vocabulary():
+    """Re-raise a planner's :class:`~gapath.errors.ConfigError` about one
+    of its parameters (``"max_iter must be ..."``) with the flag that sets
+    it (``"--iterations must be ..."``)."""
+    from gapath.errors import ConfigError
+
+    try:
+        yield
+    except ConfigError as exc:
+        message = str(exc)
+        m = re.match(r"(\w+)(?= must| \()", message)
+        if m is None or m.group(1) not in FLAG_NAMES:
+            raise
+        raise ConfigError(FLAG_NAMES[m.group(1)] + message[len(m.group(1)):]) from None
+
+
+def planner_heading(workspace, degrees: float) -> float:
+    """The planners' heading (radians, from +x towards +y = down the map) of
+    a ``--heading`` in degrees: taken as is on grid maps, as a yaw
+    (counter-clockwise, y up) in the map frame of a ROS map."""
+    theta = math.radians(float(degrees))
+    frame = getattr(workspace, "frame", None)
+    return theta if frame is None else frame.yaw - theta
+
+
 def car_from_args(args):
     """A :class:`~gapath.planners.hybrid_astar.CarModel` from parsed options
     (missing options take the defaults)."""
@@ -100,11 +137,16 @@ def car_from_args(args):
 
     steer = getattr(args, "max_steer", 34.4)
     try:
-        steer = math.radians(float(steer))
+        degrees = float(steer)
     except (TypeError, ValueError):
         raise ConfigError(f"--max-steer must be a number of degrees, got {steer!r}") from None
-    return CarModel(wheelbase=getattr(args, "wheelbase", 0.6), max_steer=steer,
-                    speed=getattr(args, "speed", 1.0), radius=getattr(args, "radius", 0.3))
+    if not 0.0 < degrees < 90.0:
+        raise ConfigError(f"--max-steer must be between 0 and 90 degrees (both excluded), "
+                          f"got {degrees:g}")
+    with cli_vocabulary():
+        return CarModel(wheelbase=getattr(args, "wheelbase", 0.6),
+                        max_steer=math.radians(degrees), speed=getattr(args, "speed", 1.0),
+                        radius=getattr(args, "radius", 0.3))
 
 
 @dataclass(eq=False)
@@ -182,13 +224,19 @@ def plan_with(name: str, workspace, args) -> PlanOutcome:
         If no path was found.
     """
     from gapath.errors import ConfigError
-    from gapath.planners.hybrid_astar import HybridAStar
-    from gapath.planners.rrt import rrt
 
     if name not in PLANNER_CHOICES:
         raise ConfigError(f"unknown planner {name!r}; this module plans with "
                           f"{', '.join(PLANNER_CHOICES)}")
     car = car_from_args(args)
+    with cli_vocabulary():
+        return _plan_with(name, workspace, args, car)
+
+
+def _plan_with(name, workspace, args, car) -> PlanOutcome:
+    from gapath.planners.hybrid_astar import HybridAStar
+    from gapath.planners.rrt import rrt
+
     cs = workspace.cell_size
     t0 = time.perf_counter()
     if name == "hybrid-astar":
@@ -199,7 +247,7 @@ def plan_with(name: str, workspace, args) -> PlanOutcome:
         start = None
         if heading is not None:
             sr, sc = workspace.start
-            start = (sc * cs, sr * cs, math.radians(float(heading)))
+            start = (sc * cs, sr * cs, planner_heading(workspace, heading))
         res = planner.plan(start)
         poses = np.asarray(res.poses)
         info = {"expansions": res.expansions, "reached": res.reached, "cost": res.cost,
@@ -231,7 +279,16 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
     names = list(outcome.objectives)
     atomic_write(files[0], ",".join(names) + "\n"
                  + ",".join(repr(float(outcome.objectives[n])) for n in names) + "\n")
-    atomic_write(files[1], dumps(outcome.records(), indent=1) + "\n")
+    records = outcome.records()
+    frame = getattr(workspace, "frame", None)
+    if frame is not None:   # also in the map's world frame (ROS maps: metres, y up)
+        cs = workspace.cell_size
+        p = np.asarray(outcome.poses, dtype=float)
+        xy = frame.to_world(p[:, [1, 0]] / cs)
+        records[0]["world"] = frame.to_world(outcome.cells).round(6).tolist()
+        records[0]["world_poses"] = np.column_stack(
+            [xy, np.mod(frame.yaw - p[:, 2] + np.pi, 2 * np.pi) - np.pi]).round(6).tolist()
+    atomic_write(files[1], dumps(records, indent=1) + "\n")
     atomic_write(files[2], dumps(outcome.summary(workspace), indent=1, sort_keys=True) + "\n")
     if plots:
         import matplotlib.pyplot as plt
@@ -244,7 +301,10 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
         _base(workspace, ax)
         p = outcome.poses
         ax.plot(p[:, 0], p[:, 1], "-", color="tab:blue", lw=2)
-        ax.set_title(f"{outcome.planner}: length {outcome.objectives['length']:.2f}, "
+        from gapath.plotting import length_unit
+
+        ax.set_title(f"{outcome.planner}: length {outcome.objectives['length']:.2f} "
+                     f"{length_unit(workspace)}, "
                      f"turning {outcome.objectives['turning']:.2f} rad", fontsize=9)
         atomic_write(out / "paths.png", png_bytes(ax))
         files.append(out / "paths.png")
@@ -300,6 +360,25 @@ def _speed_range(text):
     return lo, hi
 
 
+def _check_planner_flags(args, workspace, car, planner_kw) -> None:
+    """Bad planner flags are bad input (exit 2), not a failed run: the
+    simulation would report a planner that cannot start as blocked."""
+    from gapath.errors import ConfigError
+
+    if args.planner in ("rrt", "rrt-star"):
+        if not args.iterations >= 1:
+            raise ConfigError(f"--iterations must be a positive integer, got {args.iterations}")
+        if args.step is not None and not (math.isfinite(args.step) and args.step > 0):
+            raise ConfigError(f"--step must be a positive number of world units, got {args.step:g}")
+        if not 0.0 <= args.goal_bias <= 1.0:
+            raise ConfigError(f"--goal-bias must be in [0.0, 1.0], got {args.goal_bias:g}")
+    elif args.planner == "hybrid-astar":
+        from gapath.planners.hybrid_astar import HybridAStar
+
+        with cli_vocabulary():
+            HybridAStar(workspace, car, **planner_kw)
+
+
 def run(args) -> int:
     from gapath.dynamic import Robot, SimSettings, make_planner, simulate
     from gapath.errors import EXIT_NO_RESULT, ConfigError, NoPathError
@@ -308,31 +387,36 @@ def run(args) -> int:
 
     if args.obstacles < 0 or args.stationary < 0:
         raise ConfigError("--obstacles and --stationary must be >= 0")
-    robot = Robot(car=car_from_args(args), sensor_range=args.sensor_range, fov=args.fov)
-    settings = SimSettings(dt=args.dt, max_time=args.max_time)
+    car = car_from_args(args)
+    with cli_vocabulary():
+        robot = Robot(car=car, sensor_range=args.sensor_range, fov=args.fov)
+        settings = SimSettings(dt=args.dt, max_time=args.max_time)
     obstacles = dict(n_stationary=args.stationary, n_crossers=(args.obstacles + 1) // 2,
                      n_wanderers=args.obstacles // 2, robot_speed=robot.speed,
                      sensor_range=robot.sensor_range,
                      speed_range=_speed_range(args.obstacle_speed))
-    try:
-        sc = make_scenario(args.map, args.seed, map_seed=args.map_seed, start=args.start,
-                           goal=args.goal, **obstacles)
-    except ConfigError as exc:     # no path between start and goal: exit status 1, not 2
-        if isinstance(exc.__context__, NoPathError):
-            raise NoPathError(str(exc)) from None
-        raise
+    with cli_vocabulary():
+        try:
+            sc = make_scenario(args.map, args.seed, map_seed=args.map_seed, start=args.start,
+                               goal=args.goal, **obstacles)
+        except ConfigError as exc:     # no path between start and goal: exit status 1, not 2
+            if isinstance(exc.__context__, NoPathError):
+                raise NoPathError(str(exc)) from None
+            raise
     planner_kw = {}
     if args.planner == "hybrid-astar":
         planner_kw = dict(heading_bins=args.heading_bins, arc_length=args.arc_length,
                           heuristic_weight=args.heuristic_weight)
     elif args.planner in ("rrt", "rrt-star"):
         planner_kw = dict(max_iter=args.iterations, step=args.step, goal_bias=args.goal_bias)
-    planner = make_planner(args.planner, **planner_kw)
-    start = sc.start
-    if args.heading is not None:
-        start = (start[0], start[1], math.radians(args.heading))
-    res = simulate(sc.workspace, planner, robot, sc.stationary, sc.moving, settings, start,
-                   args.seed)
+    _check_planner_flags(args, sc.workspace, robot.car, planner_kw)
+    with cli_vocabulary():
+        planner = make_planner(args.planner, **planner_kw)
+        start = sc.start
+        if args.heading is not None:
+            start = (start[0], start[1], planner_heading(sc.workspace, args.heading))
+        res = simulate(sc.workspace, planner, robot, sc.stationary, sc.moving, settings, start,
+                       args.seed)
     out = Path(args.out)
     data = res.to_json()
     data["stationary"] = [{"cells": o.cells.tolist(), "appear_at": o.appear_at}
@@ -350,7 +434,7 @@ def run(args) -> int:
                      "start": list(sc.workspace.start), "goal": list(sc.workspace.goal),
                      "cell_size": sc.workspace.cell_size, "planner": args.planner,
                      "seed": args.seed, "map_seed": args.map_seed, "obstacles": obstacles,
-                     "robot": {"wheelbase": c.wheelbase, "max_steer_deg": math.degrees(c.max_steer),
+                     "robot": {"wheelbase": c.wheelbase, "max_steer_deg": round(math.degrees(c.max_steer), 6),
                                "speed": c.speed, "radius": c.radius,
                                "sensor_range": robot.sensor_range, "fov_deg": robot.fov},
                      "dt": settings.dt},

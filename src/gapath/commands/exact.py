@@ -9,27 +9,20 @@ import numpy as np
 
 
 def register(subparsers) -> None:
+    from gapath.commands._args import add_map_arguments
+
     p = subparsers.add_parser("exact", help="compute the exact Pareto front (monotone or free paths)")
-    p.add_argument("map", help="map file or 'default' (see 'gapath solve')")
+    add_map_arguments(p)
     p.add_argument("--objectives", default="length,vulnerability",
-                   help="comma-separated objectives among length, vulnerability, smoothness")
+                   help="comma-separated objectives among length, vulnerability, smoothness "
+                        "(default: %(default)s)")
     p.add_argument("--mode", choices=("monotone", "free"), default="monotone",
-                   help="column-monotone paths (the GA's path set) or all 8-connected paths")
-    p.add_argument("--start", type=_cell_arg(), help="start cell ROW,COL")
-    p.add_argument("--goal", type=_cell_arg(), help="goal cell ROW,COL")
-    cc = p.add_mutually_exclusive_group()
-    cc.add_argument("--corner-cutting", dest="corner_cutting", action="store_true", default=None)
-    cc.add_argument("--no-corner-cutting", dest="corner_cutting", action="store_false")
+                   help="column-monotone paths (the GA's path set) or all 8-connected paths "
+                        "(default: %(default)s)")
     p.add_argument("--out", default="gapath-exact", help="output directory (default: %(default)s)")
-    p.add_argument("--no-plots", action="store_true")
-    p.add_argument("--quiet", action="store_true")
+    p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
+    p.add_argument("--quiet", action="store_true", help="no report")
     p.set_defaults(func=run)
-
-
-def _cell_arg():
-    from gapath.cli import _cell
-
-    return _cell
 
 
 def exact_path_front(workspace, objectives, mode):
@@ -47,11 +40,12 @@ def exact_path_front(workspace, objectives, mode):
 
 
 def run(args) -> int:
-    from gapath.cli import _load
+    from gapath.commands._args import load_workspace
     from gapath.errors import NoPathError
     from gapath.results import versions, write_front
 
-    ws = _load(args.map, args.start, args.goal, args.corner_cutting)
+    choice = load_workspace(args)
+    ws = choice.workspace
     objectives = [o.strip() for o in args.objectives.split(",") if o.strip()]
     t0 = time.perf_counter()
     try:
@@ -71,8 +65,15 @@ def run(args) -> int:
         "wall_time_s": round(seconds, 4),
         "front_size": len(front),
     }
+    summary["settings"].update(choice.settings())
+    shortest = (float(front.F[:, front.objectives.index("length")].min())
+                if len(front) and "length" in front.objectives else None)
+    if choice.scenario is not None:
+        summary["scenario"] = choice.scenario_record(shortest)
     write_front(Path(args.out), ws, front, summary, plots=not args.no_plots)
     if not args.quiet:
-        print(f"{ws!r}\nexact {args.mode} front: {len(front)} paths in {seconds:.3f} s; "
-              f"wrote {args.out}/front.csv, paths.json, summary.json")
+        print(f"{ws!r}\n{choice.corner_line()}\nexact {args.mode} front: {len(front)} paths in "
+              f"{seconds:.3f} s; wrote {args.out}/front.csv, paths.json, summary.json")
+        if choice.scenario is not None:
+            print(choice.scenario_line(shortest, f"shortest length on the {args.mode} front"))
     return 0

@@ -5,7 +5,7 @@ Sub-commands::
     gapath experiment run SPEC --out DIR [--scheduler tcp://HOST:PORT|local] [--workers N]
     gapath experiment status DIR
     gapath experiment report DIR
-    gapath experiment dense [--quick] --out DIR      (the seeds' Table 1)
+    gapath experiment dense [--quick] --out DIR      (Ahmed & Deb's Table 1)
 
 ``SPEC`` is a YAML, TOML or JSON experiment file (schema:
 :mod:`gapath.experiments.spec`, docs/EXPERIMENTS.md) or a store directory

@@ -1,8 +1,15 @@
-"""``gapath plan``: one path by a graph-search planner over a layered costmap.
+"""``gapath plan``: one path by a graph-search planner, by default the shortest.
 
-Writes the same files as ``gapath solve`` (``front.csv`` with one row,
-``paths.json``, ``summary.json``, ``front.png``, ``paths.png``) through
-:func:`gapath.results.write_front`.
+Without ``--layers`` every grid planner (``astar``, ``dstar-lite``,
+``astar-po``, ``dstar-po``) returns a shortest path under the map's corner
+rule; ``--layers elevation,solar,risk`` adds Lavin's cost layers as
+objectives (the weighted-sum planners then minimise a normalised sum, the
+Pareto planners select among non-dominated paths). Writes the same files as
+``gapath solve`` (``front.csv`` with one row, ``paths.json``,
+``summary.json``, ``front.png``, ``paths.png``) through
+:func:`gapath.results.write_front`. The planning time excludes numba's
+compilation: the planner is first run on a tiny map, and that warm-up is
+reported as ``compile_s``.
 """
 
 from __future__ import annotations
@@ -17,46 +24,76 @@ LAYERS = ("elevation", "solar", "risk")
 
 
 def register(subparsers) -> None:
-    from gapath.cli import _cell
+    from gapath.commands._args import add_map_arguments, cell
     from gapath.commands.dynamic import add_planner_choices
     from gapath.planners.pareto import PLANNERS
 
     p = subparsers.add_parser(
-        "plan", help="plan one path: A*, D* Lite, A*-PO or D*-PO over costmap layers, "
-                     "or hybrid A* / RRT / RRT* for a car-like robot")
-    p.add_argument("map", help="map file or 'default' (see 'gapath solve')")
+        "plan", help="plan one path: the shortest by A*, D* Lite, A*-PO or D*-PO (Lavin's cost "
+                     "layers with --layers), or hybrid A* / RRT / RRT* for a car-like robot")
+    add_map_arguments(p)
     kinematic = add_planner_choices(p)
     p.add_argument("--planner", choices=tuple(PLANNERS) + tuple(kinematic), default="dstar-po",
-                   help="astar / dstar-lite: normalised weighted sum of the objectives; "
-                        "astar-po / dstar-po: Pareto selection; hybrid-astar / rrt / rrt-star: "
-                        "continuous paths (see 'gapath simulate') (default: %(default)s)")
-    p.add_argument("--layers", default="elevation,solar,risk",
+                   help="astar / dstar-lite / astar-po / dstar-po: a shortest path, or with "
+                        "--layers a normalised weighted sum (astar, dstar-lite) or a Pareto "
+                        "selection (astar-po, dstar-po) of the length and the layers; "
+                        "hybrid-astar / rrt / rrt-star: continuous paths (see 'gapath "
+                        "simulate') (default: %(default)s)")
+    p.add_argument("--layers", default="",
                    help="comma-separated cost layers used as objectives besides the length, "
-                        "among elevation, solar, risk; '' for length only (default: %(default)s)")
+                        "among elevation, solar, risk (Lavin's); default none: the shortest path")
     p.add_argument("--dem", metavar="FILE",
-                   help="elevation raster (.npy or .npz) resampled to the grid; default: "
+                   help="elevation layer: raster (.npy or .npz) resampled to the grid; default: "
                         "seeded fractal terrain")
     p.add_argument("--dem-method", choices=("bilinear", "reflect"), default="bilinear",
                    help="bilinear: stretch the DEM over the grid; reflect: one pixel per cell, "
                         "tiled with reflection (default: %(default)s)")
     p.add_argument("--terrain-seed", type=int, default=1,
                    help="seed of the fractal terrain when no --dem is given (default: %(default)s)")
-    p.add_argument("--risk", type=_cell, metavar="R,C",
-                   help="the maximum-risk cell (default: the centre of the grid)")
+    p.add_argument("--risk", type=cell, metavar="ROW,COL",
+                   help="risk layer: the maximum-risk cell (default: the centre of the grid)")
     p.add_argument("--solar-rate", type=float, default=0.01,
-                   help="rotation of the solar vector per path step, radians (default: %(default)s)")
+                   help="solar layer: rotation of the solar vector per path step, radians "
+                        "(default: %(default)s)")
     p.add_argument("--priority", default=None,
                    help="Pareto planners: objective name or 'sum' choosing among non-dominated "
                         "open nodes (default: length)")
-    p.add_argument("--start", type=_cell, help="start cell ROW,COL (default: bottom-left)")
-    p.add_argument("--goal", type=_cell, help="goal cell ROW,COL (default: top-right)")
-    cc = p.add_mutually_exclusive_group()
-    cc.add_argument("--corner-cutting", dest="corner_cutting", action="store_true", default=None)
-    cc.add_argument("--no-corner-cutting", dest="corner_cutting", action="store_false")
     p.add_argument("--out", default="gapath-plan", help="output directory (default: %(default)s)")
     p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
     p.add_argument("--quiet", action="store_true", help="no report")
     p.set_defaults(func=run)
+
+
+def parse_layers(text, args=None) -> list[str]:
+    """The ``--layers`` names; with ``args``, also check that ``--dem`` and
+    ``--risk`` are not given without their layer.
+
+    Raises
+    ------
+    ConfigError
+        On an unknown layer, or a layer option without its layer.
+
+    Examples
+    --------
+    >>> parse_layers("elevation, risk")
+    ['elevation', 'risk']
+    >>> parse_layers("")
+    []
+    """
+    from gapath.errors import ConfigError
+
+    layers = [s.strip() for s in str(text).split(",") if s.strip()]
+    for name in layers:
+        if name not in LAYERS:
+            raise ConfigError(f"--layers: unknown layer {name!r}; expected some of "
+                              f"{', '.join(LAYERS)}")
+    if args is not None:
+        for flag, value, layer in (("--dem", getattr(args, "dem", None), "elevation"),
+                                   ("--risk", getattr(args, "risk", None), "risk")):
+            if value is not None and layer not in layers:
+                raise ConfigError(f"{flag} sets the {layer} layer, which is not planned on: "
+                                  f"add --layers {','.join(layers + [layer])}")
+    return layers
 
 
 def build_costmap(workspace, layers, *, dem=None, dem_method="bilinear", terrain_seed=1,
@@ -86,27 +123,78 @@ def build_costmap(workspace, layers, *, dem=None, dem_method="bilinear", terrain
     return cm
 
 
+def _warm_up(planner, objectives, layers, args, corner_cutting) -> float:
+    """Run ``planner`` once on a tiny map so that numba compiles (or loads
+    from its cache) the kernels before the timed run; returns the seconds."""
+    from gapath.errors import GapathError
+    from gapath.planners.pareto import plan
+    from gapath.workspace import Workspace
+
+    t0 = time.perf_counter()
+    tiny = Workspace(np.zeros((5, 5), bool), corner_cutting=corner_cutting, name="warm-up")
+    try:
+        cm = build_costmap(tiny, layers, terrain_seed=args.terrain_seed,
+                           solar_rate=args.solar_rate)
+        plan(cm, planner, objectives, priority=args.priority)
+    except GapathError:
+        pass            # a bad option is reported by the real run
+    return time.perf_counter() - t0
+
+
+def _warm_up_kinematic(planner) -> float:
+    import argparse
+
+    from gapath.commands.dynamic import plan_with
+    from gapath.errors import GapathError
+    from gapath.workspace import Workspace
+
+    t0 = time.perf_counter()
+    try:
+        plan_with(planner, Workspace(np.zeros((12, 12), bool), name="warm-up"),
+                  argparse.Namespace())
+    except GapathError:
+        pass
+    return time.perf_counter() - t0
+
+
+def _plan_kinematic(args, choice) -> int:
+    from gapath.commands._args import update_summary
+    from gapath.commands.dynamic import plan_with, write_plan
+
+    ws = choice.workspace
+    compile_s = _warm_up_kinematic(args.planner)
+    outcome = plan_with(args.planner, ws, args)
+    write_plan(outcome, ws, args.out, plots=not args.no_plots)
+    length = float(outcome.objectives["length"])
+    update_summary(args.out, {"compile_s": round(compile_s, 4),
+                              "scenario": choice.scenario_record(length)}, choice.settings())
+    if not args.quiet:
+        print(f"{ws!r}\n{args.planner}: " + ", ".join(
+            f"{k}={v:.4g}" for k, v in outcome.objectives.items())
+            + f" in {outcome.seconds * 1000:.1f} ms (numba warm-up {compile_s * 1000:.0f} ms "
+              f"not counted); wrote {args.out}")
+        if choice.scenario is not None:
+            print(choice.scenario_line(length, f"{args.planner} length"))
+    return 0
+
+
 def run(args) -> int:
-    from gapath.cli import _load
+    from gapath.commands._args import load_workspace
+    from gapath.commands.dynamic import PLANNER_CHOICES
     from gapath.front import PathFront
     from gapath.objectives import evaluate_paths, pad_paths
     from gapath.planners.pareto import plan
     from gapath.results import versions, write_front
 
-    ws = _load(args.map, args.start, args.goal, args.corner_cutting)
-    from gapath.commands.dynamic import PLANNER_CHOICES, plan_with, write_plan
-
+    layers = parse_layers(args.layers, args)
+    choice = load_workspace(args)
+    ws = choice.workspace
     if args.planner in PLANNER_CHOICES:
-        outcome = plan_with(args.planner, ws, args)
-        write_plan(outcome, ws, args.out, plots=not args.no_plots)
-        if not args.quiet:
-            print(f"{ws!r}\n{args.planner}: " + ", ".join(
-                f"{k}={v:.4g}" for k, v in outcome.objectives.items()) + f"; wrote {args.out}")
-        return 0
-    layers = [s.strip() for s in args.layers.split(",") if s.strip()]
+        return _plan_kinematic(args, choice)
     cm = build_costmap(ws, layers, dem=args.dem, dem_method=args.dem_method,
                        terrain_seed=args.terrain_seed, risk=args.risk, solar_rate=args.solar_rate)
     objectives = ("length",) + tuple(layers)
+    compile_s = _warm_up(args.planner, objectives, layers, args, ws.corner_cutting)
     t0 = time.perf_counter()
     res = plan(cm, args.planner, objectives, priority=args.priority)
     seconds = time.perf_counter() - t0
@@ -120,21 +208,30 @@ def run(args) -> int:
     summary = {
         "settings": dict(map=ws.name, shape=list(ws.shape), start=list(ws.start),
                          goal=list(ws.goal), cell_size=ws.cell_size,
-                         corner_cutting=ws.corner_cutting, planner=args.planner,
-                         objectives=list(objectives), priority=args.priority,
-                         terrain=terrain, risk_cells=[list(c) for c in cm.risk_cells],
-                         solar_rate=cm.solar_rate, algorithm=args.planner),
+                         planner=args.planner, objectives=list(objectives), layers=layers,
+                         priority=args.priority, terrain=terrain,
+                         risk_cells=[list(c) for c in cm.risk_cells],
+                         solar_rate=cm.solar_rate if "solar" in layers else None,
+                         algorithm=args.planner, **choice.settings()),
         "versions": versions(),
         "wall_time_s": round(seconds, 4),
+        "compile_s": round(compile_s, 4),
         "expansions": res.expansions,
         "front_size": 1,
         "objectives": res.values,
         "search_cost": dict(zip(res.objectives, map(float, res.search_cost))),
     }
+    length = float(res.values["length"])
+    if choice.scenario is not None:
+        summary["scenario"] = choice.scenario_record(length)
     write_front(Path(args.out), ws, front, summary, plots=not args.no_plots)
     if not args.quiet:
         vals = ", ".join(f"{k}={v:.4f}" for k, v in res.values.items())
-        print(f"{ws!r}\n{args.planner}: {len(res.path)} cells, {vals}; {res.expansions} "
-              f"expansions in {seconds * 1000:.1f} ms\nwrote {args.out}/front.csv, paths.json, "
+        what = "shortest path" if not layers else f"length and {', '.join(layers)}"
+        print(f"{ws!r}\n{choice.corner_line()}\n{args.planner} ({what}): {len(res.path)} cells, "
+              f"{vals}; {res.expansions} expansions in {seconds * 1000:.1f} ms (numba warm-up "
+              f"{compile_s * 1000:.0f} ms not counted)\nwrote {args.out}/front.csv, paths.json, "
               f"summary.json" + ("" if args.no_plots else ", front.png, paths.png"))
+        if choice.scenario is not None:
+            print(choice.scenario_line(length, f"{args.planner} length"))
     return 0

@@ -2,7 +2,7 @@
 
 Every encoding turns a genome matrix ``X`` (N, n_var) into column profiles
 (see :mod:`gapath.encodings.base`) with ``decode``, turns paths back into
-genomes with ``encode``, and offers the seeds' edge-fixing as ``edge_fix``.
+genomes with ``encode``, and offers Ahmed & Deb's edge-fixing as ``edge_fix``.
 """
 
 from gapath.encodings.absolute import AbsoluteEncoding
@@ -12,7 +12,7 @@ from gapath.encodings.integer import IntegerEncoding
 from gapath.encodings.mixed import MixedEncoding
 from gapath.errors import ConfigError
 
-#: Encoding classes by name (the seeds' four schemes, section 2).
+#: Encoding classes by name (Ahmed & Deb's four schemes, section 2).
 ENCODINGS = {"integer": IntegerEncoding, "binary": BinaryEncoding, "mixed": MixedEncoding,
              "absolute": AbsoluteEncoding}
 

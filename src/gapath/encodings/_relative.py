@@ -62,7 +62,7 @@ def relative_moves(frame, entries, exits, encoding: str) -> np.ndarray:
 
 @numba.njit(cache=True)
 def edge_fix_moves(D, U, start_row, height):
-    """The seeds' edge-fixing on signed moves ``D`` (N, n_moves), in place.
+    """Ahmed & Deb's edge-fixing on signed moves ``D`` (N, n_moves), in place.
 
     Row ``r`` is the current exit row (the start row before move 0). A move
     whose target ``r - D[i, k]`` lies outside ``[0, height - 1]`` is replaced

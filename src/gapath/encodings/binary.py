@@ -36,7 +36,7 @@ this one also lets the start move downwards and never produces a
 horizontal-then-vertical or away-from-the-goal last transition (dominated).
 
 Decoding turns any genome into a valid path: moves past the top or bottom
-edge are clamped there. :meth:`BinaryEncoding.edge_fix` is the seeds'
+edge are clamped there. :meth:`BinaryEncoding.edge_fix` is Ahmed & Deb's
 edge-fixing written back into the bits: a move that would leave the grid
 gets a row drawn with linear probability (highest at the violated edge, zero
 at the current row) and its ``y`` bits are rewritten (a diagonal at the edge
@@ -154,7 +154,7 @@ def _edge_fix(B, U, n_cols, nb, start_row, height):
 
 
 class BinaryEncoding:
-    """The seeds' binary genes: two transition bits and a vertical run per
+    """Ahmed & Deb's binary genes: two transition bits and a vertical run per
     column (see the module documentation for the bit layout).
 
     Parameters
@@ -255,7 +255,7 @@ class BinaryEncoding:
                                up0[:, None], up0[:, None]], axis=1)
 
     def edge_fix(self, X, random_state: np.random.Generator) -> np.ndarray:
-        """The seeds' edge-fixing: a boolean copy of ``X`` in which every
+        """Ahmed & Deb's edge-fixing: a boolean copy of ``X`` in which every
         move that would leave the grid (the start column's included) gets a
         row drawn with linear probability between the violated edge
         (highest) and the current row (zero), written back into its ``y``

@@ -12,7 +12,7 @@ step towards the goal row (or a horizontal step when already on it), then
 vertical steps to the goal.
 
 Decoding clamps a move that would leave the grid at the edge, so any genome
-decodes to a valid path. The seeds' edge-fixing is a repair
+decodes to a valid path. Ahmed & Deb's edge-fixing is a repair
 (:class:`gapath.operators.EdgeFixingRepair`) that replaces such a move by a
 row drawn with linear probability and writes the fixed gene back; after it,
 decoding never clamps.
@@ -73,7 +73,7 @@ def _edge_fix(X, U, start_row, height):
 
 
 class IntegerEncoding:
-    """Relative integer genes (the seeds' best scheme).
+    """Relative integer genes (Ahmed & Deb's best scheme).
 
     Parameters
     ----------
@@ -131,7 +131,7 @@ class IntegerEncoding:
         return relative_moves(self.frame, entries, exits, self.name)
 
     def edge_fix(self, X, random_state: np.random.Generator) -> np.ndarray:
-        """The seeds' edge-fixing: a copy of ``X`` (rounded, within bounds)
+        """Ahmed & Deb's edge-fixing: a copy of ``X`` (rounded, within bounds)
         in which every move that would leave the grid is replaced by a row
         drawn with linear probability between the violated edge (highest)
         and the current row (zero)."""

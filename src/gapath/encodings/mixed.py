@@ -28,7 +28,7 @@ the mixed one is redundant (``0-0`` and ``1-0``).
 
 Decoding rounds the genes, reads a bit as 1 when it rounds to 1 or more,
 clips the integers to ``[0, H]`` and clamps moves past the grid edge, so any
-genome gives a valid path. :meth:`MixedEncoding.edge_fix` is the seeds'
+genome gives a valid path. :meth:`MixedEncoding.edge_fix` is Ahmed & Deb's
 edge-fixing written back into the genes (start column included); afterwards
 decoding never clamps.
 
@@ -57,7 +57,7 @@ from gapath.errors import ConfigError
 
 
 class MixedEncoding:
-    """The seeds' mixed genes: a direction bit and an integer per column.
+    """Ahmed & Deb's mixed genes: a direction bit and an integer per column.
 
     Parameters
     ----------
@@ -135,7 +135,7 @@ class MixedEncoding:
         return np.concatenate([(D >= 0).astype(np.int64), np.abs(D)], axis=1)
 
     def edge_fix(self, X, random_state: np.random.Generator) -> np.ndarray:
-        """The seeds' edge-fixing: a copy of ``X`` (rounded, within bounds)
+        """Ahmed & Deb's edge-fixing: a copy of ``X`` (rounded, within bounds)
         in which every move that would leave the grid (the start column's
         included) is replaced by a row drawn with linear probability between
         the violated edge (highest) and the current row (zero). Bits of

@@ -1,4 +1,4 @@
-"""The seeds' dense-obstacle experiment (Ahmed & Deb 2013, section 6, Table 1).
+"""Ahmed & Deb's dense-obstacle experiment (2013, section 6, Table 1).
 
 Protocol: a random column-monotone path from start to goal is drawn first,
 then every other cell becomes an obstacle with probability ``p0``
@@ -674,7 +674,7 @@ def _seed_list(text: str) -> list[int]:
 def register_experiment(subparsers) -> None:
     from gapath.commands.experiment import add_executor_options
 
-    p = subparsers.add_parser("dense", help="the seeds' dense-obstacle experiment (Table 1)")
+    p = subparsers.add_parser("dense", help="Ahmed & Deb's dense-obstacle experiment (Table 1)")
     p.add_argument("--out", required=True,
                    help="store directory (DIR/table1-map<S>, DIR/large-map<S>, ...)")
     p.add_argument("--quick", action="store_true",

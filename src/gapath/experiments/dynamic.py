@@ -23,7 +23,7 @@ machine they are noisy, which is why medians are reported beside means. A
 warm-up run per planner comes first so that no timing includes numba's
 compilation or cache loading.
 
-Outputs (:func:`write_outputs`): ``dynamic.md`` (tables beside the seeds'
+Outputs (:func:`write_outputs`): ``dynamic.md`` (tables beside NO-MOPP's
 Tables I-IV), ``dynamic.csv``, one JSON line per scenario and planner,
 ``dynamic_<scenario>.gif`` (one hybrid A* run) and ``dynamic_paths.png``
 (the driven paths of all planners in one run per scenario).
@@ -55,7 +55,7 @@ SCENARIO_ORDER = ("maze", "warehouse")
 LABELS = {"hybrid-astar": "NO-MOPP (hybrid A*)", "rrt": "RRT", "rrt-star": "RRT*",
           "astar": "A* (grid)", "dstar-lite": "D* Lite (grid)"}
 
-#: The seeds' Tables I-IV (MATLAB 2021a, 100 runs): path length mean (m),
+#: NO-MOPP's Tables I-IV (MATLAB 2021a, 100 runs): path length mean (m),
 #: execution time (s), direct distance (m).
 SEED_TABLES = [
     ("maze", "NO-MOPP offline (global)", 64.5589, 0.457936, 51.856),
@@ -67,7 +67,7 @@ SEED_TABLES = [
     ("warehouse", "RRT", 170.8753, 4.596832, 62.1488),
     ("warehouse", "RRT*", 150.3547, 4.975649, 62.1488),
 ]
-#: The seeds' success share: dynamic obstacles avoided in 90 % of the runs.
+#: NO-MOPP's success share: dynamic obstacles avoided in 90 % of the runs.
 SEED_SUCCESS_PCT = 90.0
 
 
@@ -114,13 +114,13 @@ class DynamicStudy:
         return _markdown(self)
 
 
-#: The seeds' driven length over straight-line distance after local replanning.
+#: NO-MOPP's driven length over straight-line distance after local replanning.
 SEED_RATIO = {"maze": 67.8374 / 51.856, "warehouse": 91.5263 / 62.1488}
 
 
 def targets(row: dict) -> dict:
     """Whether a table row meets the issue's figures: success >= 99 %, driven
-    length over straight-line distance at most the seeds' (maze 67.84/51.86,
+    length over straight-line distance at most NO-MOPP's (maze 67.84/51.86,
     warehouse 91.53/62.15), and on the maze a median global plan <= 50 ms."""
     out = {"success_ge_99": bool(row["success_pct"] >= 99.0)}
     if row["scenario"] in SEED_RATIO:
@@ -303,10 +303,10 @@ def _markdown(study: DynamicStudy) -> str:
         "## Set-up",
         "",
         "* Maps (1 m cells, `gapath.scenarios`): `complex_maze` (8x8 maze cells, 4 m corridors, "
-        "braided to a grid detour of at most 1.20; the seeds' offline path was 1.245x their "
+        "braided to a grid detour of at most 1.20; NO-MOPP's offline path was 1.245x its "
         "direct distance) and `warehouse` (shelves 2 m x 10 m, 4 m aisles, loading dock, "
         "package pick-up goal beside a shelf). Start and goal are chosen for a straight-line "
-        "distance near the seeds' 51.86 m and 62.15 m.",
+        "distance near NO-MOPP's 51.86 m and 62.15 m.",
         f"* Robot: car with wheelbase {rb['wheelbase']} m, maximum steering {rb['max_steer_deg']} "
         f"degrees (minimum turning radius {rb['min_turning_radius']} m), speed {rb['speed']} m/s, "
         f"disc footprint of radius {rb['radius']} m; sensor range {rb['sensor_range']} m, field "
@@ -355,7 +355,7 @@ def _markdown(study: DynamicStudy) -> str:
         if seeds:
             lines += ["", f"The seeds on their {scen} (MATLAB 2021a, 100 runs, success "
                       f"{SEED_SUCCESS_PCT:g} %):", "",
-                      "| seeds' row | path length mean (m) | length / direct | execution time (s) |",
+                      "| NO-MOPP row | path length mean (m) | length / direct | execution time (s) |",
                       "|---|---|---|---|"]
             for _, name, length, secs, direct in seeds:
                 lines.append(f"| {name} | {length:.2f} | {length / direct:.3f} | {secs:.3f} |")
@@ -493,7 +493,7 @@ def fov_markdown(rows) -> str:
 def register_experiment(subparsers) -> None:
     """``gapath experiment dynamic``: the study, written to ``--out``."""
     p = subparsers.add_parser(
-        "dynamic", help="NO-MOPP's dynamic-environment study (the seeds' Tables I-IV)",
+        "dynamic", help="NO-MOPP's dynamic-environment study (its Tables I-IV)",
         description="Hybrid A* (NO-MOPP), RRT, RRT*, A* and D* Lite among appearing and moving "
                     "obstacles on the complex maze and the warehouse; writes dynamic.md/.csv/"
                     ".jsonl, a picture of the paths and one animation per scenario.")

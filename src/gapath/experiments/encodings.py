@@ -1,4 +1,4 @@
-"""The seeds' encoding comparison (Ahmed & Deb 2013, section 5.3, Fig. 3).
+"""Ahmed & Deb's encoding comparison (2013, section 5.3, Fig. 3).
 
 On the 32x32 scenario with 173 random obstacles, every encoding (integer,
 mixed, binary, and the absolute scheme the seeds dropped) runs 10 times with
@@ -136,7 +136,7 @@ def write_outputs(result, out_dir) -> list[Path]:
 
 
 def register_experiment(subparsers) -> None:
-    p = subparsers.add_parser("encodings", help="the seeds' encoding comparison (Fig. 3 set-up)")
+    p = subparsers.add_parser("encodings", help="Ahmed & Deb's encoding comparison (Fig. 3 set-up)")
     p.add_argument("--runs", type=int, default=10)
     p.add_argument("--pop", type=int, default=500)
     p.add_argument("--gen", type=int, default=500)

@@ -79,7 +79,7 @@ def multirun(workspace, runs: int = 10, seed: int = 1, *, on_run=None, **solve_k
     Parameters
     ----------
     workspace : :class:`gapath.Workspace`.
-    runs : number of runs (seeds' protocol: 10).
+    runs : number of runs (Ahmed & Deb's protocol: 10).
     seed : first seed.
     on_run : called with each :class:`gapath.solver.SolveResult` as soon as
         its run ends (e.g. to write it), so an interruption loses nothing

@@ -1,4 +1,4 @@
-"""The seeds' sampling, crossover and mutation for each encoding."""
+"""Ahmed & Deb's sampling, crossover and mutation for each encoding."""
 
 from __future__ import annotations
 
@@ -16,7 +16,7 @@ from gapath.operators.mutation.mixed_mutation import MixedMutation
 def default_operators(encoding_name: str, *, sbx_prob: float = 0.9, sbx_eta: float = 10,
                       pm_eta: float = 20, pm_prob_var: float | None = None) -> dict:
     """Fresh sampling, crossover and mutation operators for an encoding,
-    with the seeds' settings (Ahmed & Deb, sections 2 and 5.2).
+    with Ahmed & Deb's settings (sections 2 and 5.2).
 
     * ``integer`` and ``absolute``: ``IntegerRandomSampling``, ``DiscreteSBX``
       (prob 0.9, eta 10), ``DiscretePM`` (eta 20, per-gene 1/n, n columns).

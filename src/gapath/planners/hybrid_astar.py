@@ -108,6 +108,28 @@ def _positive(value, name: str, *, allow_zero: bool = False) -> float:
     return v
 
 
+def describe_pose(pose, cell_size: float) -> str:
+    """A pose or point in the CLI's words: its cell ``ROW,COL``, the world
+    point when it is not the cell's centre, the heading in whole degrees.
+
+    Examples
+    --------
+    >>> describe_pose((3.0, 2.0, math.pi / 2), 1.0)
+    'cell ROW,COL 2,3 heading 90 deg'
+    >>> describe_pose((3.25, 2.0), 0.5)
+    'cell ROW,COL 4,7 (x=3.25, y=2 world units)'
+    """
+    x, y = float(pose[0]), float(pose[1])
+    cs = float(cell_size)
+    r, c = math.floor(y / cs + 0.5), math.floor(x / cs + 0.5)
+    text = f"cell ROW,COL {r},{c}"
+    if abs(x - c * cs) > 1e-9 or abs(y - r * cs) > 1e-9:
+        text += f" (x={x:.4g}, y={y:.4g} world units)"
+    if len(pose) > 2:
+        text += f" heading {math.degrees(float(pose[2])) % 360:.0f} deg"
+    return text
+
+
 @dataclass(frozen=True)
 class CarModel:
     """A simple car: LaValle, *Planning Algorithms* (2006), eq. (6) of NO-MOPP.
@@ -156,8 +178,8 @@ class CarModel:
         if not math.isfinite(steer) or not 0 < steer < math.pi / 2:
             raise ConfigError(
                 f"max_steer must be in (0, pi/2) radians (0 to 90 degrees, exclusive), "
-                f"got {self.max_steer!r} ({math.degrees(steer) if math.isfinite(steer) else steer} "
-                f"degrees)")
+                f"got {steer:.4g} rad"
+                + (f" ({math.degrees(steer):.1f} degrees)" if math.isfinite(steer) else ""))
         object.__setattr__(self, "max_steer", steer)
 
     @property
@@ -780,20 +802,22 @@ class HybridAStar:
         r_check = r + 0.5 * self.ds / cs
         if not disc_free(occ, sx, sy, r_check):
             raise ConfigError(
-                f"start pose {tuple(round(v, 4) for v in s)} is in collision (robot radius "
-                f"{self.car.radius} plus the sampling margin {0.5 * self.ds:.3g}) or outside the map")
+                f"start {describe_pose(s, cs)} is in collision (robot radius "
+                f"{self.car.radius:g}, --radius, plus the sampling margin {0.5 * self.ds:.3g}) "
+                "or outside the map")
         if not disc_free(occ, gx, gy, r_check):
             raise ConfigError(
-                f"goal {tuple(round(v, 4) for v in g)} is in collision (robot radius "
-                f"{self.car.radius} plus the sampling margin {0.5 * self.ds:.3g}) or outside the map")
+                f"goal {describe_pose(g, cs)} is in collision (robot radius "
+                f"{self.car.radius:g}, --radius, plus the sampling margin {0.5 * self.ds:.3g}) "
+                "or outside the map")
         h, w = occ.shape
         gcell = (int(math.floor(gy + 0.5)), int(math.floor(gx + 0.5)))
         hgrid = self._goal_grid(occ, gcell, cached)
         scell = (int(math.floor(sy + 0.5)), int(math.floor(sx + 0.5)))
         if not np.isfinite(hgrid[scell]):
             raise NoPathError(
-                f"no path from {tuple(round(v, 3) for v in s)} to {tuple(round(v, 3) for v in g)}: "
-                f"the goal cell {gcell} is not connected to the start cell {scell}")
+                f"no path from the start {describe_pose(s, cs)} to the goal "
+                f"{describe_pose(g, cs)}: the goal cell is not connected to the start cell")
         if cost is None:
             layer = np.zeros((1, 1))
             use_layer = False
@@ -808,7 +832,7 @@ class HybridAStar:
             raise ConfigError(f"max_expansions must be a positive integer, got {max_expansions!r}")
         if hgrid[scell] / 1.09 > max_len + 1.0:
             raise NoPathError(
-                f"no path within max_length={max_length}: the grid distance to the goal is "
+                f"no path within max_length={max_length:g}: the grid distance to the goal is "
                 f"{hgrid[scell] * cs:.3f}")
         steers = self.car.steering_angles()
         kappas = np.tan(steers) / (self.car.wheelbase / cs)
@@ -823,14 +847,15 @@ class HybridAStar:
             *arr[1:])
         if status in (_EXHAUSTED, _LIMIT):
             why = ("every reachable state was expanded" if status == _EXHAUSTED
-                   else f"max_expansions={budget} was reached")
+                   else f"the budget of {budget} expansions was reached")
             if max_length is not None and status == _EXHAUSTED:
-                why += f" within max_length={max_length}" 
+                why += f" within max_length={max_length:g}"
             raise NoPathError(
-                f"no drivable path from {tuple(round(v, 3) for v in s)} to "
-                f"{tuple(round(v, 3) for v in g)} for a car with minimum turning radius "
+                f"no drivable path from the start {describe_pose(s, cs)} to the goal "
+                f"{describe_pose(g, cs)} for a car with minimum turning radius "
                 f"{self.car.min_turning_radius:.3g} and radius {self.car.radius:g}: {why} "
-                f"({expansions} expansions)")
+                f"({expansions} expansions); try a tighter turn (a larger --max-steer or a shorter "
+                "--wheelbase), a smaller --radius or more --heading-bins")
         stamp, pos, gval, px, py, pth, parent, psteer = arr[:8]
         pts, actions = _extract(goal_state, parent, psteer, px, py, pth, kappas,
                                 self.arc_length / cs, self.ds / cs, shot_k, shot_l)

@@ -1,6 +1,6 @@
 """Multi-objective graph search on layered costmaps: A*-PO, D*-PO and the
 weighted-sum A* and D* baselines of A. Lavin, "A Pareto optimal D* search
-algorithm for multiobjective path planning" (the seed ``dstar-po_lavin``).
+algorithm for multiobjective path planning".
 
 The search problem
     The graph is the 8-connected grid of the costmap's workspace (SPEC moves,

@@ -370,10 +370,12 @@ def rrt(workspace, start=None, goal=None, *, seed=0, radius: float = 0.3,
     sx, sy = (v / cs for v in _point(start, "start"))
     gx, gy = (v / cs for v in _point(goal, "goal"))
     r_check = r + 0.5 * dsv
-    if not disc_free(occ, sx, sy, r_check):
-        raise ConfigError(f"start {(sx * cs, sy * cs)} is in collision (radius {radius}) or outside the map")
-    if not disc_free(occ, gx, gy, r_check):
-        raise ConfigError(f"goal {(gx * cs, gy * cs)} is in collision (radius {radius}) or outside the map")
+    from gapath.planners.hybrid_astar import describe_pose
+
+    for label, (px, py) in (("start", (sx, sy)), ("goal", (gx, gy))):
+        if not disc_free(occ, px, py, r_check):
+            raise ConfigError(f"{label} {describe_pose((px * cs, py * cs), cs)} is in collision "
+                              f"(robot radius {float(radius):g}, --radius) or outside the map")
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     samples = rng.random((iters, 3))
     free_area = float((~occ).sum())
@@ -382,8 +384,10 @@ def rrt(workspace, start=None, goal=None, *, seed=0, radius: float = 0.3,
                               bool(star), gamma, rew, extra_it)
     if len(pts) == 0:
         raise NoPathError(
-            f"{'RRT*' if star else 'RRT'} found no path from {(sx * cs, sy * cs)} to "
-            f"{(gx * cs, gy * cs)} in {iters} iterations (tree of {n} nodes)")
+            f"{'RRT*' if star else 'RRT'} found no path from the start "
+            f"{describe_pose((sx * cs, sy * cs), cs)} to the goal "
+            f"{describe_pose((gx * cs, gy * cs), cs)} in {iters} iterations (tree of {n} "
+            "nodes); try more --iterations, a larger --goal-bias or a smaller --radius")
     points = pts * cs
     d = np.diff(points, axis=0)
     heading = np.arctan2(d[:, 1], d[:, 0]) if len(d) else np.zeros(0)

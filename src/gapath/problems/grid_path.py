@@ -44,7 +44,7 @@ class GridPathProblem(Problem):
         layers; see :mod:`gapath.costmap`).
     encoding : ``"integer"`` (default), ``"binary"``, ``"mixed"`` or
         ``"absolute"`` (see :data:`gapath.encodings.ENCODINGS`).
-    constraints : ``"penalty"`` (the seeds' default: every objective gets
+    constraints : ``"penalty"`` (Ahmed & Deb's default: every objective gets
         ``penalty * interfering`` added) or ``"constraint"`` (``interfering``
         is returned as the inequality constraint ``G``; feasible when 0).
     penalty : penalty per interfering cell (default 1000).

@@ -28,7 +28,7 @@ def mixed_blocks(problem, n_bits=None) -> tuple[int, SimpleNamespace]:
 
 
 class MixedCrossover(Crossover):
-    """The seeds' crossover of mixed genomes ``[bits | integers]``, one
+    """Ahmed & Deb's crossover of mixed genomes ``[bits | integers]``, one
     vectorised pymoo operator over the flat genome.
 
     The bit block gets pymoo's single-point crossover, the integer block

@@ -71,7 +71,7 @@ def decayed_rate(initial: float, n_gen, final_gen) -> float:
 class DecayingBitflipMutation(BitflipMutation):
     """Bit-wise mutation whose per-bit probability falls linearly from its
     initial value at generation 1 to one fifth of it at the final
-    generation (the seeds' binary GA).
+    generation (Ahmed & Deb's binary GA).
 
     The operator keeps no state: the rate is derived on every call from the
     ``algorithm`` pymoo passes to ``_do`` (``algorithm.n_gen`` and

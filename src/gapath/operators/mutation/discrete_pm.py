@@ -14,7 +14,7 @@ class DiscretePM(PM):
     ----------
     eta : distribution index (seeds: 20).
     prob_var : per-gene mutation probability; ``None`` means ``1 / n`` with
-        ``n`` the number of columns of the path (the seeds' ``1/n`` for an
+        ``n`` the number of columns of the path (Ahmed & Deb's ``1/n`` for an
         ``n x n`` grid, whose genome has ``n - 1`` genes).
     **kwargs : passed to :class:`pymoo.operators.mutation.pm.PM`.
     """

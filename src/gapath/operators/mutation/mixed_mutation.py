@@ -12,7 +12,7 @@ from gapath.operators.crossover.mixed_crossover import mixed_blocks
 
 
 class MixedMutation(Mutation):
-    """The seeds' mutation of mixed genomes ``[bits | integers]``, one
+    """Ahmed & Deb's mutation of mixed genomes ``[bits | integers]``, one
     vectorised pymoo operator over the flat genome.
 
     The bit block gets pymoo's bit-wise mutation (on booleans, returned as

@@ -1,4 +1,4 @@
-"""The seeds' edge-fixing, written back into the genes as a pymoo repair."""
+"""Ahmed & Deb's edge-fixing, written back into the genes as a pymoo repair."""
 
 from __future__ import annotations
 
