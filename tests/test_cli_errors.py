@@ -163,12 +163,12 @@ def test_dem_files_are_checked(tmp_path, capsys):
     cases = [(garbage, "is not a NumPy .npy array"), (objects, "holds Python objects (pickled)"),
              (tmp_path / "missing.npy", "does not exist"), (good.with_suffix(".tif"), "must be .npy or .npz")]
     for dem, message in cases:
-        code, _, err = run(capsys, ["plan", "default", "--planner", "astar", "--dem", dem,
-                                    "--out", tmp_path / "o", "--quiet"])
+        code, _, err = run(capsys, ["plan", "default", "--planner", "astar", "--layers",
+                                    "elevation", "--dem", dem, "--out", tmp_path / "o", "--quiet"])
         assert code == EXIT_BAD_INPUT, dem
         assert err.startswith(f"gapath: error: --dem: DEM file '{dem}'") and message in err
-    code, _, _ = run(capsys, ["plan", "default", "--planner", "astar", "--dem", good,
-                              "--out", tmp_path / "o", "--quiet"])
+    code, _, _ = run(capsys, ["plan", "default", "--planner", "astar", "--layers", "elevation",
+                              "--dem", good, "--out", tmp_path / "o", "--quiet"])
     assert code == 0
 
 

@@ -114,7 +114,9 @@ def test_plan_layers_are_opt_in(tmp_path):
     (["--risk", "3,3"], "--risk sets the risk layer"),
     (["--layers", "height"], "--layers: unknown layer 'height'"),
 ])
-def test_layer_options_without_their_layer(flag, fragment, tmp_path, capsys):
+def test_layer_options_without_their_layer(flag, fragment, tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    np.save(tmp_path / "x.npy", np.random.default_rng(1).random((8, 8)))   # a valid DEM
     assert main(["plan", "default", *flag, "--out", str(tmp_path / "o"), "--quiet"]) == 2
     err = capsys.readouterr().err
     assert fragment in err and "Traceback" not in err
@@ -410,11 +412,11 @@ def test_plots_have_axis_labels_with_units(data_dir):
 # ---------------------------------------------------------------------------
 
 @pytest.mark.parametrize("args,fragment", [
-    (["--planner", "rrt", "--iterations", "0"], "--iterations must be a positive integer"),
-    (["--planner", "rrt", "--goal-bias", "2"], "--goal-bias must be in [0.0, 1.0]"),
+    (["--planner", "rrt", "--iterations", "0"], "--iterations must be an integer >= 1, got 0"),
+    (["--planner", "rrt", "--goal-bias", "2"], "--goal-bias must be a number in [0, 1], got 2.0"),
     (["--planner", "hybrid-astar", "--heading-bins", "2"], "--heading-bins must be"),
     (["--planner", "hybrid-astar", "--max-steer", "95"],
-     "--max-steer must be between 0 and 90 degrees (both excluded), got 95"),
+     "--max-steer must be a number in (0, 90), got 95.0"),
     (["--planner", "hybrid-astar", "--wheelbase", "-1"], "--wheelbase must be"),
     (["--planner", "rrt", "--radius", "3"], "start cell ROW,COL 7,0 is in collision"),
     (["--planner", "hybrid-astar", "--radius", "3"], "start cell ROW,COL 7,0 heading"),

@@ -327,7 +327,7 @@ def shortest_in_csv(path) -> float | None:
 def update_summary(out_dir, entries: dict, settings: dict | None = None) -> None:
     """Add ``entries`` (and ``settings`` entries) to ``out_dir/summary.json``,
     if the command wrote one."""
-    from gapath.results import atomic_write
+    from gapath.results import atomic_write, dumps
 
     path = Path(out_dir) / "summary.json"
     try:
@@ -337,4 +337,4 @@ def update_summary(out_dir, entries: dict, settings: dict | None = None) -> None
     summary.update({k: v for k, v in entries.items() if v is not None})
     if settings:
         summary.setdefault("settings", {}).update(settings)
-    atomic_write(path, json.dumps(summary, indent=1, sort_keys=True) + "\n")
+    atomic_write(path, dumps(summary, indent=1, sort_keys=True) + "\n")
