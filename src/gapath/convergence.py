@@ -16,6 +16,7 @@ from pathlib import Path
 import numpy as np
 from pymoo.core.callback import Callback
 
+from gapath.callbacks import population_arrays
 from gapath.errors import ConfigError
 from gapath.metrics import TOL, hypervolume, nondominated, normalisation_bounds
 
@@ -27,24 +28,18 @@ HISTORY_COLUMNS = ("n_gen", "n_eval", "hv_ratio")
 
 def _population_front(algorithm, problem) -> np.ndarray:
     """The feasible, non-dominated (SPEC tolerance), unpenalised objective
-    vectors of the algorithm's current population."""
-    pop = algorithm.pop
-    if pop is None or len(pop) == 0:
+    vectors of the algorithm's current population (read with
+    :func:`gapath.callbacks.population_arrays`: no pymoo ``Population`` is
+    built from :class:`gapath.algorithms.FastNSGA2`)."""
+    A = population_arrays(algorithm)
+    if A is None or len(A) == 0:
         return np.zeros((0, 0))
     if problem is not None:
         from gapath.front import path_front
 
-        return path_front(problem, pop.get("X")).F
-    from gapath.operators._columns import column
-
-    F = column(pop, "F")
-    interfering = column(pop, "interfering")
-    if interfering is not None:
-        # penalty mode adds penalty * interfering: nothing on the feasible rows
-        feasible = interfering == 0
-    else:
-        feasible = column(pop, "CV")[:, 0] <= 0
-    F = F[feasible]
+        return path_front(problem, A.X).F
+    # penalty mode adds penalty * interfering: nothing on the feasible rows
+    F = np.asarray(A.F)[A.feasible]
     return F[nondominated(F, tol=TOL)] if len(F) else F
 
 
@@ -69,10 +64,13 @@ class HypervolumeRatioCallback(Callback):
     problem : GridPathProblem, optional
         When given, the population's genomes are decoded and re-evaluated
         with :func:`gapath.front.path_front` (exact, slower). By default the
-        columns pymoo keeps on the individuals are used: ``F`` and
-        ``interfering`` (``F`` minus ``penalty * interfering`` in penalty
-        mode, which is ``F`` itself on feasible individuals); without an
-        ``interfering`` column, ``CV <= 0`` marks the feasible ones.
+        population's own columns are used
+        (:func:`gapath.callbacks.population_arrays`: the engine's arrays
+        for :class:`~gapath.algorithms.FastNSGA2`, the individuals' values
+        for stock pymoo algorithms): ``F`` and ``interfering`` (``F`` minus
+        ``penalty * interfering`` in penalty mode, which is ``F`` itself on
+        feasible individuals); without an ``interfering`` column,
+        ``CV <= 0`` marks the feasible ones.
 
     Attributes
     ----------

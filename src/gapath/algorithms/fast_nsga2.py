@@ -183,6 +183,12 @@ def _constraint_violation(G, H):
     return cv
 
 
+def _split_keys(keys):
+    """``(entries, exits)`` of path keys ``[entries | exits]`` (contiguous int64)."""
+    c = keys.shape[1] // 2
+    return np.ascontiguousarray(keys[:, :c]), np.ascontiguousarray(keys[:, c:])
+
+
 def _scalar(v, size):
     """A pymoo operator parameter as a scalar (an array when it varies per row)."""
     value = v.get() if isinstance(v, Variable) else v
@@ -612,10 +618,17 @@ class FastNSGA2(Algorithm):
 
     def _evaluate(self, X: np.ndarray, keys=None, hashes=None) -> PathArrays:
         """One vectorised ``problem.evaluate``; counts the evaluations in
-        ``algorithm.evaluator.n_eval``."""
+        ``algorithm.evaluator.n_eval``. The path ``keys`` of ``X``, when
+        known, are given to a problem that ``accepts_profiles`` (see
+        :meth:`gapath.problems.GridPathProblem.metrics`), so that each
+        path is decoded once."""
         t0 = self.clock()
+        kwargs = {}
+        if keys is not None and getattr(self.problem, "accepts_profiles", False):
+            # the paths were decoded for duplicate elimination: not again
+            kwargs["profiles"] = _split_keys(keys)
         out = self.problem.evaluate(X, return_values_of=list(_CORE_OUTPUTS),
-                                    return_as_dictionary=True, algorithm=self)
+                                    return_as_dictionary=True, algorithm=self, **kwargs)
         self.evaluator.n_eval += len(X)
         F, G, H = (np.asarray(out[k], dtype=float).reshape(len(X), -1) for k in _CORE_OUTPUTS)
         data = {k: np.asarray(v) for k, v in out.items() if k not in _CORE_OUTPUTS and v is not None}
