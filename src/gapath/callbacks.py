@@ -161,12 +161,10 @@ def population_status(algorithm, arrays: PopulationArrays | None = None) -> dict
 
     Examples
     --------
-    >>> from pymoo.optimize import minimize
     >>> from gapath import default_workspace
-    >>> from gapath.algorithms import FastNSGA2
-    >>> from gapath.problems import GridPathProblem
-    >>> res = minimize(GridPathProblem(default_workspace()), FastNSGA2(20), ("n_gen", 2), seed=1)
-    >>> sorted(population_status(res.algorithm))
+    >>> from gapath.solver import solve
+    >>> r = solve(default_workspace(), pop_size=20, n_gen=2)
+    >>> sorted(population_status(r.pymoo_result.algorithm))
     ['feasible', 'front', 'gen', 'length', 'vulnerability']
     """
     A = population_arrays(algorithm) if arrays is None else arrays
@@ -254,6 +252,7 @@ class ProgressBar(Callback):
 
     def _show(self, algorithm) -> None:
         s = self.status = population_status(algorithm)
+        s["gen"] = self.last_gen       # pymoo counts on after the last notification
         self.bar.set_postfix_str(
             f"feasible={s['feasible']} front={s['front']}"
             + "".join(f" {k}={v:.4g}" for k, v in s.items() if k not in ("gen", "feasible", "front")),

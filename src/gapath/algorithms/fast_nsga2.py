@@ -624,7 +624,8 @@ class FastNSGA2(Algorithm):
         path is decoded once."""
         t0 = self.clock()
         kwargs = {}
-        if keys is not None and getattr(self.problem, "accepts_profiles", False):
+        if keys is not None and getattr(self.problem, "accepts_profiles", False) \
+                and getattr(self.problem, "requires_kwargs", False):
             # the paths were decoded for duplicate elimination: not again
             kwargs["profiles"] = _split_keys(keys)
         out = self.problem.evaluate(X, return_values_of=list(_CORE_OUTPUTS),

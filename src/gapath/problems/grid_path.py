@@ -99,6 +99,8 @@ class GridPathProblem(Problem):
         self.encoding = make_encoding(encoding, self.frame)
         self.constraints = constraints
         self.penalty = penalty
+        # pymoo passes evaluate()'s keyword arguments (``profiles``) through
+        kwargs.setdefault("requires_kwargs", True)
         super().__init__(n_var=self.encoding.n_var, n_obj=len(self.objectives),
                          n_ieq_constr=1 if constraints == "constraint" else 0,
                          xl=self.encoding.xl, xu=self.encoding.xu,
