@@ -32,7 +32,10 @@ Populations
     per-path metrics, rank, crowding). ``algorithm.pop``, ``algorithm.opt`` and
     ``algorithm.off`` are pymoo ``Population`` objects built from it on first
     access in a generation, so a run that nobody looks at builds none until
-    the ``Result``.
+    the ``Result``. gapath's callbacks (progress bar, hypervolume ratio,
+    first feasible generation) read the arrays
+    (:func:`gapath.callbacks.population_arrays`), and the evaluation gets
+    the paths decoded for duplicate elimination (each path is decoded once).
 """
 
 from __future__ import annotations
@@ -730,7 +733,9 @@ class FastNSGA2(Algorithm):
     # == pymoo plumbing =======================================================
     @property
     def arrays(self) -> PathArrays | None:
-        """The current population as :class:`PathArrays`."""
+        """The current population as :class:`PathArrays` (no copy, nothing
+        built: what a callback should read, e.g. through
+        :func:`gapath.callbacks.population_arrays`, instead of ``pop``)."""
         return self._arrays
 
     @property
