@@ -89,6 +89,28 @@ def test_bar_reads_the_status_of_the_last_generation(ws):
     assert "5/5" in text
 
 
+def test_bar_reads_the_status_only_when_it_redraws(ws, monkeypatch):
+    import gapath.callbacks
+
+    calls = []
+    original = gapath.callbacks.population_status
+
+    def counting(algorithm, arrays=None):
+        calls.append(int(algorithm.n_gen))
+        return original(algorithm, arrays)
+
+    monkeypatch.setattr(gapath.callbacks, "population_status", counting)
+    bar = ProgressBar(6, file=io.StringIO(), mininterval=1e9)
+    solve(ws, pop_size=20, n_gen=6, seed=1, callback=bar)
+    bar.close()
+    assert calls == [1, 6]          # the first drawing and the last generation
+    calls.clear()
+    bar = ProgressBar(6, file=io.StringIO(), mininterval=0, miniters=1)
+    solve(ws, pop_size=20, n_gen=6, seed=1, callback=bar)
+    bar.close()
+    assert calls == [1, 2, 3, 4, 5, 6]
+
+
 def _status_from_population(pop, problem, n_gen):
     """population_status computed independently from a pymoo Population."""
     interfering = column(pop, "interfering")

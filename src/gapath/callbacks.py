@@ -198,11 +198,13 @@ class Callbacks(Callback):
             cb(algorithm)
 
 
-def _redraw_due(bar) -> bool:
-    """Whether tqdm will redraw ``bar`` at its next update (its
-    ``mininterval`` has passed since the last drawing)."""
+def _redraw_due(bar, n: int) -> bool:
+    """Whether tqdm will redraw ``bar`` when its count becomes ``n`` (its
+    own test in ``tqdm.update``: ``miniters`` steps and ``mininterval``
+    seconds since the last drawing)."""
     try:
-        return bar._time() - bar.last_print_t >= bar.mininterval
+        return (n - bar.last_print_n >= bar.miniters
+                and bar._time() - bar.last_print_t >= bar.mininterval)
     except AttributeError:          # another tqdm: read the status every time
         return True
 
@@ -266,7 +268,7 @@ class ProgressBar(Callback):
         if bar is None:
             bar = self.bar = tqdm(total=self.n_gen, **self.tqdm_kwargs)
             self._show(algorithm)
-        elif not bar.disable and (self.last_gen >= self.n_gen or _redraw_due(bar)):
+        elif not bar.disable and (self.last_gen >= self.n_gen or _redraw_due(bar, self.last_gen)):
             self._show(algorithm)
         self._algorithm = algorithm
         bar.update(self.last_gen - bar.n)
