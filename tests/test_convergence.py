@@ -121,3 +121,18 @@ def test_plot_convergence(tmp_path):
         plot_convergence(history, tmp_path / "x.png", x="time")
     with pytest.raises(ConfigError):
         plot_convergence([[1, 2]], tmp_path / "x.png")
+
+
+def test_fast_tolerance_front_is_nondominated_with_tolerance():
+    from gapath.convergence import _nondominated_tol
+    from gapath.metrics import TOL, nondominated
+
+    rng = np.random.default_rng(0)
+    for trial in range(30):
+        n, m = rng.integers(65, 400), rng.integers(2, 4)
+        F = rng.integers(0, 12, size=(n, m)).astype(float)      # many ties
+        # near-ties within and just outside the tolerance
+        F += rng.choice([0.0, 0.5e-9, -0.5e-9, 5e-9], size=F.shape) * np.maximum(1, np.abs(F))
+        if trial % 3 == 0:
+            F = np.vstack([F, F[:20]])                            # exact duplicates
+        np.testing.assert_array_equal(_nondominated_tol(F), nondominated(F, tol=TOL))
