@@ -22,8 +22,10 @@ Records (JSON lines):
   a callback, if any: FastNSGA2 builds its pymoo Population lazily and no
   callback should make it);
 * ``cli_engines.summary``: medians per configuration, the fast engine's
-  speed-up over pymoo with and without the bar, and the bar's overhead in
-  per cent of a generation of the same engine.
+  speed-up over pymoo with and without the bar, the bar's overhead in per
+  cent of a generation of the same engine, and that of the hypervolume
+  tracker ``gapath solve --reference monotone`` adds (a fifth
+  configuration, ``fast+bar+reference``).
 
 The machine is shared (2 cores): the load average is printed with every
 record; timings are medians of interleaved repeats.
@@ -44,7 +46,10 @@ import time
 from pymoo.core.callback import Callback
 
 from gapath import default_workspace
+from gapath.callbacks import Callbacks
 from gapath.cli import build_parser
+from gapath.convergence import HypervolumeRatioCallback
+from gapath.reference import reference_front
 from gapath.solver import solve
 
 CONFIGS = (("fast", True), ("fast", False), ("pymoo", True), ("pymoo", False))
@@ -91,12 +96,15 @@ class GenerationClock(Callback):
         return 1000.0 * (t1 - t0) / (g1 - g0)
 
 
-def run(ws, engine, bar, common):
+def run(ws, engine, bar, common, reference=None):
+    """One ``solve`` as ``gapath solve default COMMON [--engine pymoo] [--quiet]``
+    (with ``reference``: ``--reference monotone``, the CLI's hv tracker)."""
     argv = [*common] + ([] if engine == "fast" else ["--engine", "pymoo"]) \
         + ([] if bar else ["--quiet"])
     clock = GenerationClock()
+    callback = clock if reference is None else Callbacks(HypervolumeRatioCallback(reference), clock)
     with open(os.devnull, "w") as sink, contextlib.redirect_stderr(sink):
-        r = solve(ws, callback=clock, **cli_kwargs(argv))
+        r = solve(ws, callback=callback, **cli_kwargs(argv))
     return r, clock
 
 
@@ -113,25 +121,30 @@ def main(argv=None):
     common = ["--pop", str(a.pop), "--gen", str(a.gen)]
     for engine in ("fast", "pymoo"):          # warm-up: numba compile, planners
         run(ws, engine, True, ["--pop", str(a.pop), "--gen", "3"])
-    times = {c: [] for c in CONFIGS}
+    reference = reference_front(ws, ["length", "vulnerability"], "monotone")
+    configs = CONFIGS + (("fast", "reference"),)
+    times = {c: [] for c in configs}
     fronts = {}
     for rep in range(a.repeats):
-        k = rep % len(CONFIGS)
-        for engine, bar in CONFIGS[k:] + CONFIGS[:k]:
-            r, clock = run(ws, engine, bar, common)
+        k = rep % len(configs)
+        for engine, bar in configs[k:] + configs[:k]:
+            r, clock = run(ws, engine, bool(bar), common,
+                           reference if bar == "reference" else None)
             ms = clock.ms_per_gen()
             times[(engine, bar)].append(ms)
             fronts.setdefault(engine, r.front.F.tolist())
             emit(record="cli_engines.run", engine=engine, bar=bar, repeat=rep, pop=a.pop,
                  n_gen=a.gen, cpu_ms_per_gen=round(ms, 4), pop_built_at=clock.pop_built_at,
                  front_size=len(r.front))
-    med = {f"{e}+{'bar' if b else 'quiet'}": statistics.median(v) for (e, b), v in times.items()}
+    label = {True: "bar", False: "quiet", "reference": "bar+reference"}
+    med = {f"{e}+{label[b]}": statistics.median(v) for (e, b), v in times.items()}
     emit(record="cli_engines.summary", pop=a.pop, n_gen=a.gen, repeats=a.repeats,
          clock="process_time (CPU)", cpu_ms_per_gen={k: round(v, 4) for k, v in med.items()},
          speedup_with_bar=round(med["pymoo+bar"] / med["fast+bar"], 2),
          speedup_quiet=round(med["pymoo+quiet"] / med["fast+quiet"], 2),
          bar_overhead_pct={e: round(100 * (med[f"{e}+bar"] / med[f"{e}+quiet"] - 1), 2)
                            for e in ("fast", "pymoo")},
+         reference_tracker_pct=round(100 * (med["fast+bar+reference"] / med["fast+bar"] - 1), 2),
          same_front=fronts["fast"] == fronts["pymoo"],
          targets={"speedup_with_bar": ">= 15", "bar_overhead_pct": "<= 5"})
 
