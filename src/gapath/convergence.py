@@ -16,9 +16,10 @@ from pathlib import Path
 import numpy as np
 from pymoo.core.callback import Callback
 
+from gapath._convergence_kernels import dominated_by
 from gapath.callbacks import population_arrays
 from gapath.errors import ConfigError
-from gapath.metrics import TOL, close, hypervolume, nondominated, normalisation_bounds
+from gapath.metrics import TOL, hypervolume, nondominated, normalisation_bounds
 
 __all__ = ["HypervolumeRatioCallback", "plot_convergence"]
 
@@ -45,19 +46,13 @@ def _population_front(algorithm, problem) -> np.ndarray:
 
 def _dominated_by(B, A, tol) -> np.ndarray:
     """For each row of ``B``: is it dominated up to ``tol`` by a row of
-    ``A``? (The test of :func:`gapath.metrics.nondominated`, pair by pair.)"""
-    out = np.zeros(len(B), bool)
-    if len(A) == 0:
-        return out
-    chunk = max(1, 2_000_000 // max(1, A.size))
-    for s in range(0, len(B), chunk):
-        b = B[s:s + chunk, None, :]
-        a = A[None, :, :]
-        eq = close(a, b, tol)
-        not_worse = ((a <= b) | eq).all(axis=2)
-        better = ((a < b) & ~eq).any(axis=2)
-        out[s:s + chunk] = (not_worse & better).any(axis=1)
-    return out
+    ``A``? The test of :func:`gapath.metrics.nondominated`, pair by pair
+    (a numba loop; ``B`` and ``A`` finite)."""
+    B = np.ascontiguousarray(B, dtype=float)
+    A = np.ascontiguousarray(A, dtype=float)
+    if len(A) == 0 or len(B) == 0:
+        return np.zeros(len(B), bool)
+    return dominated_by(B, A, float(tol))
 
 
 def _nondominated_tol(F, tol: float = TOL) -> np.ndarray:
@@ -68,7 +63,7 @@ def _nondominated_tol(F, tol: float = TOL) -> np.ndarray:
     rows. About n x (front + candidates) comparisons instead of n x n (a
     population of 500 every generation)."""
     F = np.asarray(F, dtype=float)
-    if len(F) <= 64:
+    if len(F) <= 64 or not np.isfinite(F).all():
         return nondominated(F, tol=tol)
     candidates = np.flatnonzero(~_dominated_by(F, F[nondominated(F)], tol))
     return candidates[~_dominated_by(F[candidates], F, tol)]
