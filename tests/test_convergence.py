@@ -136,3 +136,31 @@ def test_fast_tolerance_front_is_nondominated_with_tolerance():
         if trial % 3 == 0:
             F = np.vstack([F, F[:20]])                            # exact duplicates
         np.testing.assert_array_equal(_nondominated_tol(F), nondominated(F, tol=TOL))
+
+
+def test_every_row_is_the_hv_ratio_of_that_generation(ws, reference):
+    """Each row (also those reusing the last generation's value when the
+    front did not change) equals the ratio computed from scratch."""
+    from pymoo.core.callback import Callback
+
+    from gapath.algorithms import FastNSGA2
+    from gapath.callbacks import Callbacks, population_arrays
+    from gapath.operators import PlannerSampling
+
+    problem = GridPathProblem(ws)
+
+    class Direct(Callback):
+        def __init__(self):
+            super().__init__()
+            self.rows = []
+
+        def notify(self, algorithm):
+            F = path_front(problem, population_arrays(algorithm).X).F
+            self.rows.append(hv_ratio(F, reference.F) if len(F) else 0.0)
+
+    cb, direct = HypervolumeRatioCallback(reference), Direct()
+    minimize(problem, FastNSGA2(40, sampling=PlannerSampling("weighted")), ("n_gen", 12), seed=4,
+             callback=Callbacks(cb, direct))
+    H = cb.to_array()
+    np.testing.assert_allclose(H[:, 2], direct.rows, rtol=0, atol=1e-12)
+    assert len(set(H[:, 2])) < len(H)      # some generations kept their front

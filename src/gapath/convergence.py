@@ -138,6 +138,7 @@ class HypervolumeRatioCallback(Callback):
         self.reference = reference
         self.problem = problem
         self.history: list[tuple[int, int, float]] = []
+        self._last = None              # (front, ratio) of the last generation
         R = np.asarray(getattr(reference, "F", reference), dtype=float)
         if R.ndim != 2 or len(R) == 0:
             raise ConfigError(f"the reference front must be a non-empty (k, m) array, got shape {R.shape}")
@@ -147,6 +148,7 @@ class HypervolumeRatioCallback(Callback):
     def _set_bounds(self):
         self.ideal, self.nadir = normalisation_bounds(self._R)
         self._hv_ref = hypervolume(self._R, self.ideal, self.nadir)
+        self._last = None
 
     def initialize(self, algorithm):
         problem = self.problem if self.problem is not None else algorithm.problem
@@ -165,7 +167,12 @@ class HypervolumeRatioCallback(Callback):
 
     def notify(self, algorithm):
         F = _population_front(algorithm, self.problem)
-        ratio = hypervolume(F, self.ideal, self.nadir) / self._hv_ref if len(F) else 0.0
+        last = self._last
+        if last is not None and last[0].shape == F.shape and np.array_equal(last[0], F):
+            ratio = last[1]        # the same front as last generation (elitism): same value
+        else:
+            ratio = hypervolume(F, self.ideal, self.nadir) / self._hv_ref if len(F) else 0.0
+            self._last = (F.copy(), ratio)
         self.history.append((int(algorithm.n_gen), int(algorithm.evaluator.n_eval), float(ratio)))
 
     def to_array(self) -> np.ndarray:
