@@ -27,16 +27,14 @@ from gapath.operators._columns import column
 __all__ = ["Callbacks", "PopulationArrays", "ProgressBar", "population_arrays",
            "population_status"]
 
-#: The columns of :class:`PopulationArrays`.
-COLUMNS = ("X", "F", "G", "CV", "rank", "smoothness", "interfering")
-
-
 class PopulationArrays:
     """Columns of an algorithm's current population as NumPy arrays, one
     row per individual (see :func:`population_arrays`).
 
     Each column is read on first access and kept; a column the population
-    does not have is None.
+    does not have is None. From :class:`gapath.algorithms.FastNSGA2` the
+    columns are the engine's own arrays, not copies: read them, do not
+    write to them.
 
     Attributes
     ----------
