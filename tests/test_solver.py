@@ -56,3 +56,21 @@ def test_engines_give_the_same_front():
     assert np.array_equal(a.front.F, b.front.F) and np.array_equal(a.front.X, b.front.X)
     with pytest.raises(ConfigError, match="unknown engine"):
         solve(ws, pop_size=10, n_gen=2, engine="warp")
+
+
+@pytest.mark.parametrize("engine", ["fast", "pymoo"])
+def test_progress_bar_does_not_change_the_run(engine, capsys):
+    ws = random_workspace((12, 12), 20, seed=2)
+    quiet = solve(ws, pop_size=30, n_gen=6, seed=5, engine=engine)
+    shown = solve(ws, pop_size=30, n_gen=6, seed=5, engine=engine, progress=True)
+    assert np.array_equal(quiet.front.X, shown.front.X) and np.array_equal(quiet.front.F, shown.front.F)
+    assert shown.n_gen == quiet.n_gen == 6 and shown.n_eval == quiet.n_eval
+    bar = capsys.readouterr().err
+    assert "6/6" in bar and "feasible=" in bar and "front=" in bar
+
+
+def test_interrupted_run_with_the_bar_shows_the_last_complete_generation(capsys):
+    ws = random_workspace((12, 12), 20, seed=2)
+    r = solve(ws, pop_size=30, n_gen=50, seed=1, progress=True, callback=_Interrupt(4))
+    assert r.interrupted and r.n_gen == 4 and len(r.front) >= 1
+    assert "4/50" in capsys.readouterr().err

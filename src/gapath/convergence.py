@@ -16,6 +16,8 @@ from pathlib import Path
 import numpy as np
 from pymoo.core.callback import Callback
 
+from gapath._convergence_kernels import dominated_by
+from gapath.callbacks import population_arrays
 from gapath.errors import ConfigError
 from gapath.metrics import TOL, hypervolume, nondominated, normalisation_bounds
 
@@ -27,25 +29,44 @@ HISTORY_COLUMNS = ("n_gen", "n_eval", "hv_ratio")
 
 def _population_front(algorithm, problem) -> np.ndarray:
     """The feasible, non-dominated (SPEC tolerance), unpenalised objective
-    vectors of the algorithm's current population."""
-    pop = algorithm.pop
-    if pop is None or len(pop) == 0:
+    vectors of the algorithm's current population (read with
+    :func:`gapath.callbacks.population_arrays`: no pymoo ``Population`` is
+    built from :class:`gapath.algorithms.FastNSGA2`)."""
+    A = population_arrays(algorithm)
+    if A is None or len(A) == 0:
         return np.zeros((0, 0))
     if problem is not None:
         from gapath.front import path_front
 
-        return path_front(problem, pop.get("X")).F
-    from gapath.operators._columns import column
+        return path_front(problem, A.X).F
+    # penalty mode adds penalty * interfering: nothing on the feasible rows
+    F = np.asarray(A.F, dtype=float)[A.feasible]
+    return F[_nondominated_tol(F)] if len(F) else F
 
-    F = column(pop, "F")
-    interfering = column(pop, "interfering")
-    if interfering is not None:
-        # penalty mode adds penalty * interfering: nothing on the feasible rows
-        feasible = interfering == 0
-    else:
-        feasible = column(pop, "CV")[:, 0] <= 0
-    F = F[feasible]
-    return F[nondominated(F, tol=TOL)] if len(F) else F
+
+def _dominated_by(B, A, tol) -> np.ndarray:
+    """For each row of ``B``: is it dominated up to ``tol`` by a row of
+    ``A``? The test of :func:`gapath.metrics.nondominated`, pair by pair
+    (a numba loop; ``B`` and ``A`` finite)."""
+    B = np.ascontiguousarray(B, dtype=float)
+    A = np.ascontiguousarray(A, dtype=float)
+    if len(A) == 0 or len(B) == 0:
+        return np.zeros(len(B), bool)
+    return dominated_by(B, A, float(tol))
+
+
+def _nondominated_tol(F, tol: float = TOL) -> np.ndarray:
+    """``nondominated(F, tol=tol)`` (the same indices) without comparing
+    every pair: a row not dominated by any row is in particular not
+    dominated by a row of the exact front, so the rows that survive the
+    exact front are the only candidates, each then checked against all
+    rows. About n x (front + candidates) comparisons instead of n x n (a
+    population of 500 every generation)."""
+    F = np.asarray(F, dtype=float)
+    if len(F) <= 64 or not np.isfinite(F).all():
+        return nondominated(F, tol=tol)
+    candidates = np.flatnonzero(~_dominated_by(F, F[nondominated(F)], tol))
+    return candidates[~_dominated_by(F[candidates], F, tol)]
 
 
 class HypervolumeRatioCallback(Callback):
@@ -69,10 +90,13 @@ class HypervolumeRatioCallback(Callback):
     problem : GridPathProblem, optional
         When given, the population's genomes are decoded and re-evaluated
         with :func:`gapath.front.path_front` (exact, slower). By default the
-        columns pymoo keeps on the individuals are used: ``F`` and
-        ``interfering`` (``F`` minus ``penalty * interfering`` in penalty
-        mode, which is ``F`` itself on feasible individuals); without an
-        ``interfering`` column, ``CV <= 0`` marks the feasible ones.
+        population's own columns are used
+        (:func:`gapath.callbacks.population_arrays`: the engine's arrays
+        for :class:`~gapath.algorithms.FastNSGA2`, the individuals' values
+        for stock pymoo algorithms): ``F`` and ``interfering`` (``F`` minus
+        ``penalty * interfering`` in penalty mode, which is ``F`` itself on
+        feasible individuals); without an ``interfering`` column,
+        ``CV <= 0`` marks the feasible ones.
 
     Attributes
     ----------
@@ -114,6 +138,7 @@ class HypervolumeRatioCallback(Callback):
         self.reference = reference
         self.problem = problem
         self.history: list[tuple[int, int, float]] = []
+        self._last = None              # (front, ratio) of the last generation
         R = np.asarray(getattr(reference, "F", reference), dtype=float)
         if R.ndim != 2 or len(R) == 0:
             raise ConfigError(f"the reference front must be a non-empty (k, m) array, got shape {R.shape}")
@@ -123,6 +148,7 @@ class HypervolumeRatioCallback(Callback):
     def _set_bounds(self):
         self.ideal, self.nadir = normalisation_bounds(self._R)
         self._hv_ref = hypervolume(self._R, self.ideal, self.nadir)
+        self._last = None
 
     def initialize(self, algorithm):
         problem = self.problem if self.problem is not None else algorithm.problem
@@ -141,7 +167,12 @@ class HypervolumeRatioCallback(Callback):
 
     def notify(self, algorithm):
         F = _population_front(algorithm, self.problem)
-        ratio = hypervolume(F, self.ideal, self.nadir) / self._hv_ref if len(F) else 0.0
+        last = self._last
+        if last is not None and last[0].shape == F.shape and np.array_equal(last[0], F):
+            ratio = last[1]        # the same front as last generation (elitism): same value
+        else:
+            ratio = hypervolume(F, self.ideal, self.nadir) / self._hv_ref if len(F) else 0.0
+            self._last = (F.copy(), ratio)
         self.history.append((int(algorithm.n_gen), int(algorithm.evaluator.n_eval), float(ratio)))
 
     def to_array(self) -> np.ndarray:

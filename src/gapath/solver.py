@@ -13,7 +13,7 @@ from gapath.errors import ConfigError
 from gapath.front import PathFront, path_front
 from gapath.operators import PlannerSampling
 from gapath.problems import GridPathProblem
-from gapath.progress import Callbacks, ProgressBar
+from gapath.callbacks import Callbacks, ProgressBar, population_arrays
 
 
 #: Engines that run Ahmed & Deb's NSGA-II (same results for the same seed).
@@ -129,7 +129,7 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     algorithm = ENGINES[engine](pop_size, encoding=encoding, tiebreak=tiebreak, sbx_eta=sbx_eta,
                                 sampling=None if seed_from == "none" else PlannerSampling(seed_from))
     bar = ProgressBar(n_gen, disable=not progress)
-    callbacks = Callbacks(bar) if callback is None else Callbacks(bar, callback)
+    callbacks = Callbacks(bar, callback)
 
     settings = dict(map=workspace.name, shape=list(workspace.shape), start=list(workspace.start),
                     goal=list(workspace.goal), cell_size=workspace.cell_size,
@@ -144,14 +144,14 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     try:
         res = minimize(problem, algorithm, ("n_gen", n_gen), seed=seed, callback=callbacks,
                        copy_algorithm=False)
-        pop = res.pop
     except KeyboardInterrupt:
         interrupted = True
-        pop = algorithm.pop
     finally:
         bar.close()
     seconds = time.perf_counter() - t0
-    X = np.empty((0, problem.n_var)) if pop is None else pop.get("X")
+    # the last complete generation's genomes (the engine's arrays, or pymoo's pop)
+    A = population_arrays(algorithm)
+    X = np.empty((0, problem.n_var)) if A is None or len(A) == 0 else A.X
     front = path_front(problem, X)
     return SolveResult(workspace, problem, front, settings, seconds,
                        int(algorithm.evaluator.n_eval), bar.last_gen, interrupted, res)

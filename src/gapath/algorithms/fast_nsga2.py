@@ -32,7 +32,10 @@ Populations
     per-path metrics, rank, crowding). ``algorithm.pop``, ``algorithm.opt`` and
     ``algorithm.off`` are pymoo ``Population`` objects built from it on first
     access in a generation, so a run that nobody looks at builds none until
-    the ``Result``.
+    the ``Result``. gapath's callbacks (progress bar, hypervolume ratio,
+    first feasible generation) read the arrays
+    (:func:`gapath.callbacks.population_arrays`), and the evaluation gets
+    the paths decoded for duplicate elimination (each path is decoded once).
 """
 
 from __future__ import annotations
@@ -181,6 +184,12 @@ def _constraint_violation(G, H):
     if H.shape[1]:
         cv = cv + np.sum(np.maximum(0.0, np.abs(H) - 1e-4), axis=1)
     return cv
+
+
+def _split_keys(keys):
+    """``(entries, exits)`` of path keys ``[entries | exits]`` (contiguous int64)."""
+    c = keys.shape[1] // 2
+    return np.ascontiguousarray(keys[:, :c]), np.ascontiguousarray(keys[:, c:])
 
 
 def _scalar(v, size):
@@ -612,10 +621,18 @@ class FastNSGA2(Algorithm):
 
     def _evaluate(self, X: np.ndarray, keys=None, hashes=None) -> PathArrays:
         """One vectorised ``problem.evaluate``; counts the evaluations in
-        ``algorithm.evaluator.n_eval``."""
+        ``algorithm.evaluator.n_eval``. The path ``keys`` of ``X``, when
+        known, are given to a problem that ``accepts_profiles`` (see
+        :meth:`gapath.problems.GridPathProblem.metrics`), so that each
+        path is decoded once."""
         t0 = self.clock()
+        kwargs = {}
+        if keys is not None and getattr(self.problem, "accepts_profiles", False) \
+                and getattr(self.problem, "requires_kwargs", False):
+            # the paths were decoded for duplicate elimination: not again
+            kwargs["profiles"] = _split_keys(keys)
         out = self.problem.evaluate(X, return_values_of=list(_CORE_OUTPUTS),
-                                    return_as_dictionary=True, algorithm=self)
+                                    return_as_dictionary=True, algorithm=self, **kwargs)
         self.evaluator.n_eval += len(X)
         F, G, H = (np.asarray(out[k], dtype=float).reshape(len(X), -1) for k in _CORE_OUTPUTS)
         data = {k: np.asarray(v) for k, v in out.items() if k not in _CORE_OUTPUTS and v is not None}
@@ -716,7 +733,9 @@ class FastNSGA2(Algorithm):
     # == pymoo plumbing =======================================================
     @property
     def arrays(self) -> PathArrays | None:
-        """The current population as :class:`PathArrays`."""
+        """The current population as :class:`PathArrays` (no copy, nothing
+        built: what a callback should read, e.g. through
+        :func:`gapath.callbacks.population_arrays`, instead of ``pop``)."""
         return self._arrays
 
     @property

@@ -89,21 +89,12 @@ SCHEDULER_ENV = "GAPATH_SCHEDULER"
 
 def _feasible_count(algorithm) -> int:
     """Paths without interfering cells in the algorithm's population (read
-    from the arrays of :class:`gapath.algorithms.FastNSGA2` when it has
-    them, so that no pymoo ``Population`` is built)."""
-    arrays = getattr(algorithm, "arrays", None)
-    data = getattr(arrays, "data", None)
-    if isinstance(data, dict) and "interfering" in data:
-        return int((np.asarray(data["interfering"]) == 0).sum())
-    from gapath.operators._columns import column
+    with :func:`gapath.callbacks.population_arrays`: from the arrays of
+    :class:`gapath.algorithms.FastNSGA2`, no pymoo ``Population`` is built)."""
+    from gapath.callbacks import population_arrays
 
-    pop = algorithm.pop
-    if pop is None or len(pop) == 0:
-        return 0
-    interfering = column(pop, "interfering")
-    if interfering is not None:
-        return int((interfering == 0).sum())
-    return int((column(pop, "CV")[:, 0] <= 0).sum())
+    A = population_arrays(algorithm)
+    return 0 if A is None else int(A.feasible.sum())
 
 
 class FirstFeasible(Callback):

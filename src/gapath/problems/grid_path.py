@@ -137,6 +137,8 @@ class GridPathProblem(Problem):
         self.encoding = make_encoding(encoding, self.frame)
         self.constraints = constraints
         self.penalty = penalty
+        # pymoo passes evaluate()'s keyword arguments (``profiles``) through
+        kwargs.setdefault("requires_kwargs", True)
         super().__init__(n_var=self.encoding.n_var, n_obj=len(self.objectives),
                          n_ieq_constr=1 if constraints == "constraint" else 0,
                          xl=self.encoding.xl, xu=self.encoding.xu,
@@ -145,19 +147,58 @@ class GridPathProblem(Problem):
         self._genome_warned = self.encoding.vtype is not int   # only integer genomes checked
 
     # -- evaluation --------------------------------------------------------
-    def metrics(self, X) -> np.ndarray:
+    #: :meth:`evaluate` takes ``profiles=(entries, exits)``, the decoded
+    #: genomes (e.g. from :class:`gapath.algorithms.FastNSGA2`'s duplicate
+    #: elimination), so that they are not decoded again.
+    accepts_profiles = True
+
+    def metrics(self, X, profiles=None) -> np.ndarray:
         """All per-path metrics ``(N, 4)`` in :data:`gapath.objectives.OBJECTIVES`
         order (length, vulnerability, smoothness, interfering), unpenalised;
         with layer objectives, ``(N, 4 + k)``: their values follow, in the
-        order of :attr:`layer_objectives`."""
-        entries, exits = self.encoding.decode(X)
+        order of :attr:`layer_objectives`.
+
+        Parameters
+        ----------
+        X : (N, n_var) genomes.
+        profiles : (entries, exits), optional
+            ``self.encoding.decode(X)`` when the caller has it already
+            (two ``(N, n_cols)`` int64 arrays); default: decode ``X``.
+
+        Returns
+        -------
+        (N, 4 + k) float array.
+
+        Raises
+        ------
+        ConfigError
+            If ``profiles`` does not have one row of ``n_cols`` per genome.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from gapath import default_workspace
+        >>> problem = GridPathProblem(default_workspace())
+        >>> X = np.zeros((2, problem.n_var), int)
+        >>> M = problem.metrics(X)
+        >>> M.shape, np.array_equal(M, problem.metrics(X, profiles=problem.encoding.decode(X)))
+        ((2, 4), True)
+        """
+        if profiles is None:
+            entries, exits = self.encoding.decode(X)
+        else:
+            entries, exits = profiles
+            shape = (len(X), self.frame.n_cols)
+            if entries.shape != shape or exits.shape != shape:
+                raise ConfigError(f"profiles must be two {shape} arrays (entries, exits) of the "
+                                  f"genomes, got {entries.shape} and {exits.shape}")
         M = self.frame.evaluate(entries, exits)
         if self._layers is not None:
             M = np.hstack([M, self._layers(entries, exits)])
         return M
 
-    def _evaluate(self, X, out, *args, **kwargs):
-        M = self.metrics(X)
+    def _evaluate(self, X, out, *args, profiles=None, **kwargs):
+        M = self.metrics(X, profiles)
         F = M[:, self._obj_idx]
         interfering = M[:, INTERFERING]
         if self.constraints == "penalty":
