@@ -296,8 +296,9 @@ def _workspace(occ, source, start, goal, *, corner_cutting, cell_size, name,
         defaulted = [label for label, cell in (("start", start), ("goal", goal))
                      if cell is None and message.startswith(f"{label} (")]
         if defaulted and "obstacle" in message:
-            message += (f" (the default {defaulted[0]}; pass start=(row, col) and "
-                        "goal=(row, col) to choose free cells)")
+            message += (f" (the default {defaulted[0]}, the {'bottom-left' if defaulted[0] == 'start' else 'top-right'} "
+                        f"cell; choose a free cell with --{defaulted[0]} ROW,COL, or "
+                        f"{defaulted[0]}=(row, col) in Python)")
         raise type(exc)(f"{source}: {message}") from None
 
 
