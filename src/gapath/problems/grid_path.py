@@ -54,12 +54,6 @@ class GridPathProblem(Problem):
         layers, sum over the steps for ``solar``); they get the same penalty
         as the other objectives.
 
-    Notes
-    -----
-    Outputs: ``F`` (N, n_obj); ``G`` (N, 1) in constraint mode; per individual also
-    ``smoothness`` (total turn, radians) and ``interfering`` (count), kept by
-    pymoo on the individuals (``pop.get("smoothness")``).
-
     Raises
     ------
     ConfigError
@@ -80,6 +74,10 @@ class GridPathProblem(Problem):
 
     Notes
     -----
+    Outputs: ``F`` (N, n_obj); ``G`` (N, 1) in constraint mode; per individual also
+    ``smoothness`` (total turn, radians) and ``interfering`` (count), kept by
+    pymoo on the individuals (``pop.get("smoothness")``).
+
     :meth:`pareto_front` gives the exact front of the problem's path set (see
     there), so pymoo's indicators (``IGD``, ``GD``, ``HV``) and its verbose
     output work with it.
