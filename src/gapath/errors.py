@@ -25,3 +25,17 @@ class ConfigError(GapathError, ValueError):
 
 class NoPathError(GapathError, ValueError):
     """No feasible path exists between start and goal."""
+
+
+class LabelBudgetError(GapathError):
+    """An exact search stopped at its label budget (``max_labels``,
+    ``gapath exact --max-labels``) before its front was complete.
+
+    The message says how far the search got; ``stats`` holds the same figures
+    (labels, expansions, solutions so far, seconds). What was found is not a
+    Pareto front, so none is returned.
+    """
+
+    def __init__(self, message: str, stats: dict | None = None):
+        super().__init__(message)
+        self.stats = dict(stats or {})
