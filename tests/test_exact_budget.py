@@ -137,3 +137,116 @@ def test_keyboard_interrupt_propagates_and_leaves_no_state(kind, tiny_slices):
     again = SOLVERS[kind](ws, LVS)
     fresh = SOLVERS[kind](ws.replace(name="fresh"), LVS)
     _same(again, fresh)
+
+
+# ---------------------------------------------------------------------------
+# gapath exact --max-labels, progress and Ctrl-C
+# ---------------------------------------------------------------------------
+
+@pytest.fixture
+def text_map(tmp_path):
+    rows = ["...........",
+            "...#....#..",
+            "......#....",
+            "..#........",
+            ".....#..#..",
+            ".#.........",
+            "....#......",
+            "..........."]
+    p = tmp_path / "small.txt"
+    p.write_text("\n".join(rows) + "\n")
+    return p
+
+
+@pytest.mark.parametrize("mode", ["free", "monotone"])
+def test_cli_summary_has_search_stats(text_map, tmp_path, mode):
+    import json
+
+    from gapath.cli import main
+
+    out = tmp_path / "ex"
+    assert main(["exact", str(text_map), "--mode", mode, "--out", str(out), "--quiet",
+                 "--no-plots", "--max-labels", "100000"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["settings"]["max_labels"] == 100000
+    assert summary["search"]["labels"] > 0 and summary["search"]["peak_bytes"] > 0
+
+
+@pytest.mark.parametrize("mode", ["free", "monotone"])
+def test_cli_budget_is_an_error_with_no_front(text_map, tmp_path, capsys, mode):
+    from gapath.cli import main
+
+    out = tmp_path / "ex"
+    code = main(["exact", str(text_map), "--mode", mode, "--objectives",
+                 "length,vulnerability,smoothness", "--out", str(out), "--quiet",
+                 "--max-labels", "20"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.startswith("gapath: error: ") and "--max-labels" in err and "labels" in err
+    assert "Traceback" not in err
+    assert not (out / "front.csv").exists()
+
+
+@pytest.mark.parametrize("bad", ["0", "-3", "ten"])
+def test_cli_bad_budget(text_map, tmp_path, capsys, bad):
+    from gapath.cli import main
+
+    with pytest.raises(SystemExit) as info:
+        main(["exact", str(text_map), "--max-labels", bad, "--out", str(tmp_path / "x")])
+    assert info.value.code == 2
+    assert "--max-labels" in capsys.readouterr().err
+
+
+def test_cli_ctrl_c_exits_130_and_writes_no_front(text_map, tmp_path, capsys, monkeypatch):
+    from gapath.cli import main
+
+    def interrupt(info):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(exact, "_Slices", _TinySlices)
+    real = exact.free_front
+    monkeypatch.setattr(exact, "free_front",
+                        lambda ws, objs, **kw: real(ws, objs, max_labels=kw["max_labels"],
+                                                    progress=interrupt))
+    out = tmp_path / "ex"
+    assert main(["exact", str(text_map), "--mode", "free", "--out", str(out)]) == 130
+    err = capsys.readouterr().err
+    assert "interrupted" in err and "no front written" in err
+    assert not (out / "front.csv").exists()
+
+
+def test_progress_line_is_throttled_and_names_the_counts():
+    import io
+
+    from gapath.commands.exact import _ProgressLine
+
+    line = _ProgressLine("free")
+    line.stream, line.tty, line.every = io.StringIO(), False, 0.0
+    info = {"phase": "free", "expansions": 1234567, "labels": 20, "open": 3, "solutions": 2,
+            "seconds": 1.25}
+    line(info)
+    text = line.stream.getvalue()
+    assert "1,234,567 expanded" in text and "2 solutions so far" in text
+    line.every = 3600.0
+    line(info)                        # too soon: nothing more
+    assert line.stream.getvalue() == text
+
+
+@pytest.mark.parametrize("kind", ["free", "monotone"])
+def test_sigint_during_a_search_is_a_keyboard_interrupt(kind, tiny_slices):
+    """A SIGINT held while a kernel runs is raised as KeyboardInterrupt after
+    it (never a SystemError from inside numba), before the next progress call."""
+    import os
+    import signal
+
+    calls = []
+
+    def send_sigint(info):
+        calls.append(info)
+        if len(calls) == 2:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        SOLVERS[kind](_ws(seed=4), LVS, progress=send_sigint)
+    assert len(calls) == 2
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler

@@ -20,6 +20,9 @@ def register(subparsers) -> None:
     cc = p.add_mutually_exclusive_group()
     cc.add_argument("--corner-cutting", dest="corner_cutting", action="store_true", default=None)
     cc.add_argument("--no-corner-cutting", dest="corner_cutting", action="store_false")
+    p.add_argument("--max-labels", type=_positive_int, default=None, metavar="N",
+                   help="label budget: stop with a message (no front) when the search would hold "
+                        "more than N labels (about 70 bytes each), instead of exhausting memory")
     p.add_argument("--out", default="gapath-exact", help="output directory (default: %(default)s)")
     p.add_argument("--no-plots", action="store_true")
     p.add_argument("--quiet", action="store_true")
@@ -32,14 +35,70 @@ def _cell_arg():
     return _cell
 
 
-def exact_path_front(workspace, objectives, mode):
-    """The exact front as a :class:`gapath.front.PathFront`."""
-    from gapath.front import PathFront
-    from gapath.objectives import evaluate_paths, pad_paths
+def _positive_int(text):
+    import argparse
+
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+    return value
+
+
+class _ProgressLine:
+    """A throttled progress line on stderr: rewritten in place on a terminal
+    (at most 4 times a second), a new line every 10 s otherwise."""
+
+    def __init__(self, mode):
+        import sys
+
+        self.mode, self.stream = mode, sys.stderr
+        self.tty = self.stream.isatty()
+        self.every = 0.25 if self.tty else 10.0
+        self.last = time.perf_counter()
+        self.shown = False
+
+    def __call__(self, info):
+        now = time.perf_counter()
+        if now - self.last < self.every:
+            return
+        self.last = now
+        if info["phase"] == "free":
+            text = (f"exact free: {info['expansions']:,} expanded, {info['labels']:,} labels, "
+                    f"{info['open']:,} open, {info['solutions']:,} solutions so far, "
+                    f"{info['seconds']:.1f} s")
+        else:
+            text = (f"exact monotone: column {info['columns']:,}/{info['n_cols']:,}, "
+                    f"{info['labels']:,} labels, {info['seconds']:.1f} s")
+        self.stream.write(("\r" + text + "\x1b[K") if self.tty else text + "\n")
+        self.stream.flush()
+        self.shown = True
+
+    def close(self):
+        if self.shown and self.tty:
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+def exact_path_front(workspace, objectives, mode, **options):
+    """The exact front as a :class:`gapath.front.PathFront` (``options``:
+    ``max_labels``, ``progress``, see :func:`gapath.planners.exact.free_front`)."""
+    return _path_front(workspace, _exact_front(workspace, objectives, mode, **options))
+
+
+def _exact_front(workspace, objectives, mode, **options):
     from gapath.planners import exact
 
     solver = exact.monotone_front if mode == "monotone" else exact.free_front
-    ef = solver(workspace, objectives)
+    return solver(workspace, objectives, **options)
+
+
+def _path_front(workspace, ef):
+    from gapath.front import PathFront
+    from gapath.objectives import evaluate_paths, pad_paths
+
     P, L = pad_paths(ef.paths)
     metrics = evaluate_paths(P, L, workspace.occ, workspace.potential, workspace.cell_size,
                              workspace.corner_cutting)
@@ -53,15 +112,29 @@ def run(args) -> int:
     ws = _load(args.map, args.start, args.goal, args.corner_cutting)
     objectives = [o.strip() for o in args.objectives.split(",") if o.strip()]
     t0 = time.perf_counter()
-    front = exact_path_front(ws, objectives, args.mode)
+    bar = None if args.quiet else _ProgressLine(args.mode)
+    try:
+        ef = _exact_front(ws, objectives, args.mode, max_labels=args.max_labels, progress=bar)
+    except KeyboardInterrupt:
+        import sys
+
+        print(f"\ngapath: interrupted after {time.perf_counter() - t0:.1f} s: no front written "
+              f"(a partial exact search is not a Pareto front)", file=sys.stderr)
+        return 130
+    finally:
+        if bar is not None:
+            bar.close()
+    front = _path_front(ws, ef)
     seconds = time.perf_counter() - t0
     summary = {
         "settings": dict(map=ws.name, shape=list(ws.shape), start=list(ws.start), goal=list(ws.goal),
                          cell_size=ws.cell_size, corner_cutting=ws.corner_cutting,
-                         objectives=list(front.objectives), mode=args.mode, algorithm="exact"),
+                         objectives=list(front.objectives), mode=args.mode, algorithm="exact",
+                         max_labels=args.max_labels),
         "versions": versions(),
         "wall_time_s": round(seconds, 4),
         "front_size": len(front),
+        "search": {k: (round(v, 4) if isinstance(v, float) else v) for k, v in ef.stats.items()},
     }
     write_front(Path(args.out), ws, front, summary, plots=not args.no_plots)
     if not args.quiet:

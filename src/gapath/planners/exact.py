@@ -44,6 +44,8 @@ Bit-exact objectives
 
 from __future__ import annotations
 
+import signal
+import threading
 import time
 from dataclasses import dataclass, field
 
@@ -171,6 +173,49 @@ def _budget(max_labels) -> int:
     return int(max_labels)
 
 
+class _DeferredInterrupt:
+    """Hold Ctrl-C while a kernel runs and raise it between kernel calls.
+
+    A SIGINT arriving during a numba call would otherwise surface inside the
+    kernel's return-value boxing (which runs a little Python) as a
+    SystemError; here it only sets a flag, and :meth:`check` (called after
+    each kernel) hands it to the previous handler, normally
+    ``KeyboardInterrupt``. Only in the main thread (elsewhere signals are not
+    delivered to Python)."""
+
+    def __enter__(self):
+        self.hit = None
+        self.installed = False
+        if threading.current_thread() is threading.main_thread():
+            try:
+                self.prev = signal.signal(signal.SIGINT, self._handler)
+                self.installed = True
+            except (ValueError, OSError):
+                pass
+        return self
+
+    def _handler(self, signum, frame):
+        self.hit = (signum, frame)
+
+    def check(self):
+        if self.hit is None:
+            return
+        signum, frame = self.hit
+        self.hit = None
+        if callable(self.prev):
+            self.prev(signum, frame)
+        elif self.prev != signal.SIG_IGN:
+            raise KeyboardInterrupt
+
+    def __exit__(self, exc_type, exc, tb):
+        if self.installed:
+            signal.signal(signal.SIGINT, self.prev if self.prev is not None
+                          else signal.default_int_handler)
+        if exc_type is None:
+            self.check()
+        return False
+
+
 class _Slices:
     """Work per kernel call, adapted so that each call takes about
     ``_SLICE_S`` seconds."""
@@ -264,32 +309,34 @@ def monotone_front(workspace, objectives=("length", "vulnerability"), *, max_lab
     occ, pot = frame.occ, np.ascontiguousarray(frame.potential, dtype=np.float64)
     cs, cc = float(workspace.cell_size), bool(workspace.corner_cutting)
     use = ("length" in names, "vulnerability" in names, "smoothness" in names)
-    li, lf, off, n = _monotone_start(occ, pot, sr, frame.col0, cs)
-    st = np.array([n, 1], np.int64)
-    slices = _Slices(4, 1, 1 << 20)
-    peak = 0
-    while True:
-        k0, t1 = st[1], time.perf_counter()
-        li, lf, off, status, n_cand = _monotone_columns(
-            occ, pot, gr, frame.col0, frame.n_cols, cs, cc, *use, primary, li, lf, off, st,
-            slices.n, budget)
-        now = time.perf_counter()
-        slices.update(st[1] - k0, now - t1)
-        peak = max(peak, li.nbytes + lf.nbytes + off.nbytes + n_cand * (li.itemsize * 6 + 16))
-        stats = {"columns": int(st[1]), "n_cols": int(frame.n_cols), "labels": int(st[0]),
-                 "peak_bytes": int(peak), "seconds": now - t0}
-        if status == OVER_BUDGET:
-            raise LabelBudgetError(
-                f"monotone DP stopped at the label budget max_labels={budget:,} "
-                f"(--max-labels): {stats['labels']:,} labels stored and {int(n_cand):,} "
-                f"candidates for the next column after {stats['columns']} of "
-                f"{stats['n_cols']} columns ({stats['seconds']:.1f} s); no front (a partial "
-                f"DP is not a Pareto front). Raise the budget, or use a smaller map or fewer "
-                f"objectives", {**stats, "max_labels": budget})
-        if progress is not None:
-            progress({"phase": "monotone", **stats})
-        if status == DONE:
-            break
+    with _DeferredInterrupt() as interrupt:
+        li, lf, off, n = _monotone_start(occ, pot, sr, frame.col0, cs)
+        st = np.array([n, 1], np.int64)
+        slices = _Slices(4, 1, 1 << 20)
+        peak = 0
+        while True:
+            k0, t1 = st[1], time.perf_counter()
+            li, lf, off, status, n_cand = _monotone_columns(
+                occ, pot, gr, frame.col0, frame.n_cols, cs, cc, *use, primary, li, lf, off, st,
+                slices.n, budget)
+            interrupt.check()
+            now = time.perf_counter()
+            slices.update(st[1] - k0, now - t1)
+            peak = max(peak, li.nbytes + lf.nbytes + off.nbytes + n_cand * (li.itemsize * 6 + 16))
+            stats = {"columns": int(st[1]), "n_cols": int(frame.n_cols), "labels": int(st[0]),
+                     "peak_bytes": int(peak), "seconds": now - t0}
+            if status == OVER_BUDGET:
+                raise LabelBudgetError(
+                    f"monotone DP stopped at the label budget max_labels={budget:,} "
+                    f"(--max-labels): {stats['labels']:,} labels stored and {int(n_cand):,} "
+                    f"candidates for the next column after {stats['columns']} of "
+                    f"{stats['n_cols']} columns ({stats['seconds']:.1f} s); no front (a partial "
+                    f"DP is not a Pareto front). Raise the budget, or use a smaller map or fewer "
+                    f"objectives", {**stats, "max_labels": budget})
+            if progress is not None:
+                progress({"phase": "monotone", **stats})
+            if status == DONE:
+                break
     lo, hi = off[gr], off[gr + 1]
     if hi == lo:
         h, w = workspace.shape
@@ -481,45 +528,48 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
     h, w = workspace.shape
     cs = float(workspace.cell_size)
     cc = bool(workspace.corner_cutting)
-    hs, hd, hv, ht = _free_heuristics(occ, pot, gr, gc, cc)
-    t_heur = time.perf_counter() - t0
-    if hv[sr * w + sc] == np.inf:
-        raise NoPathError(
-            f"no feasible path from {workspace.start} to {workspace.goal} in workspace "
-            f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
-            f"corner_cutting={workspace.corner_cutting})")
-    mode, P, Q = _search_plan(names)
-    n_states = h * w * (1 if mode == MODE_CELL else N_SLOTS)
-    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
-        pot, sr, sc, w, cs, mode, P, Q, hs, hd, hv, ht, n_states)
-    fixed = sum(a.nbytes for a in (hs, hd, hv, ht, gmin, first))
-    slices = _Slices(1 << 14, 1 << 10, 1 << 26)
-    while True:
-        pops, t1 = st[S_POPS], time.perf_counter()
-        li, lf, sols, hk, hid, status = _free_run(
-            occ, pot, gr, gc, cs, cc, mode, P, Q, hs, hd, hv, ht, gmin, first, li, lf, sols,
-            hk, hid, st, stf, slices.n, budget)
-        now = time.perf_counter()
-        slices.update(st[S_POPS] - pops, now - t1)
-        stats = {"expansions": int(st[S_EXPANDED]), "generated": int(st[S_GENERATED]),
-                 "labels": int(st[S_N] - st[S_N_FREE]), "open": int(st[S_SIZE]),
-                 "solutions": int(st[S_SOLS]),
-                 "peak_bytes": int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes
-                                   + sols.nbytes),
-                 "heuristic_seconds": t_heur, "seconds": now - t0}
-        if status == OVER_BUDGET:
-            raise LabelBudgetError(
-                f"free search stopped at the label budget max_labels={budget:,} "
-                f"(--max-labels) after {stats['seconds']:.1f} s: {stats['labels']:,} labels "
-                f"held, {stats['expansions']:,} expanded, {stats['open']:,} on the open list, "
-                f"{stats['solutions']:,} solutions found so far; no front (a partial search "
-                f"is not a Pareto front). Raise the budget, or use a smaller map or fewer "
-                f"objectives", {**stats, "max_labels": budget})
-        if progress is not None:
-            progress({"phase": "free", **{k: v for k, v in stats.items()
-                                          if k not in ("peak_bytes", "heuristic_seconds")}})
-        if status == DONE:
-            break
+    with _DeferredInterrupt() as interrupt:
+        hs, hd, hv, ht = _free_heuristics(occ, pot, gr, gc, cc)
+        interrupt.check()
+        t_heur = time.perf_counter() - t0
+        if hv[sr * w + sc] == np.inf:
+            raise NoPathError(
+                f"no feasible path from {workspace.start} to {workspace.goal} in workspace "
+                f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
+                f"corner_cutting={workspace.corner_cutting})")
+        mode, P, Q = _search_plan(names)
+        n_states = h * w * (1 if mode == MODE_CELL else N_SLOTS)
+        gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
+            pot, sr, sc, w, cs, mode, P, Q, hs, hd, hv, ht, n_states)
+        fixed = sum(a.nbytes for a in (hs, hd, hv, ht, gmin, first))
+        slices = _Slices(1 << 14, 1 << 10, 1 << 26)
+        while True:
+            pops, t1 = st[S_POPS], time.perf_counter()
+            li, lf, sols, hk, hid, status = _free_run(
+                occ, pot, gr, gc, cs, cc, mode, P, Q, hs, hd, hv, ht, gmin, first, li, lf, sols,
+                hk, hid, st, stf, slices.n, budget)
+            interrupt.check()
+            now = time.perf_counter()
+            slices.update(st[S_POPS] - pops, now - t1)
+            stats = {"expansions": int(st[S_EXPANDED]), "generated": int(st[S_GENERATED]),
+                     "labels": int(st[S_N] - st[S_N_FREE]), "open": int(st[S_SIZE]),
+                     "solutions": int(st[S_SOLS]),
+                     "peak_bytes": int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes
+                                       + sols.nbytes),
+                     "heuristic_seconds": t_heur, "seconds": now - t0}
+            if status == OVER_BUDGET:
+                raise LabelBudgetError(
+                    f"free search stopped at the label budget max_labels={budget:,} "
+                    f"(--max-labels) after {stats['seconds']:.1f} s: {stats['labels']:,} labels "
+                    f"held, {stats['expansions']:,} expanded, {stats['open']:,} on the open list, "
+                    f"{stats['solutions']:,} solutions found so far; no front (a partial search "
+                    f"is not a Pareto front). Raise the budget, or use a smaller map or fewer "
+                    f"objectives", {**stats, "max_labels": budget})
+            if progress is not None:
+                progress({"phase": "free", **{k: v for k, v in stats.items()
+                                              if k not in ("peak_bytes", "heuristic_seconds")}})
+            if status == DONE:
+                break
     sols = sols[:st[S_SOLS]]
 
     values = {
