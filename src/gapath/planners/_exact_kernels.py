@@ -457,7 +457,7 @@ def _heap_pop(hk, hid, size):
 # -- 1. heuristics ----------------------------------------------------------
 
 @numba.njit(cache=True)
-def _free_heuristics(occ, pot, gr, gc, corner_cutting):
+def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
     """Exact single-objective costs-to-go, by backward Dijkstra from the goal.
 
     Returns
@@ -474,7 +474,8 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting):
         admissible and consistent bound of the path's vulnerability.
     ht : (H*W*9,) int array
         Smallest total turn (eighths) from a cell, arrived with heading slot
-        ``k`` (8 = none), to the goal, obstacles and corner rule included.
+        ``k`` (8 = none), to the goal, obstacles and corner rule included;
+        without ``with_turns`` a 1-entry placeholder (see :func:`_ht`).
     """
     h, w = occ.shape
     n = h * w
@@ -542,6 +543,9 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting):
                 _heap_push(hk, hid, size, val, 0.0, 0.0, v)
                 size += 1
 
+    if not with_turns:
+        return hs, hd, hv, np.zeros(1, np.int64)
+
     # turns over (cell, heading) states: T(u, k) = min_d turn(k, d) + T(u + d, d)
     ht = np.full(n * N_SLOTS, _BIG_TURNS, np.int64)
     for k in range(N_SLOTS):
@@ -579,6 +583,16 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting):
 # -- label values -------------------------------------------------------------
 
 @numba.njit(cache=True, inline="always")
+def _ht(ht, c, head):
+    """Turn heuristic of cell ``c`` arrived with heading ``head``; 0 (a valid
+    lower bound) when ``ht`` is the 1-entry placeholder of a search that does
+    not need it (two objectives without smoothness: turns only break ties)."""
+    if ht.shape[0] == 1:
+        return 0
+    return ht[c * N_SLOTS + _slot(head)]
+
+
+@numba.njit(cache=True, inline="always")
 def _g(li, lf, i, o, cell_size):
     """Objective ``o`` of label ``i`` (smoothness in eighths)."""
     if o == OBJ_LEN:
@@ -596,7 +610,7 @@ def _f(li, lf, i, o, cell_size, hs, hd, hv, ht):
         return ((li[i, NS] + hs[c]) + SQRT2 * (li[i, ND] + hd[c])) * cell_size
     if o == OBJ_VUL:
         return lf[i, F_VUL] + hv[c]
-    return np.float64(li[i, TURNS] + ht[c * N_SLOTS + _slot(li[i, F_HEAD])])
+    return np.float64(li[i, TURNS] + _ht(ht, c, li[i, F_HEAD]))
 
 
 # -- 3. dominance checks --------------------------------------------------------
@@ -704,7 +718,7 @@ def _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state
     a solution or tolerance-equal to one and not smoother."""
     if mode == MODE_THREE:
         fv = _f(li, lf, x, OBJ_VUL, cell_size, hs, hd, hv, ht)
-        ft = li[x, TURNS] + ht[li[x, CELL] * N_SLOTS + _slot(li[x, F_HEAD])]
+        ft = li[x, TURNS] + _ht(ht, li[x, CELL], li[x, F_HEAD])
         m = _stair_min(li, lf, first, goal_state, ft)
         return m < np.inf and _le(m, fv)
     if goal_min == np.inf:
@@ -717,7 +731,7 @@ def _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state
     if mode == MODE_HEADING:    # Q is smoothness (integers): goal_min == fq
         return True
     fp = _f(li, lf, x, P, cell_size, hs, hd, hv, ht)
-    to_go = ht[li[x, CELL] * N_SLOTS + _slot(li[x, F_HEAD])]
+    to_go = _ht(ht, li[x, CELL], li[x, F_HEAD])
     a = goal_first
     while a >= 0 and _le(lf[a, RUNMIN], fq):
         ap = _g(li, lf, a, P, cell_size)

@@ -471,7 +471,8 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
         the cells after the current one up to the goal included (the
         label's vulnerability already counts its own cell, the start
         included), and the least total turn from the current cell and
-        heading.
+        heading (only when smoothness is an objective: for (length,
+        vulnerability) turns only break ties, and 0 is used).
 
     Simple paths
         Potentials are non-negative, and removing a loop from a path never
@@ -528,8 +529,11 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
     h, w = workspace.shape
     cs = float(workspace.cell_size)
     cc = bool(workspace.corner_cutting)
+    mode, P, Q = _search_plan(names)
     with _DeferredInterrupt() as interrupt:
-        hs, hd, hv, ht = _free_heuristics(occ, pot, gr, gc, cc)
+        # two objectives without smoothness: turns only break ties, and a zero turn
+        # heuristic expands as many labels as the exact one (measured) at none of its cost
+        hs, hd, hv, ht = _free_heuristics(occ, pot, gr, gc, cc, mode != MODE_CELL)
         interrupt.check()
         t_heur = time.perf_counter() - t0
         if hv[sr * w + sc] == np.inf:
@@ -537,7 +541,6 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
                 f"no feasible path from {workspace.start} to {workspace.goal} in workspace "
                 f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
                 f"corner_cutting={workspace.corner_cutting})")
-        mode, P, Q = _search_plan(names)
         n_states = h * w * (1 if mode == MODE_CELL else N_SLOTS)
         gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
             pot, sr, sc, w, cs, mode, P, Q, hs, hd, hv, ht, n_states)
