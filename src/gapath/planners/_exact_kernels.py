@@ -615,7 +615,7 @@ def _f(li, lf, i, o, cell_size, hs, hd, hv, ht):
 
 # -- 3. dominance checks --------------------------------------------------------
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _stair_min(li, lf, first, s, bound):
     """Smallest vulnerability among the labels of staircase ``s`` whose turn
     count is at most ``bound`` (``inf`` if none).
@@ -630,7 +630,7 @@ def _stair_min(li, lf, first, s, bound):
     return lf[a, F_VUL] if a >= 0 else np.inf
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _stair_insert(li, lf, first, s, x):
     """Insert label ``x`` (not covered by staircase ``s``) into it, dropping
     the entries it makes redundant: as many turns or more and as vulnerable
@@ -652,7 +652,7 @@ def _stair_insert(li, lf, first, s, x):
         li[keep, NEXT] = x
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size):
     """True if a label already expanded at the state of ``x`` covers ``x``.
 
@@ -710,7 +710,7 @@ def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size):
     return False
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state,
                   cell_size, hs, hd, hv, ht):
     """True if a solution already found covers the f-vector of ``x`` (its
