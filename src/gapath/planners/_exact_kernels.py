@@ -653,8 +653,11 @@ def _stair_insert(li, lf, first, s, x):
 
 
 @numba.njit(cache=True, inline="always")
-def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size):
+def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties):
     """True if a label already expanded at the state of ``x`` covers ``x``.
+
+    Without ``ties`` (MODE_CELL only) it is BOA* as published: a label that
+    ties ``g2_min`` within the tolerance is covered whatever its turns.
 
     Every expanded label ``a`` at the same cell left the open list before
     ``x`` (or before ``x``'s parent), so ``P(a) <= P(x)``; only the other
@@ -671,7 +674,7 @@ def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size):
         m = gmin[c]
         if m == np.inf or (q < m and not _eq(q, m)):
             return False
-        if m < q and not _eq(m, q):
+        if not ties or (m < q and not _eq(m, q)):
             return True
         p = _g(li, lf, x, P, cell_size)
         a = first[c]
@@ -712,7 +715,7 @@ def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size):
 
 @numba.njit(cache=True, inline="always")
 def _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state,
-                  cell_size, hs, hd, hv, ht):
+                  cell_size, hs, hd, hv, ht, ties):
     """True if a solution already found covers the f-vector of ``x`` (its
     lower bound at the goal), i.e. every completion of ``x`` is dominated by
     a solution or tolerance-equal to one and not smoother."""
@@ -728,7 +731,7 @@ def _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state
         return False
     if goal_min < fq and not _eq(goal_min, fq):
         return True
-    if mode == MODE_HEADING:    # Q is smoothness (integers): goal_min == fq
+    if mode == MODE_HEADING or not ties:   # MODE_HEADING: Q is integer, goal_min == fq
         return True
     fp = _f(li, lf, x, P, cell_size, hs, hd, hv, ht)
     to_go = _ht(ht, li[x, CELL], li[x, F_HEAD])
@@ -793,7 +796,7 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
 
 @numba.njit(cache=True)
 def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, hv, ht,
-              gmin, first, li, lf, sols, hk, hid, st, stf, n_steps, max_labels):
+              gmin, first, li, lf, sols, hk, hid, st, stf, n_steps, max_labels, ties):
     """Advance the multi-objective label-setting search from start to goal
     by at most ``n_steps`` pops of the open list.
 
@@ -801,7 +804,8 @@ def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, h
     vulnerability``, turns as tie-break, states = cells), ``MODE_HEADING``
     (``P`` = length or vulnerability, ``Q`` = smoothness, states = (cell,
     heading)) or ``MODE_THREE`` (length, vulnerability, smoothness, states =
-    (cell, heading)).
+    (cell, heading)). ``ties=False`` (MODE_CELL): BOA* as published, ties
+    within the tolerance are dropped whatever their turns.
 
     The state is the arrays made by :func:`_free_init` and the scalars in
     ``st``/``stf`` (updated in place). A label dropped when it leaves the
@@ -841,9 +845,10 @@ def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, h
         c = li[x, CELL]
 
         # 3. dominance checks (lazy: the sets changed since x was generated)
-        if (c != goal and _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size)) or \
+        if (c != goal and _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size,
+                                         ties)) or \
                 _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state,
-                              cell_size, hs, hd, hv, ht):
+                              cell_size, hs, hd, hv, ht, ties):
             li[x, NEXT] = free                 # recycle the row
             free = x
             n_free += 1
@@ -898,10 +903,10 @@ def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, h
             n_generated += 1
             # 3. eager dominance checks (BOA*: prune before the open list)
             if r2 * w + c2 != goal and _state_covered(li, lf, j, mode, P, Q, gmin, first,
-                                                      cell_size):
+                                                      cell_size, ties):
                 continue
             if _goal_covered(li, lf, j, mode, P, Q, goal_min, goal_first, first, goal_state,
-                             cell_size, hs, hd, hv, ht):
+                             cell_size, hs, hd, hv, ht, ties):
                 continue
             if j == free:
                 free = li[j, NEXT]

@@ -389,7 +389,7 @@ def _search_plan(names):
 
 
 def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=None,
-               progress=None) -> ExactFront:
+               progress=None, tie_break="smoothest") -> ExactFront:
     """Exact Pareto front of all feasible 8-connected paths.
 
     A multi-objective label-setting search from the start to the goal over
@@ -420,6 +420,12 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
         (open-list size), ``solutions`` (found so far; not yet a front),
         ``seconds``. An exception it raises (e.g. KeyboardInterrupt) ends
         the search and propagates.
+    tie_break : {"smoothest", "none"}, optional
+        Which path represents tolerance-equal objective vectors when
+        smoothness is not an objective: the smoothest (default), or the
+        first found ("none": BOA* as published; the same ``F`` up to the tolerance,
+        faster on maps with many exact ties, and ``smoothness`` is that of
+        the returned path). Ignored when smoothness is an objective.
 
     Returns
     -------
@@ -434,8 +440,8 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
     Raises
     ------
     ConfigError
-        If an objective is unknown, repeated or ``"interfering"``, or
-        ``max_labels`` is not a positive integer.
+        If an objective is unknown, repeated or ``"interfering"``,
+        ``max_labels`` is not a positive integer or ``tie_break`` unknown.
     NoPathError
         If no feasible path joins the start and the goal.
     LabelBudgetError
@@ -462,6 +468,12 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
         labels of the other headings of the cell are compared with the same
         charge. A single objective ``x`` is solved as the (x, smoothness)
         front followed by the tolerance filter on ``x``.
+
+    Tie-breaking cost
+        Keeping tolerance-equal labels that differ only in heading or turns
+        multiplies the labels on maps with many exact ties (flat potential:
+        about 5x on MovingAI's Berlin_1_256); ``tie_break="none"`` drops them
+        as BOA* does.
 
     Heuristics
         Exact single-objective costs-to-go from backward Dijkstra searches
@@ -522,6 +534,8 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
     """
     names = _check_objectives(objectives)
     budget = _budget(max_labels)
+    if tie_break not in ("smoothest", "none"):
+        raise ConfigError(f"tie_break must be 'smoothest' or 'none', got {tie_break!r}")
     t0 = time.perf_counter()
     occ = np.ascontiguousarray(workspace.occ)
     pot = np.ascontiguousarray(workspace.potential, dtype=np.float64)
@@ -542,38 +556,10 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
                 f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
                 f"corner_cutting={workspace.corner_cutting})")
         n_states = h * w * (1 if mode == MODE_CELL else N_SLOTS)
-        gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
-            pot, sr, sc, w, cs, mode, P, Q, hs, hd, hv, ht, n_states)
-        fixed = sum(a.nbytes for a in (hs, hd, hv, ht, gmin, first))
-        slices = _Slices(1 << 14, 1 << 10, 1 << 26)
-        while True:
-            pops, t1 = st[S_POPS], time.perf_counter()
-            li, lf, sols, hk, hid, status = _free_run(
-                occ, pot, gr, gc, cs, cc, mode, P, Q, hs, hd, hv, ht, gmin, first, li, lf, sols,
-                hk, hid, st, stf, slices.n, budget)
-            interrupt.check()
-            now = time.perf_counter()
-            slices.update(st[S_POPS] - pops, now - t1)
-            stats = {"expansions": int(st[S_EXPANDED]), "generated": int(st[S_GENERATED]),
-                     "labels": int(st[S_N] - st[S_N_FREE]), "open": int(st[S_SIZE]),
-                     "solutions": int(st[S_SOLS]),
-                     "peak_bytes": int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes
-                                       + sols.nbytes),
-                     "heuristic_seconds": t_heur, "seconds": now - t0}
-            if status == OVER_BUDGET:
-                raise LabelBudgetError(
-                    f"free search stopped at the label budget max_labels={budget:,} "
-                    f"(--max-labels) after {stats['seconds']:.1f} s: {stats['labels']:,} labels "
-                    f"held, {stats['expansions']:,} expanded, {stats['open']:,} on the open list, "
-                    f"{stats['solutions']:,} solutions found so far; no front (a partial search "
-                    f"is not a Pareto front). Raise the budget, or use a smaller map or fewer "
-                    f"objectives", {**stats, "max_labels": budget})
-            if progress is not None:
-                progress({"phase": "free", **{k: v for k, v in stats.items()
-                                              if k not in ("peak_bytes", "heuristic_seconds")}})
-            if status == DONE:
-                break
-    sols = sols[:st[S_SOLS]]
+        args = (occ, pot, (sr, sc), (gr, gc), cs, cc, mode, P, Q, (hs, hd, hv, ht), n_states,
+                budget, progress, interrupt)
+        total = {"expansions": 0, "generated": 0, "labels": 0, "peak_bytes": 0}
+        li, lf, sols, st = _search_pass(*args, tie_break == "smoothest", total, t0)
 
     values = {
         "length": (li[sols, NS] + SQRT2 * li[sols, ND]) * cs,
@@ -587,8 +573,51 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
     keep = keep[np.lexsort(F[keep].T[::-1])]
     cells, offsets = _trace(li, sols[keep], w)
     paths = [cells[offsets[i]:offsets[i + 1]] for i in range(len(keep))]
-    stats.pop("open")
-    stats["labels"] = int(st[S_N])   # rows used at the peak (recycled rows counted once)
-    stats["seconds"] = time.perf_counter() - t0
+    stats = {**total, "solutions": int(st[S_SOLS]), "heuristic_seconds": t_heur,
+             "seconds": time.perf_counter() - t0}
     return ExactFront(objectives=names, F=F[keep], paths=paths, profiles=None,
                       smoothness=values["smoothness"][keep], stats=stats)
+
+
+def _search_pass(occ, pot, start, goal, cs, cc, mode, P, Q, heuristics, n_states, budget,
+                 progress, interrupt, ties, total, t0):
+    """One run of the free search in slices (progress, Ctrl-C and the budget
+    handled between slices); adds its counts to ``total``. Returns the label
+    tables, the solution labels and the scalar state."""
+    (sr, sc), (gr, gc) = start, goal
+    w = occ.shape[1]
+    hs, hd, hv, ht = heuristics
+    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
+        pot, sr, sc, w, cs, mode, P, Q, hs, hd, hv, ht, n_states)
+    fixed = sum(a.nbytes for a in (hs, hd, hv, ht, gmin, first))
+    slices = _Slices(1 << 14, 1 << 10, 1 << 26)
+    while True:
+        pops, t1 = st[S_POPS], time.perf_counter()
+        li, lf, sols, hk, hid, status = _free_run(
+            occ, pot, gr, gc, cs, cc, mode, P, Q, hs, hd, hv, ht, gmin, first, li, lf, sols,
+            hk, hid, st, stf, slices.n, budget, ties)
+        interrupt.check()
+        now = time.perf_counter()
+        slices.update(st[S_POPS] - pops, now - t1)
+        stats = {"expansions": total["expansions"] + int(st[S_EXPANDED]),
+                 "generated": total["generated"] + int(st[S_GENERATED]),
+                 "labels": int(st[S_N] - st[S_N_FREE]), "open": int(st[S_SIZE]),
+                 "solutions": int(st[S_SOLS]), "seconds": now - t0}
+        if status == OVER_BUDGET:
+            raise LabelBudgetError(
+                f"free search stopped at the label budget max_labels={budget:,} "
+                f"(--max-labels) after {stats['seconds']:.1f} s: {stats['labels']:,} labels "
+                f"held, {stats['expansions']:,} expanded, {stats['open']:,} on the open list, "
+                f"{stats['solutions']:,} solutions found so far; no front (a partial search is "
+                f"not a Pareto front). Raise the budget, or use a smaller map or fewer "
+                f"objectives", {**stats, "max_labels": budget})
+        if progress is not None:
+            progress({"phase": "free", **stats})
+        if status == DONE:
+            break
+    total["expansions"] += int(st[S_EXPANDED])
+    total["generated"] += int(st[S_GENERATED])
+    total["labels"] = max(total["labels"], int(st[S_N]))   # rows used at the peak
+    total["peak_bytes"] = max(total["peak_bytes"], int(
+        fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes))
+    return li, lf, sols[:st[S_SOLS]], st
