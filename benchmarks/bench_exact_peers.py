@@ -26,7 +26,7 @@ for three objectives, AVX-512 is missing.
 Usage::
 
     python benchmarks/bench_exact_peers.py [--repeats 3] [--queries 5] [--objectives 2,3]
-        [--maps room-32-32-4,maze-32-32-2,...] [--quick]
+        [--maps room-32-32-4,maze-32-32-2,...] [--tie-break smoothest|none] [--quick]
 """
 
 from __future__ import annotations
@@ -84,13 +84,13 @@ def queries(name: str, k: int) -> list:
     return [(int(i), scen[i]) for i in idx]
 
 
-def run_gapath(ws, objectives, repeats):
+def run_gapath(ws, objectives, repeats, tie_break):
     """Median wall and thread-CPU milliseconds of ``repeats`` calls, and the front."""
-    free_front(ws, objectives)                   # warm-up (and numba compilation)
+    free_front(ws, objectives, tie_break=tie_break)   # warm-up (and numba compilation)
     wall, cpu, front = [], [], None
     for _ in range(repeats):
         t, c = time.perf_counter(), time.thread_time()
-        front = free_front(ws, objectives)
+        front = free_front(ws, objectives, tie_break=tie_break)
         wall.append(time.perf_counter() - t)
         cpu.append(time.thread_time() - c)
     return statistics.median(wall) * 1e3, statistics.median(cpu) * 1e3, front
@@ -133,6 +133,8 @@ def main(argv=None) -> int:
     ap.add_argument("--queries", type=int, default=5, help="queries per map (.scen lines)")
     ap.add_argument("--objectives", default="2,3")
     ap.add_argument("--maps", default=None, help="comma-separated map names (default: all)")
+    ap.add_argument("--tie-break", default="smoothest", choices=("smoothest", "none"),
+                    help="gapath's tie_break for two objectives (default: %(default)s)")
     ap.add_argument("--quick", action="store_true", help="2 queries per map, 1 repeat")
     args = ap.parse_args(argv)
     if args.quick:
@@ -166,7 +168,7 @@ def main(argv=None) -> int:
                     s2 = convert.choose_s2(ws, n_obj)[0]
                     graph = tmp / "graph.txt"
                     info = (convert.graph2 if n_obj == 2 else convert.graph3)(ws, graph, s2)
-                    g_ms, g_cpu, front = run_gapath(ws, objectives, args.repeats)
+                    g_ms, g_cpu, front = run_gapath(ws, objectives, args.repeats, args.tie_break)
                     prog = progs["boa" if n_obj == 2 else "moa"]
                     c_ms, cF, c_exp = run_c(prog, graph, info, n_obj, args.repeats, tmp)
                     ratio = g_ms / max(c_ms, 1e-3)
@@ -179,7 +181,8 @@ def main(argv=None) -> int:
                          c_points=len(cF), hv=round(hv_ratio(cF, front.F), 6),
                          gapath_expansions=front.stats["expansions"], c_expansions=c_exp,
                          peak_mb=round(front.stats["peak_bytes"] / 1e6, 2),
-                         c_solver="BOA*" if n_obj == 2 else "LT-MOA*v")
+                         c_solver="BOA*" if n_obj == 2 else "LT-MOA*v",
+                         tie_break=args.tie_break if n_obj == 2 else None)
     def spread(v):
         return {"median": round(statistics.median(v), 2), "min": round(min(v), 2),
                 "max": round(max(v), 2), "queries": len(v)}

@@ -456,6 +456,66 @@ def _heap_pop(hk, hid, size):
 
 # -- 1. heuristics ----------------------------------------------------------
 
+@numba.njit(cache=True, inline="always")
+def _iless(keys, ids, i, j):
+    """Heap order of entries ``i`` and ``j``: key, then node."""
+    return keys[i] < keys[j] or (keys[i] == keys[j] and ids[i] < ids[j])
+
+
+@numba.njit(cache=True, inline="always")
+def _iswap(keys, ids, pos, i, j):
+    keys[i], keys[j] = keys[j], keys[i]
+    ids[i], ids[j] = ids[j], ids[i]
+    pos[ids[i]] = i
+    pos[ids[j]] = j
+
+
+@numba.njit(cache=True, inline="always")
+def _idecrease(keys, ids, pos, size, key, node):
+    """Insert ``node`` with ``key``, or lower its key if it is on the heap
+    (an indexed binary heap: ``pos[node]`` is its index, -1 if absent; the
+    arrays hold every node, so there is no growth and no stale entry).
+    Returns the new size."""
+    i = pos[node]
+    if i < 0:
+        i = size
+        size += 1
+        ids[i] = node
+        pos[node] = i
+    keys[i] = key
+    while i > 0:
+        p = (i - 1) >> 1
+        if not _iless(keys, ids, i, p):
+            break
+        _iswap(keys, ids, pos, i, p)
+        i = p
+    return size
+
+
+@numba.njit(cache=True, inline="always")
+def _ipop(keys, ids, pos, size):
+    """Remove the smallest entry; returns ``(node, size - 1)``."""
+    top = ids[0]
+    pos[top] = -1
+    size -= 1
+    if size > 0:
+        keys[0] = keys[size]
+        ids[0] = ids[size]
+        pos[ids[0]] = 0
+        i = 0
+        while True:
+            ch = 2 * i + 1
+            if ch >= size:
+                break
+            if ch + 1 < size and _iless(keys, ids, ch + 1, ch):
+                ch += 1
+            if not _iless(keys, ids, ch, i):
+                break
+            _iswap(keys, ids, pos, i, ch)
+            i = ch
+    return top, size
+
+
 @numba.njit(cache=True)
 def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
     """Exact single-objective costs-to-go, by backward Dijkstra from the goal.
@@ -480,8 +540,9 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
     h, w = occ.shape
     n = h * w
     goal = gr * w + gc
-    hk = np.empty((64, 3))
-    hid = np.empty(64, np.int64)
+    hk = np.empty(n)
+    hid = np.empty(n, np.int32)
+    pos = np.full(n, -1, np.int32)
 
     # length, as step counts
     hs = np.full(n, -1, np.int64)
@@ -490,13 +551,9 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
     dist[goal] = 0.0
     hs[goal] = 0
     hd[goal] = 0
-    _heap_push(hk, hid, 0, 0.0, 0.0, 0.0, goal)
-    size = 1
+    size = _idecrease(hk, hid, pos, 0, 0.0, goal)
     while size > 0:
-        key = hk[0, 0]
-        u, size = _heap_pop(hk, hid, size)
-        if key > dist[u]:
-            continue
+        u, size = _ipop(hk, hid, pos, size)
         ur, uc = u // w, u % w
         for d in range(8):
             if not can_step(occ, ur, uc, DR[d], DC[d], corner_cutting):
@@ -509,23 +566,16 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
                 dist[v] = val
                 hs[v] = ns
                 hd[v] = nd
-                if size == hid.shape[0]:
-                    hk, hid = _heap_room(hk, hid)
-                _heap_push(hk, hid, size, val, 0.0, 0.0, v)
-                size += 1
+                size = _idecrease(hk, hid, pos, size, val, v)
 
     # vulnerability: D(u) = P(u) + min_v D(v), D(goal) = P(goal); hv(u) = min_v D(v)
     D = np.full(n, np.inf)
     hv = np.full(n, np.inf)
     D[goal] = pot[gr, gc]
     hv[goal] = 0.0
-    _heap_push(hk, hid, 0, D[goal], 0.0, 0.0, goal)
-    size = 1
+    size = _idecrease(hk, hid, pos, 0, D[goal], goal)
     while size > 0:
-        key = hk[0, 0]
-        u, size = _heap_pop(hk, hid, size)
-        if key > D[u]:
-            continue
+        u, size = _ipop(hk, hid, pos, size)
         ur, uc = u // w, u % w
         for d in range(8):
             if not can_step(occ, ur, uc, DR[d], DC[d], corner_cutting):
@@ -538,10 +588,7 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
             if val < D[v]:
                 D[v] = val
                 hv[v] = D[u]
-                if size == hid.shape[0]:
-                    hk, hid = _heap_room(hk, hid)
-                _heap_push(hk, hid, size, val, 0.0, 0.0, v)
-                size += 1
+                size = _idecrease(hk, hid, pos, size, val, v)
 
     if not with_turns:
         return hs, hd, hv, np.zeros(1, np.int64)
@@ -550,17 +597,14 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
     ht = np.full(n * N_SLOTS, _BIG_TURNS, np.int64)
     for k in range(N_SLOTS):
         ht[goal * N_SLOTS + k] = 0
+    hk = np.empty(n * N_SLOTS)
+    hid = np.empty(n * N_SLOTS, np.int32)
+    pos = np.full(n * N_SLOTS, -1, np.int32)
     size = 0
     for d in range(8):
-        if size == hid.shape[0]:
-            hk, hid = _heap_room(hk, hid)
-        _heap_push(hk, hid, size, 0.0, 0.0, 0.0, goal * N_SLOTS + d)
-        size += 1
+        size = _idecrease(hk, hid, pos, size, 0.0, goal * N_SLOTS + d)
     while size > 0:
-        key = hk[0, 0]
-        s, size = _heap_pop(hk, hid, size)
-        if key > ht[s]:
-            continue
+        s, size = _ipop(hk, hid, pos, size)
         v, d = s // N_SLOTS, s % N_SLOTS
         ur, uc = v // w - DR[d], v % w - DC[d]
         if ur < 0 or ur >= h or uc < 0 or uc >= w or occ[ur, uc]:
@@ -573,10 +617,7 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
             if val < ht[u * N_SLOTS + k]:
                 ht[u * N_SLOTS + k] = val
                 if k < 8:
-                    if size == hid.shape[0]:
-                        hk, hid = _heap_room(hk, hid)
-                    _heap_push(hk, hid, size, np.float64(val), 0.0, 0.0, u * N_SLOTS + k)
-                    size += 1
+                    size = _idecrease(hk, hid, pos, size, np.float64(val), u * N_SLOTS + k)
     return hs, hd, hv, ht
 
 
