@@ -14,13 +14,13 @@ import numba
 import numpy as np
 
 from gapath.objectives import SQRT2, _turn
-from gapath.planners._grid import DC, DR, can_step
+from gapath.planners._grid import DC, DR
 
 #: Relative tolerance of SPEC "Duplicates and ties".
 TOL = 1e-9
 
-#: Status codes of the resumable kernels.
-DONE, PAUSED, OVER_BUDGET = range(3)
+#: Status codes of the resumable kernels (NEED_ROOM: internal to _free_run).
+DONE, PAUSED, OVER_BUDGET, NEED_ROOM = range(4)
 
 # ---------------------------------------------------------------------------
 # monotone DP
@@ -456,26 +456,16 @@ def _heap_pop(hk, hid, size):
 
 # -- 1. heuristics ----------------------------------------------------------
 
-@numba.njit(cache=True, inline="always")
-def _iless(keys, ids, i, j):
-    """Heap order of entries ``i`` and ``j``: key, then node."""
-    return keys[i] < keys[j] or (keys[i] == keys[j] and ids[i] < ids[j])
-
-
-@numba.njit(cache=True, inline="always")
-def _iswap(keys, ids, pos, i, j):
-    keys[i], keys[j] = keys[j], keys[i]
-    ids[i], ids[j] = ids[j], ids[i]
-    pos[ids[i]] = i
-    pos[ids[j]] = j
-
-
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def _idecrease(keys, ids, pos, size, key, node):
     """Insert ``node`` with ``key``, or lower its key if it is on the heap
-    (an indexed binary heap: ``pos[node]`` is its index, -1 if absent; the
-    arrays hold every node, so there is no growth and no stale entry).
-    Returns the new size."""
+    (an indexed binary heap ordered by key, then node: ``pos[node]`` is its
+    index, -1 if absent; the arrays hold every node, so there is no growth
+    and no stale entry). Returns the new size.
+
+    Plain njit functions, not ``inline="always"``: numba's IR inlining copies
+    array arguments, and reference-counting the copies took most of the
+    time of the Dijkstra passes (perf: NRT_incref/NRT_decref)."""
     i = pos[node]
     if i < 0:
         i = size
@@ -485,14 +475,17 @@ def _idecrease(keys, ids, pos, size, key, node):
     keys[i] = key
     while i > 0:
         p = (i - 1) >> 1
-        if not _iless(keys, ids, i, p):
+        if not (keys[i] < keys[p] or (keys[i] == keys[p] and ids[i] < ids[p])):
             break
-        _iswap(keys, ids, pos, i, p)
+        keys[i], keys[p] = keys[p], keys[i]
+        ids[i], ids[p] = ids[p], ids[i]
+        pos[ids[i]] = i
+        pos[ids[p]] = p
         i = p
     return size
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True)
 def _ipop(keys, ids, pos, size):
     """Remove the smallest entry; returns ``(node, size - 1)``."""
     top = ids[0]
@@ -507,17 +500,46 @@ def _ipop(keys, ids, pos, size):
             ch = 2 * i + 1
             if ch >= size:
                 break
-            if ch + 1 < size and _iless(keys, ids, ch + 1, ch):
+            if ch + 1 < size and (keys[ch + 1] < keys[ch] or
+                                  (keys[ch + 1] == keys[ch] and ids[ch + 1] < ids[ch])):
                 ch += 1
-            if not _iless(keys, ids, ch, i):
+            if not (keys[ch] < keys[i] or (keys[ch] == keys[i] and ids[ch] < ids[i])):
                 break
-            _iswap(keys, ids, pos, i, ch)
+            keys[i], keys[ch] = keys[ch], keys[i]
+            ids[i], ids[ch] = ids[ch], ids[i]
+            pos[ids[i]] = i
+            pos[ids[ch]] = ch
             i = ch
     return top, size
 
 
 @numba.njit(cache=True)
-def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
+def _move_masks(occ, corner_cutting):
+    """(H*W,) uint8: bit ``d`` set if move ``d`` from the cell is allowed
+    (:func:`gapath.planners._grid.can_step`; 0 for obstacle cells). Computed
+    once per search, so that the hot loops test a bit instead of calling
+    a function on ``occ``."""
+    h, w = occ.shape
+    m = np.zeros(h * w, np.uint8)
+    for r in range(h):
+        for c in range(w):
+            if occ[r, c]:
+                continue
+            b = 0
+            for d in range(8):
+                r2 = r + DR[d]
+                c2 = c + DC[d]
+                if r2 < 0 or r2 >= h or c2 < 0 or c2 >= w or occ[r2, c2]:
+                    continue
+                if d % 2 == 1 and not corner_cutting and (occ[r2, c] or occ[r, c2]):
+                    continue
+                b |= 1 << d
+            m[r * w + c] = b
+    return m
+
+
+@numba.njit(cache=True)
+def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns, mask):
     """Exact single-objective costs-to-go, by backward Dijkstra from the goal.
 
     Returns
@@ -536,6 +558,8 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
         Smallest total turn (eighths) from a cell, arrived with heading slot
         ``k`` (8 = none), to the goal, obstacles and corner rule included;
         without ``with_turns`` a 1-entry placeholder (see :func:`_ht`).
+
+    ``mask`` is :func:`_move_masks` of ``occ`` and ``corner_cutting``.
     """
     h, w = occ.shape
     n = h * w
@@ -554,11 +578,11 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
     size = _idecrease(hk, hid, pos, 0, 0.0, goal)
     while size > 0:
         u, size = _ipop(hk, hid, pos, size)
-        ur, uc = u // w, u % w
+        mk = mask[u]
         for d in range(8):
-            if not can_step(occ, ur, uc, DR[d], DC[d], corner_cutting):
+            if not (mk >> d) & 1:
                 continue
-            v = (ur + DR[d]) * w + uc + DC[d]
+            v = u + DR[d] * w + DC[d]
             ns = hs[u] + (1 - d % 2)
             nd = hd[u] + d % 2
             val = ns + SQRT2 * nd
@@ -576,11 +600,11 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
     size = _idecrease(hk, hid, pos, 0, D[goal], goal)
     while size > 0:
         u, size = _ipop(hk, hid, pos, size)
-        ur, uc = u // w, u % w
+        mk = mask[u]
         for d in range(8):
-            if not can_step(occ, ur, uc, DR[d], DC[d], corner_cutting):
+            if not (mk >> d) & 1:
                 continue
-            vr, vc = ur + DR[d], uc + DC[d]
+            vr, vc = u // w + DR[d], u % w + DC[d]
             v = vr * w + vc
             if v == goal:
                 continue
@@ -607,11 +631,11 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns):
         s, size = _ipop(hk, hid, pos, size)
         v, d = s // N_SLOTS, s % N_SLOTS
         ur, uc = v // w - DR[d], v % w - DC[d]
-        if ur < 0 or ur >= h or uc < 0 or uc >= w or occ[ur, uc]:
-            continue
-        if not can_step(occ, ur, uc, DR[d], DC[d], corner_cutting):
+        if ur < 0 or ur >= h or uc < 0 or uc >= w:
             continue
         u = ur * w + uc
+        if not (mask[u] >> d) & 1:
+            continue
         for k in range(N_SLOTS):
             val = ht[s] + (_turn(k, d) if k < 8 else 0)
             if val < ht[u * N_SLOTS + k]:
@@ -836,7 +860,7 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
 
 
 @numba.njit(cache=True)
-def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, hv, ht,
+def _free_run(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
               gmin, first, li, lf, sols, hk, hid, st, stf, n_steps, max_labels, ties):
     """Advance the multi-objective label-setting search from start to goal
     by at most ``n_steps`` pops of the open list.
@@ -846,16 +870,45 @@ def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, h
     (``P`` = length or vulnerability, ``Q`` = smoothness, states = (cell,
     heading)) or ``MODE_THREE`` (length, vulnerability, smoothness, states =
     (cell, heading)). ``ties=False`` (MODE_CELL): BOA* as published, ties
-    within the tolerance are dropped whatever their turns.
+    within the tolerance are dropped whatever their turns. ``mask``: the
+    allowed moves of each cell (:func:`_move_masks`).
 
     The state is the arrays made by :func:`_free_init` and the scalars in
     ``st``/``stf`` (updated in place). A label dropped when it leaves the
     open list is referenced by nothing (it has no children and belongs to
     no state's set): its row is recycled through a free list linked by
     ``NEXT``. Stops before a pop that could take the label rows in use
-    beyond ``max_labels``. Returns ``(li, lf, sols, hk, hid, status)``, status DONE
-    (open list empty), PAUSED or OVER_BUDGET.
+    beyond ``max_labels``. Returns ``(li, lf, sols, hk, hid, status)``,
+    status DONE (open list empty), PAUSED or OVER_BUDGET.
+
+    The search itself is :func:`_free_steps`, which never reallocates (an
+    array reassigned inside a numba loop is reference-counted at every
+    branch, which cost most of the time): it returns when an array is full,
+    and this loop doubles it.
     """
+    pops0 = st[S_POPS]
+    while True:
+        status = _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q,
+                             hs, hd, hv, ht, gmin, first, li, lf, sols, hk, hid, st, stf,
+                             n_steps - (st[S_POPS] - pops0), max_labels, ties)
+        if status != NEED_ROOM:
+            return li, lf, sols, hk, hid, status
+        if st[S_N] + 8 > li.shape[0]:
+            li = _grow(li, st[S_N] + 8)
+            lf = _grow(lf, st[S_N] + 8)
+        if st[S_SIZE] + 8 > hid.shape[0]:
+            hk = _grow(hk, st[S_SIZE] + 8)
+            hid = _grow1(hid, st[S_SIZE] + 8)
+        if st[S_SOLS] + 1 > sols.shape[0]:
+            sols = _grow1(sols, st[S_SOLS] + 1)
+
+
+@numba.njit(cache=True)
+def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
+                gmin, first, li, lf, sols, hk, hid, st, stf, n_steps, max_labels, ties):
+    """The search loop of :func:`_free_run`, in arrays it never reallocates:
+    returns NEED_ROOM before a pop when the label tables, the heap or the
+    solution list could overflow."""
     h, w = occ.shape
     goal = gr * w + gc
     goal_state = first.shape[0] - 1          # MODE_THREE: the goal's staircase
@@ -879,6 +932,9 @@ def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, h
             break
         if n - n_free + 8 > max_labels:    # an expansion adds up to 8 labels
             status = OVER_BUDGET
+            break
+        if n + 8 > li.shape[0] or size + 8 > hid.shape[0] or n_sols + 1 > sols.shape[0]:
+            status = NEED_ROOM
             break
         steps += 1
         # 2. the lexicographically smallest label
@@ -904,7 +960,6 @@ def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, h
                 lf[x, RUNMIN] = goal_min
                 li[x, NEXT] = goal_first
                 goal_first = x
-            sols = _grow1(sols, n_sols + 1)
             sols[n_sols] = x
             n_sols += 1
             continue
@@ -921,8 +976,9 @@ def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, h
             first[s] = x
         r, col = c // w, c % w
         head = li[x, F_HEAD]
+        mk = mask[c]
         for d in range(8):
-            if not can_step(occ, r, col, DR[d], DC[d], corner_cutting):
+            if not (mk >> d) & 1:
                 continue
             r2, c2 = r + DR[d], col + DC[d]
             if hv[r2 * w + c2] == np.inf:      # the goal cannot be reached from there
@@ -931,9 +987,6 @@ def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, h
                 j = free
             else:
                 j = n
-                if n == li.shape[0]:
-                    li = _grow(li, n + 1)
-                    lf = _grow(lf, n + 1)
             li[j, CELL] = r2 * w + c2
             li[j, F_HEAD] = d
             li[j, F_PARENT] = x
@@ -955,8 +1008,6 @@ def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, h
             else:
                 n += 1
             li[j, NEXT] = -1
-            if size == hid.shape[0]:
-                hk, hid = _heap_room(hk, hid)
             _heap_push(hk, hid, size, _f(li, lf, j, P, cell_size, hs, hd, hv, ht),
                        _f(li, lf, j, second, cell_size, hs, hd, hv, ht),
                        _f(li, lf, j, OBJ_SMOOTH, cell_size, hs, hd, hv, ht), j)
@@ -971,7 +1022,7 @@ def _free_run(occ, pot, gr, gc, cell_size, corner_cutting, mode, P, Q, hs, hd, h
     st[S_N_FREE] = n_free
     st[S_POPS] = pops0 + steps
     stf[SF_GOAL_MIN] = goal_min
-    return li, lf, sols, hk, hid, status
+    return status
 
 
 # -- 5. paths and the final filter ------------------------------------------------

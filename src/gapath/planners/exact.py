@@ -58,7 +58,7 @@ from gapath.planners._exact_kernels import (
     DONE, EIGHTHS, F_VUL, LENGTH, MODE_CELL, MODE_HEADING, MODE_THREE, N_SLOTS, ND, NS,
     OBJ_LEN, OBJ_SMOOTH, OBJ_VUL, OVER_BUDGET, PARENT, ROW, S_EXPANDED, S_GENERATED, S_N,
     S_N_FREE, S_POPS, S_SIZE, S_SOLS, TURNS, VUL, _free_heuristics, _free_init, _free_run,
-    _monotone_columns, _monotone_start, _tolerant_front, _trace)
+    _monotone_columns, _monotone_start, _move_masks, _tolerant_front, _trace)
 
 __all__ = ["ExactFront", "monotone_front", "free_front", "EXACT_OBJECTIVES"]
 
@@ -547,7 +547,8 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
     with _DeferredInterrupt() as interrupt:
         # two objectives without smoothness: turns only break ties, and a zero turn
         # heuristic expands as many labels as the exact one (measured) at none of its cost
-        hs, hd, hv, ht = _free_heuristics(occ, pot, gr, gc, cc, mode != MODE_CELL)
+        mask = _move_masks(occ, cc)
+        hs, hd, hv, ht = _free_heuristics(occ, pot, gr, gc, cc, mode != MODE_CELL, mask)
         interrupt.check()
         t_heur = time.perf_counter() - t0
         if hv[sr * w + sc] == np.inf:
@@ -556,7 +557,7 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
                 f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
                 f"corner_cutting={workspace.corner_cutting})")
         n_states = h * w * (1 if mode == MODE_CELL else N_SLOTS)
-        args = (occ, pot, (sr, sc), (gr, gc), cs, cc, mode, P, Q, (hs, hd, hv, ht), n_states,
+        args = (occ, pot, (sr, sc), (gr, gc), cs, mask, mode, P, Q, (hs, hd, hv, ht), n_states,
                 budget, progress, interrupt)
         total = {"expansions": 0, "generated": 0, "labels": 0, "peak_bytes": 0}
         li, lf, sols, st = _search_pass(*args, tie_break == "smoothest", total, t0)
@@ -579,7 +580,7 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
                       smoothness=values["smoothness"][keep], stats=stats)
 
 
-def _search_pass(occ, pot, start, goal, cs, cc, mode, P, Q, heuristics, n_states, budget,
+def _search_pass(occ, pot, start, goal, cs, mask, mode, P, Q, heuristics, n_states, budget,
                  progress, interrupt, ties, total, t0):
     """One run of the free search in slices (progress, Ctrl-C and the budget
     handled between slices); adds its counts to ``total``. Returns the label
@@ -594,7 +595,7 @@ def _search_pass(occ, pot, start, goal, cs, cc, mode, P, Q, heuristics, n_states
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
         li, lf, sols, hk, hid, status = _free_run(
-            occ, pot, gr, gc, cs, cc, mode, P, Q, hs, hd, hv, ht, gmin, first, li, lf, sols,
+            occ, pot, gr, gc, cs, mask, mode, P, Q, hs, hd, hv, ht, gmin, first, li, lf, sols,
             hk, hid, st, stf, slices.n, budget, ties)
         interrupt.check()
         now = time.perf_counter()
