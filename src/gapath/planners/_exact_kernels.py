@@ -400,7 +400,7 @@ def _key_less(a1, a2, a3, an, b1, b2, b3, bn):
 @numba.njit(cache=True, inline="always")
 def _heap_push(hk, hid, size, k1, k2, k3, node):
     """Insert ``node`` with key ``(k1, k2, k3)`` into a heap of ``size``
-    entries; the caller makes room first (:func:`_heap_room`)."""
+    entries; the caller makes room first (:func:`_free_run`)."""
     i = size
     while i > 0:
         p = (i - 1) >> 1
@@ -415,13 +415,6 @@ def _heap_push(hk, hid, size, k1, k2, k3, node):
     hk[i, 1] = k2
     hk[i, 2] = k3
     hid[i] = node
-
-
-@numba.njit(cache=True)
-def _heap_room(hk, hid):
-    """The heap arrays with twice the capacity (pushing never reallocates,
-    so that the arrays need not be returned on every push)."""
-    return _grow(hk, hk.shape[0] + 1), _grow1(hid, hid.shape[0] + 1)
 
 
 @numba.njit(cache=True, inline="always")
