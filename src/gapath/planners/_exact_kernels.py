@@ -934,11 +934,29 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
         x, size = _heap_pop(hk, hid, size)
         c = li[x, CELL]
 
-        # 3. dominance checks (lazy: the sets changed since x was generated)
-        if (c != goal and _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size,
-                                         ties)) or \
+        # 3. dominance checks (lazy: the sets changed since x was generated); for two
+        # objectives the O(1) g2_min tests first, the full checks only on a tie
+        if mode == MODE_CELL:
+            covered = False
+            q = lf[x, F_VUL]
+            if c != goal:
+                m = gmin[c]
+                if m < np.inf and not (q < m and not _eq(q, m)):
+                    covered = (not ties or (m < q and not _eq(m, q))
+                               or _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size,
+                                                 ties))
+            fq = q + hv[c]
+            if not covered and goal_min < np.inf and not (fq < goal_min and
+                                                          not _eq(fq, goal_min)):
+                covered = (not ties or (goal_min < fq and not _eq(goal_min, fq))
+                           or _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first,
+                                            goal_state, cell_size, hs, hd, hv, ht, ties))
+        else:
+            covered = (c != goal and _state_covered(li, lf, x, mode, P, Q, gmin, first,
+                                                    cell_size, ties)) or \
                 _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state,
-                              cell_size, hs, hd, hv, ht, ties):
+                              cell_size, hs, hd, hv, ht, ties)
+        if covered:
             li[x, NEXT] = free                 # recycle the row
             free = x
             n_free += 1
@@ -974,13 +992,14 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
             if not (mk >> d) & 1:
                 continue
             r2, c2 = r + DR[d], col + DC[d]
-            if hv[r2 * w + c2] == np.inf:      # the goal cannot be reached from there
+            cell = r2 * w + c2
+            if hv[cell] == np.inf:             # the goal cannot be reached from there
                 continue
             if free >= 0:                      # a recycled row (its NEXT links the free list)
                 j = free
             else:
                 j = n
-            li[j, CELL] = r2 * w + c2
+            li[j, CELL] = cell
             li[j, F_HEAD] = d
             li[j, F_PARENT] = x
             li[j, NS] = li[x, NS] + (1 - d % 2)
@@ -988,22 +1007,43 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
             li[j, TURNS] = li[x, TURNS] + (_turn(head, d) if head >= 0 else 0)
             lf[j, F_VUL] = lf[x, F_VUL] + pot[r2, c2]
             n_generated += 1
-            # 3. eager dominance checks (BOA*: prune before the open list)
-            if r2 * w + c2 != goal and _state_covered(li, lf, j, mode, P, Q, gmin, first,
-                                                      cell_size, ties):
-                continue
-            if _goal_covered(li, lf, j, mode, P, Q, goal_min, goal_first, first, goal_state,
-                             cell_size, hs, hd, hv, ht, ties):
-                continue
+            # the f-vector, written out (helper calls on the arrays cost reference counting)
+            f_len = ((li[j, NS] + hs[cell]) + SQRT2 * (li[j, ND] + hd[cell])) * cell_size
+            f_vul = lf[j, F_VUL] + hv[cell]
+            f_turn = np.float64(li[j, TURNS] + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0))
+            # 3. eager dominance checks (BOA*: prune before the open list); for two
+            # objectives the O(1) g2_min tests first, the full checks only on a tie
+            if mode == MODE_CELL:
+                if cell != goal:
+                    q = lf[j, F_VUL]
+                    m = gmin[cell]
+                    if m < np.inf and not (q < m and not _eq(q, m)):
+                        if not ties or (m < q and not _eq(m, q)):
+                            continue
+                        if _state_covered(li, lf, j, mode, P, Q, gmin, first, cell_size, ties):
+                            continue
+                if goal_min < np.inf and not (f_vul < goal_min and not _eq(f_vul, goal_min)):
+                    if not ties or (goal_min < f_vul and not _eq(goal_min, f_vul)):
+                        continue
+                    if _goal_covered(li, lf, j, mode, P, Q, goal_min, goal_first, first,
+                                     goal_state, cell_size, hs, hd, hv, ht, ties):
+                        continue
+            else:
+                if cell != goal and _state_covered(li, lf, j, mode, P, Q, gmin, first,
+                                                   cell_size, ties):
+                    continue
+                if _goal_covered(li, lf, j, mode, P, Q, goal_min, goal_first, first, goal_state,
+                                 cell_size, hs, hd, hv, ht, ties):
+                    continue
             if j == free:
                 free = li[j, NEXT]
                 n_free -= 1
             else:
                 n += 1
             li[j, NEXT] = -1
-            _heap_push(hk, hid, size, _f(li, lf, j, P, cell_size, hs, hd, hv, ht),
-                       _f(li, lf, j, second, cell_size, hs, hd, hv, ht),
-                       _f(li, lf, j, OBJ_SMOOTH, cell_size, hs, hd, hv, ht), j)
+            k1 = f_len if P == OBJ_LEN else (f_vul if P == OBJ_VUL else f_turn)
+            k2 = f_len if second == OBJ_LEN else (f_vul if second == OBJ_VUL else f_turn)
+            _heap_push(hk, hid, size, k1, k2, f_turn, j)
             size += 1
     st[S_N] = n
     st[S_SIZE] = size
