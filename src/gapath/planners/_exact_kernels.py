@@ -1028,6 +1028,32 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
                     if _goal_covered(li, lf, j, mode, P, Q, goal_min, goal_first, first,
                                      goal_state, cell_size, hs, hd, hv, ht, ties):
                         continue
+            elif mode == MODE_THREE:
+                # the (turns, vulnerability) staircases, walked here (see above)
+                t = li[j, TURNS]
+                v = lf[j, F_VUL]
+                covered = False
+                if cell != goal:
+                    for k in range(N_SLOTS):
+                        a = first[cell * N_SLOTS + k]
+                        if a < 0:
+                            continue
+                        bound = t - (0 if k == 8 else _turn(k, d))   # _heading_gap
+                        if bound < 0:
+                            continue
+                        while a >= 0 and li[a, TURNS] > bound:
+                            a = li[a, NEXT]
+                        if a >= 0 and _le(lf[a, F_VUL], v):
+                            covered = True
+                            break
+                if not covered:
+                    bound = t + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0)
+                    a = first[goal_state]
+                    while a >= 0 and li[a, TURNS] > bound:
+                        a = li[a, NEXT]
+                    covered = a >= 0 and _le(lf[a, F_VUL], f_vul)
+                if covered:
+                    continue
             else:
                 if cell != goal and _state_covered(li, lf, j, mode, P, Q, gmin, first,
                                                    cell_size, ties):
