@@ -4,7 +4,8 @@ free_front).
 Prints one JSON line per case: front ("monotone" or "free"), map, size,
 start, goal, objectives, corner_cutting, seconds (median of ``--repeats``
 runs after one warm-up run that also triggers the JIT compilation), runs,
-front_size.
+front_size, labels and peak_mb (from the front's ``stats``: label rows held,
+largest memory of the search arrays) and, for free fronts, expansions.
 
 Usage::
 
@@ -115,6 +116,9 @@ def time_case(kind, ws, objectives, repeats):
         "seconds": round(statistics.median(times), 5),
         "runs": repeats,
         "front_size": len(front),
+        "labels": front.stats["labels"],
+        "peak_mb": round(front.stats["peak_bytes"] / 1e6, 3),
+        **({"expansions": front.stats["expansions"]} if kind == "free" else {}),
     }
 
 

@@ -207,6 +207,31 @@ def test_ties_prefer_smoothest_path(case, objectives):
         assert smooth == all_F[same, 2].min()
 
 
+def test_tie_break_none_gives_the_same_front(case):
+    """``tie_break="none"`` (BOA* as published): the same front up to the
+    tolerance, each path's objectives and smoothness its own."""
+    key, ws, all_F, _ = case
+    expected = pareto_with_tolerance(all_F[:, :2], prefer=all_F[:, 2])
+    front = free_front(ws, ("length", "vulnerability"), tie_break="none")
+    assert_same_front(front.F, expected)
+    check_front(ws, front)
+
+
+def test_tie_break_none_on_a_flat_map():
+    """Zero potential everywhere: every path of a given step count ties; the
+    front is the same, with fewer labels expanded."""
+    ws = Workspace(np.zeros((12, 12), bool), start=(11, 0), goal=(0, 9))
+    assert not ws.potential.any()
+    smooth = free_front(ws, ("length", "vulnerability"))
+    fast = free_front(ws, ("length", "vulnerability"), tie_break="none")
+    assert_same_front(fast.F, smooth.F)
+    assert fast.stats["expansions"] <= smooth.stats["expansions"]
+    assert (smooth.smoothness <= fast.smoothness).all()
+    check_front(ws, fast)
+    with pytest.raises(ConfigError, match="tie_break"):
+        free_front(ws, tie_break="first")
+
+
 def check_front(ws: Workspace, front: ExactFront):
     F = front.F
     k, m = F.shape

@@ -62,3 +62,17 @@ class NoPathError(GapathError, ValueError):
     def __init__(self, message: str = "", hint: str | None = None):
         super().__init__(message)
         self.hint = hint
+
+
+class LabelBudgetError(GapathError):
+    """An exact search stopped at its label budget (``max_labels``,
+    ``gapath exact --max-labels``) before its front was complete.
+
+    The message says how far the search got; ``stats`` holds the same figures
+    (labels, expansions, solutions so far, seconds). What was found is not a
+    Pareto front, so none is returned.
+    """
+
+    def __init__(self, message: str, stats: dict | None = None):
+        super().__init__(message)
+        self.stats = dict(stats or {})

@@ -19,20 +19,79 @@ def register(subparsers) -> None:
     p.add_argument("--mode", choices=("monotone", "free"), default="monotone",
                    help="column-monotone paths (the GA's path set) or all 8-connected paths "
                         "(default: %(default)s)")
+    p.add_argument("--max-labels", type=_positive_int, default=None, metavar="N",
+                   help="label budget: stop with a message (no front) when the search would hold "
+                        "more than N labels (44 bytes each), instead of exhausting memory")
     p.add_argument("--out", default="gapath-exact", help="output directory (default: %(default)s)")
     p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
     p.add_argument("--quiet", action="store_true", help="no report")
     p.set_defaults(func=run)
 
 
-def exact_path_front(workspace, objectives, mode):
-    """The exact front as a :class:`gapath.front.PathFront`."""
-    from gapath.front import PathFront
-    from gapath.objectives import evaluate_paths, pad_paths
+def _positive_int(text):
+    import argparse
+
+    try:
+        value = int(text)
+    except ValueError:
+        value = 0
+    if value < 1:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
+    return value
+
+
+class _ProgressLine:
+    """A throttled progress line on stderr: rewritten in place on a terminal
+    (at most 4 times a second), a new line every 10 s otherwise."""
+
+    def __init__(self, mode):
+        import sys
+
+        self.mode, self.stream = mode, sys.stderr
+        self.tty = self.stream.isatty()
+        self.every = 0.25 if self.tty else 10.0
+        self.last = time.perf_counter()
+        self.shown = False
+
+    def __call__(self, info):
+        now = time.perf_counter()
+        if now - self.last < self.every:
+            return
+        self.last = now
+        if info["phase"] == "free":
+            text = (f"exact free: {info['expansions']:,} expanded, {info['labels']:,} labels, "
+                    f"{info['open']:,} open, {info['solutions']:,} solutions so far, "
+                    f"{info['seconds']:.1f} s")
+        else:
+            text = (f"exact monotone: column {info['columns']:,}/{info['n_cols']:,}, "
+                    f"{info['labels']:,} labels, {info['seconds']:.1f} s")
+        self.stream.write(("\r" + text + "\x1b[K") if self.tty else text + "\n")
+        self.stream.flush()
+        self.shown = True
+
+    def close(self):
+        if self.shown and self.tty:
+            self.stream.write("\n")
+            self.stream.flush()
+
+
+def exact_path_front(workspace, objectives, mode, **options):
+    """The exact front as a :class:`gapath.front.PathFront` (``options``:
+    ``max_labels``, ``progress``, see :func:`gapath.planners.exact.free_front`)."""
+    return _path_front(workspace, _exact_front(workspace, objectives, mode, **options))
+
+
+def _exact_front(workspace, objectives, mode, **options):
     from gapath.planners import exact
 
     solver = exact.monotone_front if mode == "monotone" else exact.free_front
-    ef = solver(workspace, objectives)
+    return solver(workspace, objectives, **options)
+
+
+def _path_front(workspace, ef):
+    from gapath.front import PathFront
+    from gapath.objectives import evaluate_paths, pad_paths
+
     P, L = pad_paths(ef.paths)
     metrics = evaluate_paths(P, L, workspace.occ, workspace.potential, workspace.cell_size,
                              workspace.corner_cutting)
@@ -48,22 +107,37 @@ def run(args) -> int:
     ws = choice.workspace
     objectives = [o.strip() for o in args.objectives.split(",") if o.strip()]
     t0 = time.perf_counter()
+    bar = None if args.quiet else _ProgressLine(args.mode)
     try:
-        front = exact_path_front(ws, objectives, args.mode)
+        ef = _exact_front(ws, objectives, args.mode, max_labels=args.max_labels, progress=bar)
     except NoPathError as exc:               # exit status 1, with the reason and what to try
         from gapath.cli import no_path_error
 
         why = no_path_error(ws, monotone=args.mode == "monotone",
                             free_hint="try --mode free (the exact front of all 8-connected paths)")
         raise (why or exc) from None
+    except KeyboardInterrupt:
+        import sys
+
+        from gapath.errors import EXIT_INTERRUPTED
+
+        print(f"\ngapath: interrupted after {time.perf_counter() - t0:.1f} s: no front written "
+              f"(a partial exact search is not a Pareto front)", file=sys.stderr)
+        return EXIT_INTERRUPTED
+    finally:
+        if bar is not None:
+            bar.close()
+    front = _path_front(ws, ef)
     seconds = time.perf_counter() - t0
     summary = {
         "settings": dict(map=ws.name, shape=list(ws.shape), start=list(ws.start), goal=list(ws.goal),
                          cell_size=ws.cell_size, corner_cutting=ws.corner_cutting,
-                         objectives=list(front.objectives), mode=args.mode, algorithm="exact"),
+                         objectives=list(front.objectives), mode=args.mode, algorithm="exact",
+                         max_labels=args.max_labels),
         "versions": versions(),
         "wall_time_s": round(seconds, 4),
         "front_size": len(front),
+        "search": {k: (round(v, 4) if isinstance(v, float) else v) for k, v in ef.stats.items()},
     }
     summary["settings"].update(choice.settings())
     shortest = (float(front.F[:, front.objectives.index("length")].min())

@@ -1,0 +1,1156 @@
+"""Numba kernels of :mod:`gapath.planners.exact` (private).
+
+The monotone DP (:func:`_monotone_columns`) and the free label-setting search
+(:func:`_free_run`) are resumable: their whole state lives in arrays owned by
+the caller, and each call returns after a bounded amount of work (a number of
+columns, a number of expansions) or when the label budget is exceeded, so
+that Python can report progress, honour Ctrl-C and stop at a budget between
+calls. Label tables grow by doubling.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from gapath.objectives import SQRT2, _turn
+from gapath.planners._grid import DC, DR
+
+#: Relative tolerance of SPEC "Duplicates and ties".
+TOL = 1e-9
+
+#: Status codes of the resumable kernels (NEED_ROOM: internal to _free_run).
+DONE, PAUSED, OVER_BUDGET, NEED_ROOM = range(4)
+
+# ---------------------------------------------------------------------------
+# monotone DP
+# ---------------------------------------------------------------------------
+# A label is a partial path ending at some exit row of the current column.
+# Labels live in two tables that grow by doubling: an int table with the
+# columns below and a float table with the length and the vulnerability.
+
+ROW, PARENT, HEAD, N_STRAIGHT, N_DIAG, EIGHTHS = range(6)
+LENGTH, VUL = range(2)
+
+# Headings, coded as in gapath.objectives (eighths counter-clockwise from east;
+# "up" is towards row 0). Monotone paths only use these five.
+NO_HEADING, EAST, NORTH_EAST, NORTH, SOUTH, SOUTH_EAST = -1, 0, 1, 2, 6, 7
+
+
+@numba.njit(cache=True)
+def _grow(table, size):
+    """``table`` with at least ``size`` rows (capacity doubled)."""
+    if size <= table.shape[0]:
+        return table
+    out = np.empty((max(size, 2 * table.shape[0]), table.shape[1]), table.dtype)
+    out[: table.shape[0]] = table
+    return out
+
+
+@numba.njit(cache=True, inline="always")
+def _eq(a, b):
+    return abs(a - b) <= TOL * max(1.0, abs(a), abs(b))
+
+
+@numba.njit(cache=True, inline="always")
+def _le(a, b):
+    return a <= b or _eq(a, b)
+
+
+@numba.njit(cache=True, inline="always")
+def _heading_gap(ha, hb):
+    """Largest amount (eighths) by which the next turn after heading ``ha``
+    can exceed the next turn after heading ``hb``."""
+    if ha == NO_HEADING:
+        return 0
+    if hb == NO_HEADING:
+        return 4
+    return _turn(ha, hb)
+
+
+@numba.njit(cache=True)
+def _covers(ai, af, a, bi, bf, b, use_len, use_vul, use_smooth, at_goal):
+    """True if label ``a`` makes label ``b`` (same row, same column) useless:
+    every completion of ``b`` is dominated by, or tolerance-equal and not
+    smoother than, the same completion of ``a``.
+
+    The next turn depends on the heading, so ``a``'s turn count is charged
+    with the worst difference its heading can make (nothing at the goal)."""
+    strictly_better = False
+    if use_len:
+        if not _le(af[a, LENGTH], bf[b, LENGTH]):
+            return False
+        strictly_better = strictly_better or not _eq(af[a, LENGTH], bf[b, LENGTH])
+    if use_vul:
+        if not _le(af[a, VUL], bf[b, VUL]):
+            return False
+        strictly_better = strictly_better or not _eq(af[a, VUL], bf[b, VUL])
+    gap = 0 if at_goal else _heading_gap(ai[a, HEAD], bi[b, HEAD])
+    smoother = ai[a, EIGHTHS] + gap <= bi[b, EIGHTHS]
+    if use_smooth:
+        return smoother
+    # smoothness only breaks ties between tolerance-equal vectors
+    return strictly_better or smoother
+
+
+@numba.njit(cache=True)
+def _reach(occ, p, c, corner_cutting):
+    """Rows of column ``c`` reachable from row ``p`` of column ``c - 1``.
+
+    Returns ``(top, bottom, flat)``: a diagonal step up followed by vertical
+    steps up reaches rows ``top .. p - 1`` (none when ``top == p``), likewise
+    ``p + 1 .. bottom`` downwards, and ``flat`` says whether the horizontal
+    step to row ``p`` is possible."""
+    h = occ.shape[0]
+    flat = not occ[p, c]
+    top = p
+    if p > 0 and not occ[p - 1, c] and (corner_cutting or (not occ[p, c] and not occ[p - 1, c - 1])):
+        top = p - 1
+        while top > 0 and not occ[top - 1, c]:
+            top -= 1
+    bottom = p
+    if p < h - 1 and not occ[p + 1, c] and (corner_cutting or (not occ[p, c] and not occ[p + 1, c - 1])):
+        bottom = p + 1
+        while bottom < h - 1 and not occ[bottom + 1, c]:
+            bottom += 1
+    return top, bottom, flat
+
+
+@numba.njit(cache=True)
+def _extend(li, lf, a, t, vul, ci, cf, j, cell_size):
+    """Write into candidate slot ``j`` the label ``a`` (exit row ``p``)
+    extended to exit row ``t`` of the next column, ``vul`` being the
+    vulnerability already summed along the new cells in path order."""
+    p = li[a, ROW]
+    n_straight = li[a, N_STRAIGHT]
+    n_diag = li[a, N_DIAG]
+    if t == p:
+        step = EAST
+        n_straight += 1
+    else:
+        step = NORTH_EAST if t < p else SOUTH_EAST
+        n_diag += 1
+    eighths = li[a, EIGHTHS]
+    if li[a, HEAD] != NO_HEADING:
+        eighths += _turn(li[a, HEAD], step)
+    head = step
+    if abs(t - p) >= 2:  # vertical run after the diagonal: one eighth turn
+        n_straight += abs(t - p) - 1
+        eighths += 1
+        head = NORTH if t < p else SOUTH
+    ci[j, ROW] = t
+    ci[j, PARENT] = a
+    ci[j, HEAD] = head
+    ci[j, N_STRAIGHT] = n_straight
+    ci[j, N_DIAG] = n_diag
+    ci[j, EIGHTHS] = eighths
+    cf[j, LENGTH] = (n_straight + SQRT2 * n_diag) * cell_size
+    cf[j, VUL] = vul
+
+
+@numba.njit(cache=True, inline="always")
+def _key(ti, tf, i, primary):
+    """Value of the primary (first) objective of label ``i``."""
+    return np.float64(ti[i, EIGHTHS]) if primary == 2 else tf[i, primary]
+
+
+@numba.njit(cache=True)
+def _filter_row(li, lf, n, ci, cf, lo, hi, use_len, use_vul, use_smooth, primary, at_goal):
+    """Append to the label tables (which hold ``n`` labels) the labels of one
+    state: the candidates ``lo .. hi - 1`` that no other candidate covers.
+
+    Candidates are visited in increasing order of the primary objective, so
+    a new label can only cover an earlier one when their primary values tie;
+    the running minima of the kept labels let most candidates be accepted or
+    rejected without scanning the kept ones. Returns the new label count."""
+    first = n
+    key = np.empty(hi - lo)
+    for j in range(lo, hi):
+        key[j - lo] = _key(ci, cf, j, primary)
+    big = np.inf
+    min_len, min_vul, min_eighths = big, big, big
+    for j in np.argsort(key, kind="mergesort") + lo:
+        # a kept label can cover j only if it is not worse in every objective
+        maybe_covered = n > first
+        if use_len and not _le(min_len, cf[j, LENGTH]):
+            maybe_covered = False
+        if use_vul and not _le(min_vul, cf[j, VUL]):
+            maybe_covered = False
+        if use_smooth and min_eighths > ci[j, EIGHTHS]:
+            maybe_covered = False
+        if maybe_covered:
+            covered = False
+            for i in range(n - 1, first - 1, -1):
+                if _covers(li, lf, i, ci, cf, j, use_len, use_vul, use_smooth, at_goal):
+                    covered = True
+                    break
+            if covered:
+                continue
+        # j can cover a kept label only if their primary values tie
+        if n > first and _le(_key(ci, cf, j, primary), _key(li, lf, n - 1, primary)):
+            kept = first
+            for i in range(first, n):
+                if not _covers(ci, cf, j, li, lf, i, use_len, use_vul, use_smooth, at_goal):
+                    li[kept] = li[i]
+                    lf[kept] = lf[i]
+                    kept += 1
+            if kept < n:
+                n = kept
+                min_len, min_vul, min_eighths = big, big, big
+                for i in range(first, n):
+                    min_len = min(min_len, lf[i, LENGTH])
+                    min_vul = min(min_vul, lf[i, VUL])
+                    min_eighths = min(min_eighths, np.float64(li[i, EIGHTHS]))
+        li[n] = ci[j]
+        lf[n] = cf[j]
+        min_len = min(min_len, cf[j, LENGTH])
+        min_vul = min(min_vul, cf[j, VUL])
+        min_eighths = min(min_eighths, np.float64(ci[j, EIGHTHS]))
+        n += 1
+    return n
+
+
+@numba.njit(cache=True)
+def _monotone_start(occ, pot, start_row, col0, cell_size):
+    """Label tables of the start column of the frame: one label per exit row
+    reachable by a single vertical run from the start.
+
+    Returns ``(li, lf, off, n)``; ``off[r] .. off[r + 1]`` are the labels of
+    exit row ``r`` of the current column, ``n`` the number of labels."""
+    h = occ.shape[0]
+    li = np.empty((max(256, h), 6), np.int32)
+    lf = np.empty((max(256, h), 2))
+    n = 0
+    off = np.zeros(h + 1, np.int64)
+    vul_to = np.full(h, np.nan)
+    vul_to[start_row] = pot[start_row, col0]
+    for s in (-1, 1):
+        r, v = start_row, pot[start_row, col0]
+        while 0 <= r + s < h and not occ[r + s, col0]:
+            r += s
+            v += pot[r, col0]
+            vul_to[r] = v
+    for r in range(h):
+        off[r] = n
+        if np.isnan(vul_to[r]):
+            continue
+        d = abs(r - start_row)
+        li[n, ROW] = r
+        li[n, PARENT] = -1
+        li[n, HEAD] = NO_HEADING if d == 0 else (NORTH if r < start_row else SOUTH)
+        li[n, N_STRAIGHT] = d
+        li[n, N_DIAG] = 0
+        li[n, EIGHTHS] = 0
+        lf[n, LENGTH] = d * cell_size
+        lf[n, VUL] = vul_to[r]
+        n += 1
+    off[h] = n
+    return li, lf, off, n
+
+
+@numba.njit(cache=True)
+def _monotone_columns(occ, pot, goal_row, col0, n_cols, cell_size, corner_cutting,
+                      use_len, use_vul, use_smooth, primary, li, lf, off, st, n_steps,
+                      max_labels):
+    """Advance the multi-objective DP over the columns of the frame by at
+    most ``n_steps`` columns.
+
+    ``st`` holds ``[n, k]`` (labels stored, next column of the frame) and is
+    updated in place. Stops before a column whose candidates would take the
+    labels held at once beyond ``max_labels``. Returns ``(li, lf, off,
+    status, max_candidates)`` (status DONE after the goal column, PAUSED, or
+    OVER_BUDGET; the most candidates one column held); the goal's labels are then ``off[goal_row] ..
+    off[goal_row + 1]``."""
+    h = occ.shape[0]
+    n = st[0]
+    counts = np.zeros(h + 1, np.int64)
+    steps = 0
+    max_cand = 0
+    while st[1] < n_cols:
+        if steps == n_steps:
+            st[0] = n
+            return li, lf, off, PAUSED, max_cand
+        k = st[1]
+        c = col0 + k
+        at_goal = k == n_cols - 1  # the goal column: exit row = goal row
+
+        # 2. count the candidate labels of each exit row of column c
+        counts[:] = 0
+        for p in range(h):
+            n_labels = off[p + 1] - off[p]
+            if n_labels == 0:
+                continue
+            top, bottom, flat = _reach(occ, p, c, corner_cutting)
+            for t in range(top, bottom + 1):
+                if (t != p or flat) and (not at_goal or t == goal_row):
+                    counts[t + 1] += n_labels
+        cand_off = np.cumsum(counts)  # candidates of row t: cand_off[t] .. cand_off[t + 1]
+        max_cand = max(max_cand, cand_off[h])
+        if n + cand_off[h] > max_labels:
+            st[0] = n
+            return li, lf, off, OVER_BUDGET, max_cand
+        ci = np.empty((cand_off[h], 6), np.int32)
+        cf = np.empty((cand_off[h], 2))
+        fill = cand_off[:h].copy()
+
+        # 3. extend every label of column c - 1 to every reachable exit row,
+        #    summing the potential of the new cells in path order
+        for p in range(h):
+            if off[p + 1] == off[p]:
+                continue
+            top, bottom, flat = _reach(occ, p, c, corner_cutting)
+            for a in range(off[p], off[p + 1]):
+                if flat and (not at_goal or p == goal_row):
+                    _extend(li, lf, a, p, lf[a, VUL] + pot[p, c], ci, cf, fill[p], cell_size)
+                    fill[p] += 1
+                for s, last in ((-1, top), (1, bottom)):
+                    v = lf[a, VUL]
+                    t = p
+                    while t != last:
+                        t += s
+                        v += pot[t, c]
+                        if not at_goal or t == goal_row:
+                            _extend(li, lf, a, t, v, ci, cf, fill[t], cell_size)
+                            fill[t] += 1
+
+        # 4. keep the non-dominated candidates of each exit row
+        li = _grow(li, n + cand_off[h])
+        lf = _grow(lf, n + cand_off[h])
+        new_off = np.empty(h + 1, np.int64)
+        for t in range(h):
+            new_off[t] = n
+            if cand_off[t + 1] > cand_off[t]:
+                n = _filter_row(li, lf, n, ci, cf, cand_off[t], cand_off[t + 1],
+                                use_len, use_vul, use_smooth, primary, at_goal)
+        new_off[h] = n
+        off = new_off
+        st[1] = k + 1
+        steps += 1
+    st[0] = n
+    return li, lf, off, DONE, max_cand
+
+
+# ---------------------------------------------------------------------------
+# free search
+# ---------------------------------------------------------------------------
+# The search follows BOA* (Hernandez et al. 2020, 2023) for two objectives and
+# NAMOA*-dr / EMOA* (Pulido et al. 2015; Ren et al. 2022) for three:
+#
+#   1. heuristics: one backward single-objective Dijkstra per objective, from
+#      the goal (_free_heuristics);
+#   2. an open list of labels ordered lexicographically by their f-vectors
+#      (_heap_push / _heap_pop);
+#   3. a label is dropped, when generated and again when popped, if a label
+#      already expanded at its state covers it (_state_covered) or if a
+#      solution already found covers its f-vector (_goal_covered); because
+#      labels leave the open list in lexicographic order, these checks only
+#      look at the objectives after the first one (dimensionality reduction);
+#   4. otherwise a label at the goal is a solution; any other label joins its
+#      state's set (g2_min / staircase) and is expanded along the 8 moves;
+#   5. the solutions are traced back to paths (_trace) and filtered once more
+#      with the tolerance (_tolerant_front).
+#
+# Labels live in two growable tables, like the monotone DP's:
+
+CELL, F_HEAD, F_PARENT, NS, ND, TURNS, NEXT = range(7)   # int table
+F_VUL, RUNMIN = range(2)                                 # float table
+# CELL: row * W + col; F_HEAD: heading of the last step (-1 at the start);
+# NS/ND: straight/diagonal step counts; TURNS: total turn in eighths; NEXT:
+# link to the next label of the same state's list; RUNMIN: the state's
+# smallest second objective once this label was accepted.
+
+OBJ_LEN, OBJ_VUL, OBJ_SMOOTH = range(3)
+#: Search modes: BOA* on (length, vulnerability) with cells as states and
+#: smoothness as tie-break; BOA* on (x, smoothness) with (cell, heading)
+#: states; NAMOA*-dr on (length, vulnerability, smoothness).
+MODE_CELL, MODE_HEADING, MODE_THREE = range(3)
+N_SLOTS = 9          # per cell: the 8 headings and "no heading" (slot 8)
+_BIG_TURNS = 1 << 40
+
+
+@numba.njit(cache=True)
+def _grow1(arr, size):
+    """1-D ``arr`` with at least ``size`` entries (capacity doubled)."""
+    if size <= arr.shape[0]:
+        return arr
+    out = np.empty(max(size, 2 * arr.shape[0]), arr.dtype)
+    out[: arr.shape[0]] = arr
+    return out
+
+
+@numba.njit(cache=True, inline="always")
+def _slot(head):
+    """State slot of a heading (``-1``, no heading, is slot 8)."""
+    return head if head >= 0 else 8
+
+
+# -- open list: binary heap on (k1, k2, k3, label) ---------------------------
+
+@numba.njit(cache=True, inline="always")
+def _key_less(a1, a2, a3, an, b1, b2, b3, bn):
+    if a1 != b1:
+        return a1 < b1
+    if a2 != b2:
+        return a2 < b2
+    if a3 != b3:
+        return a3 < b3
+    return an < bn
+
+
+@numba.njit(cache=True, inline="always")
+def _heap_push(hk, hid, size, k1, k2, k3, node):
+    """Insert ``node`` with key ``(k1, k2, k3)`` into a heap of ``size``
+    entries; the caller makes room first (:func:`_free_run`)."""
+    i = size
+    while i > 0:
+        p = (i - 1) >> 1
+        if not _key_less(k1, k2, k3, node, hk[p, 0], hk[p, 1], hk[p, 2], hid[p]):
+            break
+        hk[i, 0] = hk[p, 0]
+        hk[i, 1] = hk[p, 1]
+        hk[i, 2] = hk[p, 2]
+        hid[i] = hid[p]
+        i = p
+    hk[i, 0] = k1
+    hk[i, 1] = k2
+    hk[i, 2] = k3
+    hid[i] = node
+
+
+@numba.njit(cache=True, inline="always")
+def _heap_pop(hk, hid, size):
+    """Remove the smallest entry of a heap of ``size`` entries; returns
+    ``(node, size - 1)``."""
+    top = hid[0]
+    size -= 1
+    if size > 0:
+        k1, k2, k3, node = hk[size, 0], hk[size, 1], hk[size, 2], hid[size]
+        i = 0
+        while True:
+            ch = 2 * i + 1
+            if ch >= size:
+                break
+            if ch + 1 < size and _key_less(hk[ch + 1, 0], hk[ch + 1, 1], hk[ch + 1, 2], hid[ch + 1],
+                                           hk[ch, 0], hk[ch, 1], hk[ch, 2], hid[ch]):
+                ch += 1
+            if not _key_less(hk[ch, 0], hk[ch, 1], hk[ch, 2], hid[ch], k1, k2, k3, node):
+                break
+            hk[i, 0] = hk[ch, 0]
+            hk[i, 1] = hk[ch, 1]
+            hk[i, 2] = hk[ch, 2]
+            hid[i] = hid[ch]
+            i = ch
+        hk[i, 0] = k1
+        hk[i, 1] = k2
+        hk[i, 2] = k3
+        hid[i] = node
+    return top, size
+
+
+# -- 1. heuristics ----------------------------------------------------------
+
+@numba.njit(cache=True)
+def _idecrease(keys, ids, pos, size, key, node):
+    """Insert ``node`` with ``key``, or lower its key if it is on the heap
+    (an indexed binary heap ordered by key, then node: ``pos[node]`` is its
+    index, -1 if absent; the arrays hold every node, so there is no growth
+    and no stale entry). Returns the new size.
+
+    Plain njit functions, not ``inline="always"``: numba's IR inlining copies
+    array arguments, and reference-counting the copies took most of the
+    time of the Dijkstra passes (perf: NRT_incref/NRT_decref)."""
+    i = pos[node]
+    if i < 0:
+        i = size
+        size += 1
+        ids[i] = node
+        pos[node] = i
+    keys[i] = key
+    while i > 0:
+        p = (i - 1) >> 1
+        if not (keys[i] < keys[p] or (keys[i] == keys[p] and ids[i] < ids[p])):
+            break
+        keys[i], keys[p] = keys[p], keys[i]
+        ids[i], ids[p] = ids[p], ids[i]
+        pos[ids[i]] = i
+        pos[ids[p]] = p
+        i = p
+    return size
+
+
+@numba.njit(cache=True)
+def _ipop(keys, ids, pos, size):
+    """Remove the smallest entry; returns ``(node, size - 1)``."""
+    top = ids[0]
+    pos[top] = -1
+    size -= 1
+    if size > 0:
+        keys[0] = keys[size]
+        ids[0] = ids[size]
+        pos[ids[0]] = 0
+        i = 0
+        while True:
+            ch = 2 * i + 1
+            if ch >= size:
+                break
+            if ch + 1 < size and (keys[ch + 1] < keys[ch] or
+                                  (keys[ch + 1] == keys[ch] and ids[ch + 1] < ids[ch])):
+                ch += 1
+            if not (keys[ch] < keys[i] or (keys[ch] == keys[i] and ids[ch] < ids[i])):
+                break
+            keys[i], keys[ch] = keys[ch], keys[i]
+            ids[i], ids[ch] = ids[ch], ids[i]
+            pos[ids[i]] = i
+            pos[ids[ch]] = ch
+            i = ch
+    return top, size
+
+
+@numba.njit(cache=True)
+def _move_masks(occ, corner_cutting):
+    """(H*W,) uint8: bit ``d`` set if move ``d`` from the cell is allowed
+    (:func:`gapath.planners._grid.can_step`; 0 for obstacle cells). Computed
+    once per search, so that the hot loops test a bit instead of calling
+    a function on ``occ``."""
+    h, w = occ.shape
+    m = np.zeros(h * w, np.uint8)
+    for r in range(h):
+        for c in range(w):
+            if occ[r, c]:
+                continue
+            b = 0
+            for d in range(8):
+                r2 = r + DR[d]
+                c2 = c + DC[d]
+                if r2 < 0 or r2 >= h or c2 < 0 or c2 >= w or occ[r2, c2]:
+                    continue
+                if d % 2 == 1 and not corner_cutting and (occ[r2, c] or occ[r, c2]):
+                    continue
+                b |= 1 << d
+            m[r * w + c] = b
+    return m
+
+
+@numba.njit(cache=True)
+def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns, mask):
+    """Exact single-objective costs-to-go, by backward Dijkstra from the goal.
+
+    Returns
+    -------
+    hs, hd : (H*W,) int arrays
+        Straight and diagonal step counts of a shortest path from each cell
+        to the goal (``-1`` if the goal cannot be reached); the length
+        heuristic is ``(ns + hs + sqrt(2) * (nd + hd)) * cell_size``, computed
+        from integer totals so that equal f-values are bit-identical.
+    hv : (H*W,) float array
+        Smallest potential sum over the cells AFTER the cell up to the goal,
+        goal included (``inf`` if unreachable, 0 at the goal). A label's
+        vulnerability already counts its own cell, so ``g + hv`` is an
+        admissible and consistent bound of the path's vulnerability.
+    ht : (H*W*9,) int array
+        Smallest total turn (eighths) from a cell, arrived with heading slot
+        ``k`` (8 = none), to the goal, obstacles and corner rule included;
+        without ``with_turns`` a 1-entry placeholder (see :func:`_ht`).
+
+    ``mask`` is :func:`_move_masks` of ``occ`` and ``corner_cutting``.
+    """
+    h, w = occ.shape
+    n = h * w
+    goal = gr * w + gc
+    hk = np.empty(n)
+    hid = np.empty(n, np.int32)
+    pos = np.full(n, -1, np.int32)
+
+    # length, as step counts
+    hs = np.full(n, -1, np.int64)
+    hd = np.full(n, -1, np.int64)
+    dist = np.full(n, np.inf)
+    dist[goal] = 0.0
+    hs[goal] = 0
+    hd[goal] = 0
+    size = _idecrease(hk, hid, pos, 0, 0.0, goal)
+    while size > 0:
+        u, size = _ipop(hk, hid, pos, size)
+        mk = mask[u]
+        for d in range(8):
+            if not (mk >> d) & 1:
+                continue
+            v = u + DR[d] * w + DC[d]
+            ns = hs[u] + (1 - d % 2)
+            nd = hd[u] + d % 2
+            val = ns + SQRT2 * nd
+            if val < dist[v]:
+                dist[v] = val
+                hs[v] = ns
+                hd[v] = nd
+                size = _idecrease(hk, hid, pos, size, val, v)
+
+    # vulnerability: D(u) = P(u) + min_v D(v), D(goal) = P(goal); hv(u) = min_v D(v)
+    D = np.full(n, np.inf)
+    hv = np.full(n, np.inf)
+    D[goal] = pot[gr, gc]
+    hv[goal] = 0.0
+    size = _idecrease(hk, hid, pos, 0, D[goal], goal)
+    while size > 0:
+        u, size = _ipop(hk, hid, pos, size)
+        mk = mask[u]
+        for d in range(8):
+            if not (mk >> d) & 1:
+                continue
+            vr, vc = u // w + DR[d], u % w + DC[d]
+            v = vr * w + vc
+            if v == goal:
+                continue
+            val = pot[vr, vc] + D[u]
+            if val < D[v]:
+                D[v] = val
+                hv[v] = D[u]
+                size = _idecrease(hk, hid, pos, size, val, v)
+
+    if not with_turns:
+        return hs, hd, hv, np.zeros(1, np.int64)
+
+    # turns over (cell, heading) states: T(u, k) = min_d turn(k, d) + T(u + d, d)
+    ht = np.full(n * N_SLOTS, _BIG_TURNS, np.int64)
+    for k in range(N_SLOTS):
+        ht[goal * N_SLOTS + k] = 0
+    hk = np.empty(n * N_SLOTS)
+    hid = np.empty(n * N_SLOTS, np.int32)
+    pos = np.full(n * N_SLOTS, -1, np.int32)
+    size = 0
+    for d in range(8):
+        size = _idecrease(hk, hid, pos, size, 0.0, goal * N_SLOTS + d)
+    while size > 0:
+        s, size = _ipop(hk, hid, pos, size)
+        v, d = s // N_SLOTS, s % N_SLOTS
+        ur, uc = v // w - DR[d], v % w - DC[d]
+        if ur < 0 or ur >= h or uc < 0 or uc >= w:
+            continue
+        u = ur * w + uc
+        if not (mask[u] >> d) & 1:
+            continue
+        for k in range(N_SLOTS):
+            val = ht[s] + (_turn(k, d) if k < 8 else 0)
+            if val < ht[u * N_SLOTS + k]:
+                ht[u * N_SLOTS + k] = val
+                if k < 8:
+                    size = _idecrease(hk, hid, pos, size, np.float64(val), u * N_SLOTS + k)
+    return hs, hd, hv, ht
+
+
+# -- label values -------------------------------------------------------------
+
+@numba.njit(cache=True, inline="always")
+def _ht(ht, c, head):
+    """Turn heuristic of cell ``c`` arrived with heading ``head``; 0 (a valid
+    lower bound) when ``ht`` is the 1-entry placeholder of a search that does
+    not need it (two objectives without smoothness: turns only break ties)."""
+    if ht.shape[0] == 1:
+        return 0
+    return ht[c * N_SLOTS + _slot(head)]
+
+
+@numba.njit(cache=True, inline="always")
+def _g(li, lf, i, o, cell_size):
+    """Objective ``o`` of label ``i`` (smoothness in eighths)."""
+    if o == OBJ_LEN:
+        return (li[i, NS] + SQRT2 * li[i, ND]) * cell_size
+    if o == OBJ_VUL:
+        return lf[i, F_VUL]
+    return np.float64(li[i, TURNS])
+
+
+@numba.njit(cache=True, inline="always")
+def _f(li, lf, i, o, cell_size, hs, hd, hv, ht):
+    """Lower bound ``g + h`` of objective ``o`` over the completions of label ``i``."""
+    c = li[i, CELL]
+    if o == OBJ_LEN:
+        return ((li[i, NS] + hs[c]) + SQRT2 * (li[i, ND] + hd[c])) * cell_size
+    if o == OBJ_VUL:
+        return lf[i, F_VUL] + hv[c]
+    return np.float64(li[i, TURNS] + _ht(ht, c, li[i, F_HEAD]))
+
+
+# -- 3. dominance checks --------------------------------------------------------
+
+@numba.njit(cache=True, inline="always")
+def _stair_min(li, lf, first, s, bound):
+    """Smallest vulnerability among the labels of staircase ``s`` whose turn
+    count is at most ``bound`` (``inf`` if none).
+
+    A staircase is a linked list of labels sorted by turns, decreasing, with
+    vulnerability strictly increasing: the first entry within the bound is
+    the least vulnerable one (EMOA* keeps the same 2-D front in a balanced
+    tree; the lists here are short)."""
+    a = first[s]
+    while a >= 0 and li[a, TURNS] > bound:
+        a = li[a, NEXT]
+    return lf[a, F_VUL] if a >= 0 else np.inf
+
+
+@numba.njit(cache=True, inline="always")
+def _stair_insert(li, lf, first, s, x):
+    """Insert label ``x`` (not covered by staircase ``s``) into it, dropping
+    the entries it makes redundant: as many turns or more and as vulnerable
+    or more."""
+    t = li[x, TURNS]
+    v = lf[x, F_VUL]
+    keep = -1                       # the last entry before x that stays
+    a = first[s]
+    while a >= 0 and li[a, TURNS] > t:
+        if lf[a, F_VUL] < v:
+            keep = a
+        a = li[a, NEXT]
+    if a >= 0 and li[a, TURNS] == t:  # x is less vulnerable, or it were covered
+        a = li[a, NEXT]
+    li[x, NEXT] = a
+    if keep < 0:
+        first[s] = x
+    else:
+        li[keep, NEXT] = x
+
+
+@numba.njit(cache=True, inline="always")
+def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties):
+    """True if a label already expanded at the state of ``x`` covers ``x``.
+
+    Without ``ties`` (MODE_CELL only) it is BOA* as published: a label that
+    ties ``g2_min`` within the tolerance is covered whatever its turns.
+
+    Every expanded label ``a`` at the same cell left the open list before
+    ``x`` (or before ``x``'s parent), so ``P(a) <= P(x)``; only the other
+    objectives are compared. ``a`` covers ``x`` when each completion of ``x``
+    is dominated by, or tolerance-equal to and not smoother than, the same
+    completion of ``a``: the next turn after ``a``'s heading may exceed the
+    one after ``x``'s by ``_heading_gap``, so ``a``'s turns are charged with it.
+    """
+    c = li[x, CELL]
+    hx = li[x, F_HEAD]
+    if mode == MODE_CELL:
+        # BOA*: g2_min(cell) decides unless x ties it within the tolerance
+        q = _g(li, lf, x, Q, cell_size)
+        m = gmin[c]
+        if m == np.inf or (q < m and not _eq(q, m)):
+            return False
+        if not ties or (m < q and not _eq(m, q)):
+            return True
+        p = _g(li, lf, x, P, cell_size)
+        a = first[c]
+        while a >= 0 and _le(lf[a, RUNMIN], q):
+            ap = _g(li, lf, a, P, cell_size)
+            aq = _g(li, lf, a, Q, cell_size)
+            if _le(ap, p) and _le(aq, q):
+                if not _eq(ap, p) or not _eq(aq, q):
+                    return True
+                if li[a, TURNS] + _heading_gap(li[a, F_HEAD], hx) <= li[x, TURNS]:
+                    return True
+            a = li[a, NEXT]
+        return False
+    if mode == MODE_HEADING:
+        # BOA* with Q = turns: g2_min of each heading of the cell, charged
+        # with the heading gap (0 for x's own state)
+        t = li[x, TURNS]
+        for k in range(N_SLOTS):
+            m = gmin[c * N_SLOTS + k]
+            if m < np.inf and m + _heading_gap(k if k < 8 else -1, hx) <= t:
+                return True
+        return False
+    # three objectives: a 2-D (turns, vulnerability) staircase per state
+    t = li[x, TURNS]
+    v = lf[x, F_VUL]
+    for k in range(N_SLOTS):
+        s = c * N_SLOTS + k
+        if first[s] < 0:
+            continue
+        bound = t - _heading_gap(k if k < 8 else -1, hx)
+        if bound < 0:
+            continue
+        m = _stair_min(li, lf, first, s, bound)
+        if m < np.inf and _le(m, v):
+            return True
+    return False
+
+
+@numba.njit(cache=True, inline="always")
+def _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state,
+                  cell_size, hs, hd, hv, ht, ties):
+    """True if a solution already found covers the f-vector of ``x`` (its
+    lower bound at the goal), i.e. every completion of ``x`` is dominated by
+    a solution or tolerance-equal to one and not smoother."""
+    if mode == MODE_THREE:
+        fv = _f(li, lf, x, OBJ_VUL, cell_size, hs, hd, hv, ht)
+        ft = li[x, TURNS] + _ht(ht, li[x, CELL], li[x, F_HEAD])
+        m = _stair_min(li, lf, first, goal_state, ft)
+        return m < np.inf and _le(m, fv)
+    if goal_min == np.inf:
+        return False
+    fq = _f(li, lf, x, Q, cell_size, hs, hd, hv, ht)
+    if fq < goal_min and not _eq(fq, goal_min):
+        return False
+    if goal_min < fq and not _eq(goal_min, fq):
+        return True
+    if mode == MODE_HEADING or not ties:   # MODE_HEADING: Q is integer, goal_min == fq
+        return True
+    fp = _f(li, lf, x, P, cell_size, hs, hd, hv, ht)
+    to_go = _ht(ht, li[x, CELL], li[x, F_HEAD])
+    a = goal_first
+    while a >= 0 and _le(lf[a, RUNMIN], fq):
+        ap = _g(li, lf, a, P, cell_size)
+        aq = _g(li, lf, a, Q, cell_size)
+        if _le(ap, fp) and _le(aq, fq):
+            if not _eq(ap, fp) or not _eq(aq, fq):
+                return True
+            if li[a, TURNS] <= li[x, TURNS] + to_go:
+                return True
+        a = li[a, NEXT]
+    return False
+
+
+# -- the search -------------------------------------------------------------------
+
+# scalars of the search state (int array ``st`` and float array ``stf``)
+S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_FREE, S_N_FREE, S_POPS = range(9)
+N_ST = 9
+SF_GOAL_MIN = 0
+
+
+@numba.njit(cache=True)
+def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
+    """State of a new free search over ``n_states`` states: the start label
+    alone on the open list.
+
+    Returns ``(gmin, first, li, lf, sols, hk, hid, st, stf)``, the arrays
+    :func:`_free_run` resumes from."""
+    gmin = np.full(n_states, np.inf)             # BOA*: g2_min of each state
+    first = np.full(n_states + 1, -1, np.int32)  # newest label / staircase head
+    li = np.empty((1024, 7), np.int32)
+    lf = np.empty((1024, 2))
+    sols = np.empty(64, np.int32)
+    hk = np.empty((1024, 3))
+    hid = np.empty(1024, np.int32)
+    # the start label: no step, no heading; the start cell counts for vulnerability
+    li[0, CELL] = sr * w + sc
+    li[0, F_HEAD] = -1
+    li[0, F_PARENT] = -1
+    li[0, NS] = 0
+    li[0, ND] = 0
+    li[0, TURNS] = 0
+    li[0, NEXT] = -1
+    lf[0, F_VUL] = pot[sr, sc]
+    lf[0, RUNMIN] = np.inf
+    st = np.zeros(N_ST, np.int64)
+    st[S_N] = 1
+    st[S_SIZE] = 1
+    st[S_GENERATED] = 1
+    st[S_GOAL_FIRST] = -1
+    st[S_FREE] = -1
+    stf = np.full(1, np.inf)
+    second = OBJ_VUL if mode == MODE_THREE else Q
+    _heap_push(hk, hid, 0, _f(li, lf, 0, P, cell_size, hs, hd, hv, ht),
+               _f(li, lf, 0, second, cell_size, hs, hd, hv, ht),
+               _f(li, lf, 0, OBJ_SMOOTH, cell_size, hs, hd, hv, ht), 0)
+    return gmin, first, li, lf, sols, hk, hid, st, stf
+
+
+@numba.njit(cache=True)
+def _free_run(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
+              gmin, first, li, lf, sols, hk, hid, st, stf, n_steps, max_labels, ties):
+    """Advance the multi-objective label-setting search from start to goal
+    by at most ``n_steps`` pops of the open list.
+
+    ``mode`` is ``MODE_CELL`` (objectives ``P = length``, ``Q =
+    vulnerability``, turns as tie-break, states = cells), ``MODE_HEADING``
+    (``P`` = length or vulnerability, ``Q`` = smoothness, states = (cell,
+    heading)) or ``MODE_THREE`` (length, vulnerability, smoothness, states =
+    (cell, heading)). ``ties=False`` (MODE_CELL): BOA* as published, ties
+    within the tolerance are dropped whatever their turns. ``mask``: the
+    allowed moves of each cell (:func:`_move_masks`).
+
+    The state is the arrays made by :func:`_free_init` and the scalars in
+    ``st``/``stf`` (updated in place). A label dropped when it leaves the
+    open list is referenced by nothing (it has no children and belongs to
+    no state's set): its row is recycled through a free list linked by
+    ``NEXT``. Stops before a pop that could take the label rows in use
+    beyond ``max_labels``. Returns ``(li, lf, sols, hk, hid, status)``,
+    status DONE (open list empty), PAUSED or OVER_BUDGET.
+
+    The search itself is :func:`_free_steps`, which never reallocates (an
+    array reassigned inside a numba loop is reference-counted at every
+    branch, which cost most of the time): it returns when an array is full,
+    and this loop doubles it.
+    """
+    pops0 = st[S_POPS]
+    while True:
+        status = _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q,
+                             hs, hd, hv, ht, gmin, first, li, lf, sols, hk, hid, st, stf,
+                             n_steps - (st[S_POPS] - pops0), max_labels, ties)
+        if status != NEED_ROOM:
+            return li, lf, sols, hk, hid, status
+        if st[S_N] + 8 > li.shape[0]:
+            li = _grow(li, st[S_N] + 8)
+            lf = _grow(lf, st[S_N] + 8)
+        if st[S_SIZE] + 8 > hid.shape[0]:
+            hk = _grow(hk, st[S_SIZE] + 8)
+            hid = _grow1(hid, st[S_SIZE] + 8)
+        if st[S_SOLS] + 1 > sols.shape[0]:
+            sols = _grow1(sols, st[S_SOLS] + 1)
+
+
+@numba.njit(cache=True)
+def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
+                gmin, first, li, lf, sols, hk, hid, st, stf, n_steps, max_labels, ties):
+    """The search loop of :func:`_free_run`, in arrays it never reallocates:
+    returns NEED_ROOM before a pop when the label tables, the heap or the
+    solution list could overflow."""
+    h, w = occ.shape
+    goal = gr * w + gc
+    goal_state = first.shape[0] - 1          # MODE_THREE: the goal's staircase
+    second = OBJ_VUL if mode == MODE_THREE else Q
+    n = st[S_N]
+    size = st[S_SIZE]
+    n_sols = st[S_SOLS]
+    n_expanded = st[S_EXPANDED]
+    n_generated = st[S_GENERATED]
+    goal_first = st[S_GOAL_FIRST]
+    free = st[S_FREE]
+    n_free = st[S_N_FREE]
+    goal_min = stf[SF_GOAL_MIN]
+    status = DONE
+    steps = 0
+    pops0 = st[S_POPS]
+
+    while size > 0:
+        if steps == n_steps:
+            status = PAUSED
+            break
+        if n - n_free + 8 > max_labels:    # an expansion adds up to 8 labels
+            status = OVER_BUDGET
+            break
+        if n + 8 > li.shape[0] or size + 8 > hid.shape[0] or n_sols + 1 > sols.shape[0]:
+            status = NEED_ROOM
+            break
+        steps += 1
+        # 2. the lexicographically smallest label
+        x, size = _heap_pop(hk, hid, size)
+        c = li[x, CELL]
+
+        # 3. dominance checks (lazy: the sets changed since x was generated); for two
+        # objectives the O(1) g2_min tests first, the full checks only on a tie
+        if mode == MODE_CELL:
+            covered = False
+            q = lf[x, F_VUL]
+            if c != goal:
+                m = gmin[c]
+                if m < np.inf and not (q < m and not _eq(q, m)):
+                    covered = (not ties or (m < q and not _eq(m, q))
+                               or _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size,
+                                                 ties))
+            fq = q + hv[c]
+            if not covered and goal_min < np.inf and not (fq < goal_min and
+                                                          not _eq(fq, goal_min)):
+                covered = (not ties or (goal_min < fq and not _eq(goal_min, fq))
+                           or _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first,
+                                            goal_state, cell_size, hs, hd, hv, ht, ties))
+        else:
+            covered = (c != goal and _state_covered(li, lf, x, mode, P, Q, gmin, first,
+                                                    cell_size, ties)) or \
+                _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state,
+                              cell_size, hs, hd, hv, ht, ties)
+        if covered:
+            li[x, NEXT] = free                 # recycle the row
+            free = x
+            n_free += 1
+            continue
+
+        # 4a. a solution: record it, never expand it
+        if c == goal:
+            if mode == MODE_THREE:
+                _stair_insert(li, lf, first, goal_state, x)
+            else:
+                goal_min = min(goal_min, _g(li, lf, x, Q, cell_size))
+                lf[x, RUNMIN] = goal_min
+                li[x, NEXT] = goal_first
+                goal_first = x
+            sols[n_sols] = x
+            n_sols += 1
+            continue
+
+        # 4b. expand x: it joins its state's set
+        n_expanded += 1
+        s = c if mode == MODE_CELL else c * N_SLOTS + _slot(li[x, F_HEAD])
+        if mode == MODE_THREE:
+            _stair_insert(li, lf, first, s, x)
+        else:
+            gmin[s] = min(gmin[s], _g(li, lf, x, Q, cell_size))
+            lf[x, RUNMIN] = gmin[s]
+            li[x, NEXT] = first[s]
+            first[s] = x
+        r, col = c // w, c % w
+        head = li[x, F_HEAD]
+        mk = mask[c]
+        for d in range(8):
+            if not (mk >> d) & 1:
+                continue
+            r2, c2 = r + DR[d], col + DC[d]
+            cell = r2 * w + c2
+            if hv[cell] == np.inf:             # the goal cannot be reached from there
+                continue
+            if free >= 0:                      # a recycled row (its NEXT links the free list)
+                j = free
+            else:
+                j = n
+            li[j, CELL] = cell
+            li[j, F_HEAD] = d
+            li[j, F_PARENT] = x
+            li[j, NS] = li[x, NS] + (1 - d % 2)
+            li[j, ND] = li[x, ND] + d % 2
+            li[j, TURNS] = li[x, TURNS] + (_turn(head, d) if head >= 0 else 0)
+            lf[j, F_VUL] = lf[x, F_VUL] + pot[r2, c2]
+            n_generated += 1
+            # the f-vector, written out (helper calls on the arrays cost reference counting)
+            f_len = ((li[j, NS] + hs[cell]) + SQRT2 * (li[j, ND] + hd[cell])) * cell_size
+            f_vul = lf[j, F_VUL] + hv[cell]
+            f_turn = np.float64(li[j, TURNS] + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0))
+            # 3. eager dominance checks (BOA*: prune before the open list); for two
+            # objectives the O(1) g2_min tests first, the full checks only on a tie
+            if mode == MODE_CELL:
+                if cell != goal:
+                    q = lf[j, F_VUL]
+                    m = gmin[cell]
+                    if m < np.inf and not (q < m and not _eq(q, m)):
+                        if not ties or (m < q and not _eq(m, q)):
+                            continue
+                        if _state_covered(li, lf, j, mode, P, Q, gmin, first, cell_size, ties):
+                            continue
+                if goal_min < np.inf and not (f_vul < goal_min and not _eq(f_vul, goal_min)):
+                    if not ties or (goal_min < f_vul and not _eq(goal_min, f_vul)):
+                        continue
+                    if _goal_covered(li, lf, j, mode, P, Q, goal_min, goal_first, first,
+                                     goal_state, cell_size, hs, hd, hv, ht, ties):
+                        continue
+            elif mode == MODE_THREE:
+                # the (turns, vulnerability) staircases, walked here (see above)
+                t = li[j, TURNS]
+                v = lf[j, F_VUL]
+                covered = False
+                if cell != goal:
+                    for k in range(N_SLOTS):
+                        a = first[cell * N_SLOTS + k]
+                        if a < 0:
+                            continue
+                        bound = t - (0 if k == 8 else _turn(k, d))   # _heading_gap
+                        if bound < 0:
+                            continue
+                        while a >= 0 and li[a, TURNS] > bound:
+                            a = li[a, NEXT]
+                        if a >= 0 and _le(lf[a, F_VUL], v):
+                            covered = True
+                            break
+                if not covered:
+                    bound = t + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0)
+                    a = first[goal_state]
+                    while a >= 0 and li[a, TURNS] > bound:
+                        a = li[a, NEXT]
+                    covered = a >= 0 and _le(lf[a, F_VUL], f_vul)
+                if covered:
+                    continue
+            else:
+                if cell != goal and _state_covered(li, lf, j, mode, P, Q, gmin, first,
+                                                   cell_size, ties):
+                    continue
+                if _goal_covered(li, lf, j, mode, P, Q, goal_min, goal_first, first, goal_state,
+                                 cell_size, hs, hd, hv, ht, ties):
+                    continue
+            if j == free:
+                free = li[j, NEXT]
+                n_free -= 1
+            else:
+                n += 1
+            li[j, NEXT] = -1
+            k1 = f_len if P == OBJ_LEN else (f_vul if P == OBJ_VUL else f_turn)
+            k2 = f_len if second == OBJ_LEN else (f_vul if second == OBJ_VUL else f_turn)
+            _heap_push(hk, hid, size, k1, k2, f_turn, j)
+            size += 1
+    st[S_N] = n
+    st[S_SIZE] = size
+    st[S_SOLS] = n_sols
+    st[S_EXPANDED] = n_expanded
+    st[S_GENERATED] = n_generated
+    st[S_GOAL_FIRST] = goal_first
+    st[S_FREE] = free
+    st[S_N_FREE] = n_free
+    st[S_POPS] = pops0 + steps
+    stf[SF_GOAL_MIN] = goal_min
+    return status
+
+
+# -- 5. paths and the final filter ------------------------------------------------
+
+@numba.njit(cache=True)
+def _trace(li, sols, w):
+    """Cells of the solution paths, concatenated, and their offsets."""
+    counts = np.empty(len(sols), np.int64)
+    for i in range(len(sols)):
+        k = 0
+        a = sols[i]
+        while a >= 0:
+            k += 1
+            a = li[a, F_PARENT]
+        counts[i] = k
+    offsets = np.zeros(len(sols) + 1, np.int64)
+    offsets[1:] = np.cumsum(counts)
+    cells = np.empty((offsets[-1], 2), np.int64)
+    for i in range(len(sols)):
+        j = offsets[i + 1] - 1
+        a = sols[i]
+        while a >= 0:
+            cells[j, 0] = li[a, CELL] // w
+            cells[j, 1] = li[a, CELL] % w
+            j -= 1
+            a = li[a, F_PARENT]
+    return cells, offsets
+
+
+@numba.njit(cache=True)
+def _tolerant_front(F, order):
+    """Indices of the rows of ``F`` that no other row dominates up to the
+    tolerance, one per tolerance-equal vector: the first one in ``order``
+    (a permutation of the rows, most preferred first)."""
+    k, m = F.shape
+    keep = np.ones(k, np.bool_)
+    for i in range(k):
+        for j in range(k):
+            if j == i:
+                continue
+            not_worse = True
+            better = False
+            for o in range(m):
+                if not _le(F[j, o], F[i, o]):
+                    not_worse = False
+                    break
+                if not _eq(F[j, o], F[i, o]):
+                    better = True
+            if not_worse and better:
+                keep[i] = False
+                break
+    out = np.empty(k, np.int64)
+    n = 0
+    for i in order:
+        if not keep[i]:
+            continue
+        dup = False
+        for jj in range(n):
+            j = out[jj]
+            same = True
+            for o in range(m):
+                if not _eq(F[j, o], F[i, o]):
+                    same = False
+                    break
+            if same:
+                dup = True
+                break
+        if not dup:
+            out[n] = i
+            n += 1
+    return out[:n]
+

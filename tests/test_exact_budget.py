@@ -1,0 +1,252 @@
+"""Bounded, interruptible exact searches: the label budget, progress
+callbacks, KeyboardInterrupt, resumption in slices and the ``stats`` of a
+front (:func:`gapath.planners.exact.free_front` and ``monotone_front``)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from gapath import ConfigError, random_workspace
+from gapath.errors import GapathError, LabelBudgetError
+from gapath.planners import exact
+from gapath.planners.exact import free_front, monotone_front
+
+LV = ("length", "vulnerability")
+LVS = ("length", "vulnerability", "smoothness")
+SOLVERS = {"free": free_front, "monotone": monotone_front}
+
+
+def _ws(seed=3, size=20):
+    return random_workspace((size, size), int(0.2 * size * size), seed=seed)
+
+
+class _TinySlices(exact._Slices):
+    """The smallest work per kernel call (8 pops, one column), never adapted:
+    a search then pauses and resumes many times."""
+
+    def __init__(self, first, lo, hi):
+        super().__init__(8 if first > 8 else 1, 1, 1)
+
+    def update(self, done, seconds):
+        pass
+
+
+@pytest.fixture
+def tiny_slices(monkeypatch):
+    monkeypatch.setattr(exact, "_Slices", _TinySlices)
+
+
+def _same(a, b):
+    assert a.objectives == b.objectives
+    assert np.array_equal(a.F, b.F)
+    assert np.array_equal(a.smoothness, b.smoothness)
+    assert len(a.paths) == len(b.paths)
+    for p, q in zip(a.paths, b.paths):
+        assert np.array_equal(p, q)
+
+
+@pytest.mark.parametrize("kind", ["free", "monotone"])
+@pytest.mark.parametrize("objectives", [LV, LVS, ("length", "smoothness")])
+def test_resumed_in_slices_equals_one_call(kind, objectives, monkeypatch):
+    ws = _ws(seed=5, size=14)
+    whole = SOLVERS[kind](ws, objectives)
+    monkeypatch.setattr(exact, "_Slices", _TinySlices)
+    calls = []
+    sliced = SOLVERS[kind](ws, objectives, progress=calls.append)
+    _same(whole, sliced)
+    assert len(calls) > 3          # it did pause and resume
+    assert calls[-1]["phase"] == kind
+
+
+@pytest.mark.parametrize("kind", ["free", "monotone"])
+def test_stats_are_reported(kind):
+    front = SOLVERS[kind](_ws(), LV)
+    s = front.stats
+    assert s["labels"] > 0 and s["peak_bytes"] > 0 and s["seconds"] >= 0
+    if kind == "free":
+        assert s["generated"] >= s["expansions"] > 0
+        assert s["solutions"] >= len(front)
+    else:
+        assert s["columns"] == s["n_cols"]
+    assert "stats" not in front.to_dict()
+
+
+def test_progress_is_called_with_growing_counts(tiny_slices):
+    calls = []
+    front = free_front(_ws(), LVS, progress=calls.append)
+    assert len(calls) > 3
+    for key in ("expansions", "generated", "labels", "open", "solutions", "seconds"):
+        assert key in calls[0]
+    exp = [c["expansions"] for c in calls]
+    assert exp == sorted(exp)
+    assert calls[-1]["open"] == 0
+    assert calls[-1]["expansions"] == front.stats["expansions"]
+
+
+@pytest.mark.parametrize("kind", ["free", "monotone"])
+def test_budget_stops_with_a_message(kind):
+    ws = _ws()
+    full = SOLVERS[kind](ws, LVS)
+    budget = max(1, full.stats["labels"] // 4)
+    with pytest.raises(LabelBudgetError) as info:
+        SOLVERS[kind](ws, LVS, max_labels=budget)
+    err = info.value
+    assert isinstance(err, GapathError)
+    msg = str(err)
+    assert f"max_labels={budget:,}" in msg and "--max-labels" in msg
+    assert "not a Pareto front" in msg and "Raise the budget" in msg
+    assert err.stats["max_labels"] == budget
+    assert 0 < err.stats["labels"] <= budget
+    if kind == "free":
+        assert err.stats["expansions"] < full.stats["expansions"]
+    else:
+        assert err.stats["columns"] < full.stats["n_cols"]
+
+
+@pytest.mark.parametrize("kind", ["free", "monotone"])
+def test_a_sufficient_budget_changes_nothing(kind):
+    ws = _ws()
+    full = SOLVERS[kind](ws, LV)
+    # the free search stops when an expansion (8 labels) could exceed the budget; the DP
+    # counts the next column's candidates too
+    budget = full.stats["labels"] + 8 if kind == "free" else full.stats["labels"] * 4
+    _same(full, SOLVERS[kind](ws, LV, max_labels=budget))
+
+
+@pytest.mark.parametrize("bad", [0, -5, 1.5, "10", True, 2**40])
+def test_bad_budget(bad):
+    with pytest.raises(ConfigError, match="max_labels"):
+        free_front(_ws(), LV, max_labels=bad)
+
+
+@pytest.mark.parametrize("kind", ["free", "monotone"])
+def test_keyboard_interrupt_propagates_and_leaves_no_state(kind, tiny_slices):
+    ws = _ws(seed=4)
+    calls = []
+
+    def stop_at_third(info):
+        calls.append(info)
+        if len(calls) == 3:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        SOLVERS[kind](ws, LVS, progress=stop_at_third)
+    assert len(calls) == 3           # nothing ran after the interrupt
+    # a second call works and gives the uninterrupted front
+    again = SOLVERS[kind](ws, LVS)
+    fresh = SOLVERS[kind](ws.replace(name="fresh"), LVS)
+    _same(again, fresh)
+
+
+# ---------------------------------------------------------------------------
+# gapath exact --max-labels, progress and Ctrl-C
+# ---------------------------------------------------------------------------
+
+@pytest.fixture
+def text_map(tmp_path):
+    rows = ["...........",
+            "...#....#..",
+            "......#....",
+            "..#........",
+            ".....#..#..",
+            ".#.........",
+            "....#......",
+            "..........."]
+    p = tmp_path / "small.txt"
+    p.write_text("\n".join(rows) + "\n")
+    return p
+
+
+@pytest.mark.parametrize("mode", ["free", "monotone"])
+def test_cli_summary_has_search_stats(text_map, tmp_path, mode):
+    import json
+
+    from gapath.cli import main
+
+    out = tmp_path / "ex"
+    assert main(["exact", str(text_map), "--mode", mode, "--out", str(out), "--quiet",
+                 "--no-plots", "--max-labels", "100000"]) == 0
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["settings"]["max_labels"] == 100000
+    assert summary["search"]["labels"] > 0 and summary["search"]["peak_bytes"] > 0
+
+
+@pytest.mark.parametrize("mode", ["free", "monotone"])
+def test_cli_budget_is_an_error_with_no_front(text_map, tmp_path, capsys, mode):
+    from gapath.cli import main
+
+    out = tmp_path / "ex"
+    code = main(["exact", str(text_map), "--mode", mode, "--objectives",
+                 "length,vulnerability,smoothness", "--out", str(out), "--quiet",
+                 "--max-labels", "20"])
+    err = capsys.readouterr().err
+    assert code == 2
+    assert err.startswith("gapath: error: ") and "--max-labels" in err and "labels" in err
+    assert "Traceback" not in err
+    assert not (out / "front.csv").exists()
+
+
+@pytest.mark.parametrize("bad", ["0", "-3", "ten"])
+def test_cli_bad_budget(text_map, tmp_path, capsys, bad):
+    from gapath.cli import main
+
+    with pytest.raises(SystemExit) as info:
+        main(["exact", str(text_map), "--max-labels", bad, "--out", str(tmp_path / "x")])
+    assert info.value.code == 2
+    assert "--max-labels" in capsys.readouterr().err
+
+
+def test_cli_ctrl_c_exits_130_and_writes_no_front(text_map, tmp_path, capsys, monkeypatch):
+    from gapath.cli import main
+
+    def interrupt(info):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(exact, "_Slices", _TinySlices)
+    real = exact.free_front
+    monkeypatch.setattr(exact, "free_front",
+                        lambda ws, objs, **kw: real(ws, objs, max_labels=kw["max_labels"],
+                                                    progress=interrupt))
+    out = tmp_path / "ex"
+    assert main(["exact", str(text_map), "--mode", "free", "--out", str(out)]) == 130
+    err = capsys.readouterr().err
+    assert "interrupted" in err and "no front written" in err
+    assert not (out / "front.csv").exists()
+
+
+def test_progress_line_is_throttled_and_names_the_counts():
+    import io
+
+    from gapath.commands.exact import _ProgressLine
+
+    line = _ProgressLine("free")
+    line.stream, line.tty, line.every = io.StringIO(), False, 0.0
+    info = {"phase": "free", "expansions": 1234567, "labels": 20, "open": 3, "solutions": 2,
+            "seconds": 1.25}
+    line(info)
+    text = line.stream.getvalue()
+    assert "1,234,567 expanded" in text and "2 solutions so far" in text
+    line.every = 3600.0
+    line(info)                        # too soon: nothing more
+    assert line.stream.getvalue() == text
+
+
+@pytest.mark.parametrize("kind", ["free", "monotone"])
+def test_sigint_during_a_search_is_a_keyboard_interrupt(kind, tiny_slices):
+    """A SIGINT held while a kernel runs is raised as KeyboardInterrupt after
+    it (never a SystemError from inside numba), before the next progress call."""
+    import os
+    import signal
+
+    calls = []
+
+    def send_sigint(info):
+        calls.append(info)
+        if len(calls) == 2:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    with pytest.raises(KeyboardInterrupt):
+        SOLVERS[kind](_ws(seed=4), LVS, progress=send_sigint)
+    assert len(calls) == 2
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
