@@ -372,7 +372,7 @@ def test_unreachable_goal_is_a_no_path_error():
     (dict(encoding="field", field_shape=(1, 3)), "field_shape"),
     (dict(encoding="field", field_shape=(40, 3)), "finer than"),
     (dict(encoding="field", beta=0), "beta"),
-    (dict(encoding="nope"), "free-path encoding"),
+    (dict(encoding="nope"), "unknown encoding 'nope' for free paths"),
     (dict(objectives=("length", "height")), "unknown objective"),
     (dict(constraints="soft"), "constraint handling"),
     (dict(penalty=-1), "penalty"),

@@ -460,7 +460,7 @@ def make_free_encoding(name: str, workspace, **options):
     try:
         cls = FREE_ENCODINGS[name]
     except (KeyError, TypeError):
-        raise ConfigError(f"unknown free-path encoding {name!r}; expected one of "
+        raise ConfigError(f"unknown encoding {name!r} for free paths; expected one of "
                           f"{', '.join(FREE_ENCODINGS)}") from None
     return cls(workspace, **options)
 

@@ -103,8 +103,9 @@ class FreePathProblem(Problem):
         if not np.isfinite(penalty) or penalty < 0:
             raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}")
         if encoding not in FREE_ENCODINGS:
-            raise ConfigError(f"unknown free-path encoding {encoding!r}; expected one of "
-                              f"{', '.join(FREE_ENCODINGS)}")
+            raise ConfigError(f"unknown encoding {encoding!r} for free paths; expected one of "
+                              f"{', '.join(FREE_ENCODINGS)} (integer, binary, mixed and absolute "
+                              f"describe monotone paths)")
         self.workspace = workspace
         self.costmap = costmap
         self._layer_stack = self._layer_agg = None
