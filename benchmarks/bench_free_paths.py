@@ -6,14 +6,18 @@ free front (:func:`gapath.planners.exact.free_front`, objectives length and
 vulnerability) is computed, then one GA run per encoding and seeding:
 :class:`gapath.algorithms.FastNSGA2` on a
 :class:`gapath.problems.FreePathProblem`, population ``--pop`` for ``--gen``
-generations, seed ``--seed``, initial population from
-:class:`gapath.operators.sampling.free_sampling.FreeSampling` (``weighted``:
-weighted-sum A* seeds; ``none``: all random).
+generations, seed ``--seed``, run as ``gapath solve --paths free`` runs it
+(:func:`gapath.solver.solve`: FastNSGA2, initial population from
+:class:`gapath.operators.sampling.free_sampling.FreeSampling`, ``weighted``:
+weighted-sum A* seeds, ``none``: all random; the smoothness tie-break with
+two objectives).
 
 Per run one JSON line: map, query, encoding, seeding, exact front size and
 seconds, GA front size, ``hv_ratio`` (SPEC normalisation), ``coverage``
 (share of exact points matched within the tolerance), GA wall seconds,
-seconds per generation, and the decode+evaluate throughput (paths per second
+seconds per generation, the HV ratio after generations 1, 10, 25, 50, 100,
+200 (``hv_at_gen``), the generation and seconds at which it first reached
+0.99 and 0.999, and the decode+evaluate throughput (paths per second
 over ``--pop * 5`` random genomes, cache cold). Wall-clock times on a shared
 machine: noisy.
 
@@ -33,15 +37,13 @@ import time
 from pathlib import Path
 
 import numpy as np
-from pymoo.optimize import minimize
 
-from gapath.algorithms import FastNSGA2
-from gapath.front import path_front
+from gapath.convergence import HypervolumeRatioCallback
 from gapath.loaders import load_movingai, load_scenarios
 from gapath.metrics import coverage, hv_ratio
-from gapath.operators.sampling.free_sampling import FreeSampling
 from gapath.planners.exact import free_front
 from gapath.problems import FreePathProblem
+from gapath.solver import solve
 
 ROOT = Path(__file__).resolve().parents[1]
 MAPS = ("room-32-32-4", "maze-32-32-2", "random-32-32-20", "random-64-64-10")
@@ -76,21 +78,43 @@ def throughput(problem, n: int, seed: int) -> float:
     return n / (time.perf_counter() - t0)
 
 
-def run(ws, ref, encoding, seed_from, pop, gen, seed, options):
-    problem = FreePathProblem(ws, encoding=encoding, **options)
+class _Timed(HypervolumeRatioCallback):
+    """The HV ratio every generation, with the wall time since the start."""
+
+    def __init__(self, reference):
+        super().__init__(reference)
+        self.t0 = time.perf_counter()
+        self.seconds = []
+
+    def notify(self, algorithm):
+        super().notify(algorithm)
+        self.seconds.append(time.perf_counter() - self.t0)
+
+
+def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
+    problem = FreePathProblem(ws, objectives, encoding=encoding, **options)
     rate = throughput(problem, 5 * pop, seed)
-    problem = FreePathProblem(ws, encoding=encoding, **options)
-    algorithm = FastNSGA2(pop, sampling=FreeSampling(seed_from))
-    t0 = time.perf_counter()
-    res = minimize(problem, algorithm, ("n_gen", gen), seed=seed, copy_algorithm=False)
-    seconds = time.perf_counter() - t0
-    front = path_front(problem, res.pop.get("X"))
+    tracker = _Timed(ref)
+    res = solve(ws, objectives=objectives, paths="free", encoding=encoding, pop_size=pop,
+                n_gen=gen, seed=seed, seed_from=seed_from, callback=tracker,
+                tiebreak="smoothness" if len(objectives) == 2 else None)
+    front = res.front
+    hist = tracker.history
+    checkpoints = {str(g): round(hist[g - 1][2], 6) for g in (1, 10, 25, 50, 100, 200, 500)
+                   if g <= len(hist)}
+
+    def reach(level):
+        for (g, _, h), t in zip(hist, tracker.seconds):
+            if h >= level:
+                return [g, round(t, 3)]
+        return None
+
     return dict(encoding=encoding, n_var=problem.n_var, seed_from=seed_from, pop=pop, gen=gen,
                 seed=seed, ga_size=len(front), hv_ratio=hv_ratio(front.F, ref.F),
-                coverage=coverage(front.F, ref.F), ga_seconds=seconds,
-                seconds_per_gen=seconds / gen, paths_per_second=rate,
-                n_eval=int(algorithm.evaluator.n_eval),
-                timings={k: round(v, 4) for k, v in algorithm.timings.items()})
+                coverage=coverage(front.F, ref.F), ga_seconds=res.seconds,
+                seconds_per_gen=res.seconds / gen, paths_per_second=rate, n_eval=res.n_eval,
+                hv_at_gen=checkpoints, gen_seconds_to_099=reach(0.99),
+                gen_seconds_to_0999=reach(0.999))
 
 
 def main(argv=None):
@@ -102,6 +126,7 @@ def main(argv=None):
     ap.add_argument("--pop", type=int, default=200)
     ap.add_argument("--gen", type=int, default=200)
     ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--objectives", default="length,vulnerability")
     ap.add_argument("--n-via", type=int, default=None)
     ap.add_argument("--data", default=None)
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
@@ -114,14 +139,15 @@ def main(argv=None):
             ws = load_movingai(folder / f"{name}.map", start=sc.start, goal=sc.goal,
                                corner_cutting=False)
             t0 = time.perf_counter()
-            ref = free_front(ws)
+            objectives = tuple(a.objectives.split(","))
+            ref = free_front(ws, objectives)
             exact_s = time.perf_counter() - t0
             for enc in a.encodings.split(","):
                 for sf in a.seed_from.split(","):
                     opts = options if enc == "via" else {}
-                    rec = dict(map=name, query=q, start=list(sc.start), goal=list(sc.goal),
+                    rec = dict(map=name, query=q, objectives=list(objectives), start=list(sc.start), goal=list(sc.goal),
                                optimal=sc.optimal, exact_size=len(ref), exact_seconds=exact_s)
-                    rec.update(run(ws, ref, enc, sf, a.pop, a.gen, a.seed, opts))
+                    rec.update(run(ws, ref, objectives, enc, sf, a.pop, a.gen, a.seed, opts))
                     line = json.dumps(rec)
                     print(line, flush=True)
                     if out:

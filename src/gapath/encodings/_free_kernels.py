@@ -24,6 +24,7 @@ rule.
 
 from __future__ import annotations
 
+import heapq
 import math
 
 import numba
@@ -98,6 +99,39 @@ def snap_table(comp, h, w):
     return snap
 
 
+@numba.njit(cache=True)
+def goal_heuristics(occ, extra, t, corner_cutting):
+    """Exact costs-to-go to cell ``t`` by two backward Dijkstra searches
+    (moves are symmetric): ``hlen[v]`` the shortest length from ``v`` to
+    ``t`` (cell units) and ``hext[v]`` the smallest sum of ``extra`` over the
+    cells after ``v`` up to ``t`` included; ``inf`` where ``t`` is
+    unreachable. With them ``a * mmin * hlen + b * hext`` is a consistent
+    heuristic of the decoders' step cost towards ``t``."""
+    h, w = occ.shape
+    flat = occ.ravel()
+    n = h * w
+    out = np.full((2, n), np.inf)
+    for which in range(2):
+        dist = out[which]
+        dist[t] = 0.0
+        heap = [(0.0, t)]
+        while len(heap) > 0:
+            d, u = heapq.heappop(heap)
+            if d > dist[u]:
+                continue
+            ur = u // w
+            uc = u - ur * w
+            moves = move_mask(flat, h, w, ur, uc, corner_cutting)
+            for k in range(8):
+                if (moves >> k) & 1:
+                    v = u + DR[k] * w + DC[k]
+                    nd = d + (STEP[k] if which == 0 else extra[u])   # the step v -> u enters u
+                    if nd < dist[v]:
+                        dist[v] = nd
+                        heapq.heappush(heap, (nd, v))
+    return out[0].copy(), out[1].copy()
+
+
 @numba.njit(cache=True, inline="always")
 def _field_value(genes, gy, gx, h, w, r, c):
     """Bilinear interpolation of the ``gy x gx`` control genes at cell (r, c);
@@ -117,7 +151,7 @@ def _field_value(genes, gy, gx, h, w, r, c):
 
 @numba.njit(cache=True)
 def _segment(occ, h, w, extra, s, t, a, b, corner_cutting, fgenes, gy, gx, beta, mmin,
-             state, g, came, heap, touched, mcache, buf):
+             hlen, hext, goal_h, pmin, state, g, came, heap, touched, mcache, buf):
     """A* from cell ``s`` to cell ``t``; a step into ``v`` by move ``k`` costs
     ``a * STEP[k] * m(v) + b * extra[v]``, ``m(v) = exp(beta * (2 f(v) - 1))``
     for the bilinear field ``f`` of ``fgenes`` (``gy > 0``), else 1. The
@@ -132,10 +166,14 @@ def _segment(occ, h, w, extra, s, t, a, b, corner_cutting, fgenes, gy, gx, beta,
     tr = t // w
     tc = t - tr * w
     ha = a * mmin
+    hb = b * pmin
     g[s] = 0.0
     touched[0] = s
     n_touched = 1
-    hs = ha * octile(s // w, s % w, tr, tc)
+    if goal_h:
+        hs = ha * hlen[s] + b * hext[s]
+    else:
+        hs = ha * octile(s // w, s % w, tr, tc) + hb * max(abs(s // w - tr), abs(s % w - tc))
     size, held = open_push(heap, state, 0, NOT_HELD, hs, hs, s)
     reached = False
     use_field = gy > 0
@@ -172,7 +210,10 @@ def _segment(occ, h, w, extra, s, t, a, b, corner_cutting, fgenes, gy, gx, beta,
                 continue
             g[v] = ng
             came[v] = k
-            hv = ha * octile(vr, vc, tr, tc)
+            if goal_h:
+                hv = ha * hlen[v] + b * hext[v]
+            else:
+                hv = ha * octile(vr, vc, tr, tc) + hb * max(abs(vr - tr), abs(vc - tc))
             if sv == _UNSEEN:
                 touched[n_touched] = v
                 n_touched += 1
@@ -257,7 +298,8 @@ def _via_cell(u, v, h, w, snap):
 
 
 @numba.njit(cache=True)
-def decode_via(X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi):
+def decode_via(X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext,
+               pmin):
     """Paths of via-point genomes ``X`` (N, 3 K + 1): genes ``2k, 2k + 1``
     place via point ``k`` (row and column fractions, snapped to the start's
     component), genes ``2K .. 3K`` weight the ``K + 1`` segments.
@@ -286,7 +328,8 @@ def decode_via(X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi)
                 continue
             a, b = _weights(X[i, 2 * n_via + k], lam_lo, lam_hi)
             cnt = _segment(flat_occ, h, w, extra, prev, nxt, a, b, corner_cutting, dummy, 0, 0,
-                           0.0, 1.0, state, g, came, heap, touched, mcache, buf)
+                           0.0, 1.0, hlen, hext, nxt == t, pmin, state, g, came, heap, touched,
+                           mcache, buf)
             for j in range(1, cnt):
                 m = _append(buf[j], cur, pos, m)
             prev = nxt
@@ -297,7 +340,7 @@ def decode_via(X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi)
 
 
 @numba.njit(cache=True)
-def decode_field(X, gy, gx, beta, occ, extra, s, t, corner_cutting, lam_lo, lam_hi):
+def decode_field(X, gy, gx, beta, occ, extra, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext):
     """Paths of cost-field genomes ``X`` (N, gy * gx + 1): genes ``0 ..
     gy * gx - 1`` are the control points of the cost multiplier field (row
     major), the last gene weights the cell cost against the length. One A*
@@ -319,13 +362,13 @@ def decode_field(X, gy, gx, beta, occ, extra, s, t, corner_cutting, lam_lo, lam_
         a, b = _weights(X[i, nf], lam_lo, lam_hi)
         mmin = math.exp(beta * (2.0 * gmin - 1.0))
         cnt = _segment(flat_occ, h, w, extra, s, t, a, b, corner_cutting, genes, gy, gx, beta,
-                       mmin, state, g, came, heap, touched, mcache, buf)
+                       mmin, hlen, hext, True, 0.0, state, g, came, heap, touched, mcache, buf)
         flat = _store(buf, cnt, i, flat, offsets, keys)
     return flat[:offsets[n]], offsets, keys
 
 
 @numba.njit(cache=True)
-def weighted_paths(occ, extra, s, t, corner_cutting, genes, lam_lo, lam_hi):
+def weighted_paths(occ, extra, s, t, corner_cutting, genes, lam_lo, lam_hi, hlen, hext):
     """The single-search paths ``s -> t`` for each weight gene of ``genes``
     (the decoders' cost with a neutral field). Returns ``(flat, offsets, keys)``."""
     h, w = occ.shape
@@ -339,14 +382,14 @@ def weighted_paths(occ, extra, s, t, corner_cutting, genes, lam_lo, lam_hi):
     for i in range(n):
         a, b = _weights(genes[i], lam_lo, lam_hi)
         cnt = _segment(flat_occ, h, w, extra, s, t, a, b, corner_cutting, dummy, 0, 0, 0.0, 1.0,
-                       state, g, came, heap, touched, mcache, buf)
+                       hlen, hext, True, 0.0, state, g, came, heap, touched, mcache, buf)
         flat = _store(buf, cnt, i, flat, offsets, keys)
     return flat[:offsets[n]], offsets, keys
 
 
 @numba.njit(cache=True)
 def fit_segment_weights(cells, offsets, via_idx, occ, extra, corner_cutting, candidates,
-                        lam_lo, lam_hi):
+                        lam_lo, lam_hi, t, hlen, hext, pmin):
     """For each path ``i`` (cells ``cells[offsets[i]:offsets[i+1]]``) and each
     of its segments between consecutive via indices ``via_idx[i]`` (positions
     on the path, first 0, last the goal), the candidate weight gene whose
@@ -376,8 +419,9 @@ def fit_segment_weights(cells, offsets, via_idx, occ, extra, corner_cutting, can
             for q in range(candidates.shape[0]):
                 a, b = _weights(candidates[q], lam_lo, lam_hi)
                 cnt = _segment(flat_occ, h, w, extra, cells[base + p0], cells[base + p1], a, b,
-                               corner_cutting, dummy, 0, 0, 0.0, 1.0, state, g, came, heap,
-                               touched, mcache, buf)
+                               corner_cutting, dummy, 0, 0, 0.0, 1.0, hlen, hext,
+                               cells[base + p1] == t, pmin, state, g, came, heap, touched,
+                               mcache, buf)
                 miss = 0
                 for j in range(cnt):
                     if mark[buf[j]] == 0:

@@ -182,6 +182,9 @@ class FreeEncoding:
             raise ConfigError(f"the cell cost of a free-path encoding must be a finite, "
                               f"non-negative ({h}, {w}) array, got shape {extra.shape}")
         self._extra = np.ascontiguousarray(extra.ravel())
+        # exact costs-to-go to the goal (heuristics of searches that end there)
+        self._hlen, self._hext = K.goal_heuristics(occ, self._extra, self._t, self._cc)
+        self._pmin = float(self._extra[comp].min())
         try:
             lo, hi = (float(v) for v in lam_range)
         except (TypeError, ValueError):
@@ -271,7 +274,7 @@ class FreeEncoding:
         with all control genes 0.5 decodes to)."""
         genes = np.ascontiguousarray(np.atleast_1d(np.asarray(genes, dtype=np.float64)))
         flat, offsets, _ = K.weighted_paths(self._occ, self._extra, self._s, self._t, self._cc,
-                                            genes, *self.lam_range)
+                                            genes, *self.lam_range, self._hlen, self._hext)
         P, L = K.to_padded(flat, offsets, self.shape[1])
         return [P[i, :L[i]].copy() for i in range(len(L))]
 
@@ -296,7 +299,7 @@ class FreeEncoding:
     def _fit(self, flat, offsets, via_idx):
         return K.fit_segment_weights(flat, offsets, np.ascontiguousarray(via_idx, np.int64),
                                      self._occ, self._extra, self._cc, FIT_CANDIDATES,
-                                     *self.lam_range)
+                                     *self.lam_range, self._t, self._hlen, self._hext, self._pmin)
 
 
 class ViaPointEncoding(FreeEncoding):
@@ -327,7 +330,7 @@ class ViaPointEncoding(FreeEncoding):
 
     def _decode_kernel(self, X):
         return K.decode_via(X, self.n_via, self._occ, self._extra, self._snap, self._s, self._t,
-                            self._cc, *self.lam_range)
+                            self._cc, *self.lam_range, self._hlen, self._hext, self._pmin)
 
     def encode(self, paths, weights=None) -> np.ndarray:
         """Genomes of paths (workspace cells, start to goal).
@@ -414,7 +417,7 @@ class FieldEncoding(FreeEncoding):
     def _decode_kernel(self, X):
         gy, gx = self.field_shape
         return K.decode_field(X, gy, gx, self.beta, self._occ, self._extra, self._s, self._t,
-                              self._cc, *self.lam_range)
+                              self._cc, *self.lam_range, self._hlen, self._hext)
 
     def encode(self, paths, weights=None) -> np.ndarray:
         """Genomes of paths: a neutral field (control genes 0.5) and the
