@@ -117,8 +117,26 @@ def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
                 gen_seconds_to_0999=reach(0.999))
 
 
+def summary(path) -> str:
+    """A Markdown table of the JSON lines in ``path`` (one row per run)."""
+    rows = ["| map | query | objectives | encoding | seeds | exact points | GA points | HV ratio "
+            "| coverage | HV at gen 1 / 10 / 50 | s/gen | paths/s |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for line in open(path):
+        d = json.loads(line)
+        h = d.get("hv_at_gen", {})
+        at = " / ".join(f"{h[g]:.4f}" if g in h else "-" for g in ("1", "10", "50"))
+        rows.append(f"| {d['map']} | {d['query']} | {len(d.get('objectives', [0, 0]))} "
+                    f"| {d['encoding']} | {d['seed_from']} | {d['exact_size']} | {d['ga_size']} "
+                    f"| {d['hv_ratio']:.6f} | {d['coverage']:.3f} | {at} "
+                    f"| {d['seconds_per_gen']:.3f} | {d['paths_per_second']:.0f} |")
+    return "\n".join(rows)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--summary", metavar="JSONL", help="print a Markdown table of a results file "
+                                                      "and exit")
     ap.add_argument("--maps", default=",".join(MAPS))
     ap.add_argument("--queries", type=int, default=1)
     ap.add_argument("--encodings", default="via,field")
@@ -131,6 +149,9 @@ def main(argv=None):
     ap.add_argument("--data", default=None)
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
     a = ap.parse_args(argv)
+    if a.summary:
+        print(summary(a.summary))
+        return 0
     folder = data_dir(a.data)
     out = open(a.out, "a") if a.out else None
     options = {} if a.n_via is None else {"n_via": a.n_via}
