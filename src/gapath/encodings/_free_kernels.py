@@ -100,13 +100,17 @@ def snap_table(comp, h, w):
 
 
 @numba.njit(cache=True)
-def goal_heuristics(occ, extra, t, corner_cutting):
+def goal_heuristics(occ, extra, t, corner_cutting, forward=False):
     """Exact costs-to-go to cell ``t`` by two backward Dijkstra searches
     (moves are symmetric): ``hlen[v]`` the shortest length from ``v`` to
     ``t`` (cell units) and ``hext[v]`` the smallest sum of ``extra`` over the
     cells after ``v`` up to ``t`` included; ``inf`` where ``t`` is
     unreachable. With them ``a * mmin * hlen + b * hext`` is a consistent
-    heuristic of the decoders' step cost towards ``t``."""
+    heuristic of the decoders' step cost towards ``t``.
+
+    With ``forward`` the costs from ``t`` instead (the sum of ``extra`` over
+    the cells after ``t`` up to ``v``): the landmark bounds of searches
+    between two other cells (see :func:`_segment`)."""
     h, w = occ.shape
     flat = occ.ravel()
     n = h * w
@@ -125,7 +129,12 @@ def goal_heuristics(occ, extra, t, corner_cutting):
             for k in range(8):
                 if (moves >> k) & 1:
                     v = u + DR[k] * w + DC[k]
-                    nd = d + (STEP[k] if which == 0 else extra[u])   # the step v -> u enters u
+                    if which == 0:
+                        nd = d + STEP[k]
+                    elif forward:
+                        nd = d + extra[v]                # the step u -> v enters v
+                    else:
+                        nd = d + extra[u]                # the step v -> u enters u
                     if nd < dist[v]:
                         dist[v] = nd
                         heapq.heappush(heap, (nd, v))
@@ -149,13 +158,30 @@ def _field_value(genes, gy, gx, h, w, r, c):
     return (1.0 - ar) * ((1.0 - ac) * g00 + ac * g01) + ar * ((1.0 - ac) * g10 + ac * g11)
 
 
+@numba.njit(cache=True, inline="always")
+def _landmark_h(v, t, tr, tc, w, ha, b, pmin, hlen, hext, flen, fext):
+    vr = v // w
+    vc = v - vr * w
+    hl = max(octile(vr, vc, tr, tc), hlen[v] - hlen[t], flen[t] - flen[v])
+    he = max(pmin * max(abs(vr - tr), abs(vc - tc)), hext[v] - hext[t], fext[t] - fext[v])
+    return ha * hl + b * he
+
+
 @numba.njit(cache=True)
 def _segment(occ, h, w, extra, s, t, a, b, corner_cutting, fgenes, gy, gx, beta, mmin,
-             hlen, hext, goal_h, pmin, state, g, came, heap, touched, mcache, buf):
+             hlen, hext, goal_h, pmin, flen, fext, state, g, came, heap, touched, mcache, buf):
     """A* from cell ``s`` to cell ``t``; a step into ``v`` by move ``k`` costs
     ``a * STEP[k] * m(v) + b * extra[v]``, ``m(v) = exp(beta * (2 f(v) - 1))``
-    for the bilinear field ``f`` of ``fgenes`` (``gy > 0``), else 1. The
-    heuristic ``a * mmin * octile`` is consistent (``mmin`` bounds ``m``).
+    for the bilinear field ``f`` of ``fgenes`` (``gy > 0``), else 1.
+
+    Heuristic: when ``goal_h`` (``t`` is the goal) ``a * mmin * hlen[v] + b *
+    hext[v]``, the exact costs-to-go of each part (:func:`goal_heuristics`);
+    otherwise ``a * mmin * hl + b * he`` with ``hl`` the largest of the octile
+    distance and the landmark bounds from the goal and the start (triangle
+    inequality: ``d(v, t) >= hlen[v] - hlen[t]`` and ``>= flen[t] - flen[v]``,
+    ``flen``/``fext`` the costs from the start) and ``he`` the same for the
+    cell cost, at least ``pmin`` (a floor of ``extra``) per step. All are
+    consistent (``mmin`` bounds ``m``).
 
     Writes the cells ``s .. t`` into ``buf``; returns their number (0 when
     ``t`` is unreachable). Scratch arrays as in :mod:`gapath.planners.astar`
@@ -166,14 +192,13 @@ def _segment(occ, h, w, extra, s, t, a, b, corner_cutting, fgenes, gy, gx, beta,
     tr = t // w
     tc = t - tr * w
     ha = a * mmin
-    hb = b * pmin
     g[s] = 0.0
     touched[0] = s
     n_touched = 1
     if goal_h:
         hs = ha * hlen[s] + b * hext[s]
     else:
-        hs = ha * octile(s // w, s % w, tr, tc) + hb * max(abs(s // w - tr), abs(s % w - tc))
+        hs = _landmark_h(s, t, tr, tc, w, ha, b, pmin, hlen, hext, flen, fext)
     size, held = open_push(heap, state, 0, NOT_HELD, hs, hs, s)
     reached = False
     use_field = gy > 0
@@ -213,7 +238,7 @@ def _segment(occ, h, w, extra, s, t, a, b, corner_cutting, fgenes, gy, gx, beta,
             if goal_h:
                 hv = ha * hlen[v] + b * hext[v]
             else:
-                hv = ha * octile(vr, vc, tr, tc) + hb * max(abs(vr - tr), abs(vc - tc))
+                hv = _landmark_h(v, t, tr, tc, w, ha, b, pmin, hlen, hext, flen, fext)
             if sv == _UNSEEN:
                 touched[n_touched] = v
                 n_touched += 1
@@ -299,7 +324,7 @@ def _via_cell(u, v, h, w, snap):
 
 @numba.njit(cache=True)
 def decode_via(X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext,
-               pmin):
+               pmin, flen, fext):
     """Paths of via-point genomes ``X`` (N, 3 K + 1): genes ``2k, 2k + 1``
     place via point ``k`` (row and column fractions, snapped to the start's
     component), genes ``2K .. 3K`` weight the ``K + 1`` segments.
@@ -328,7 +353,7 @@ def decode_via(X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi,
                 continue
             a, b = _weights(X[i, 2 * n_via + k], lam_lo, lam_hi)
             cnt = _segment(flat_occ, h, w, extra, prev, nxt, a, b, corner_cutting, dummy, 0, 0,
-                           0.0, 1.0, hlen, hext, nxt == t, pmin, state, g, came, heap, touched,
+                           0.0, 1.0, hlen, hext, nxt == t, pmin, flen, fext, state, g, came, heap, touched,
                            mcache, buf)
             for j in range(1, cnt):
                 m = _append(buf[j], cur, pos, m)
@@ -362,7 +387,7 @@ def decode_field(X, gy, gx, beta, occ, extra, s, t, corner_cutting, lam_lo, lam_
         a, b = _weights(X[i, nf], lam_lo, lam_hi)
         mmin = math.exp(beta * (2.0 * gmin - 1.0))
         cnt = _segment(flat_occ, h, w, extra, s, t, a, b, corner_cutting, genes, gy, gx, beta,
-                       mmin, hlen, hext, True, 0.0, state, g, came, heap, touched, mcache, buf)
+                       mmin, hlen, hext, True, 0.0, hlen, hext, state, g, came, heap, touched, mcache, buf)
         flat = _store(buf, cnt, i, flat, offsets, keys)
     return flat[:offsets[n]], offsets, keys
 
@@ -382,14 +407,15 @@ def weighted_paths(occ, extra, s, t, corner_cutting, genes, lam_lo, lam_hi, hlen
     for i in range(n):
         a, b = _weights(genes[i], lam_lo, lam_hi)
         cnt = _segment(flat_occ, h, w, extra, s, t, a, b, corner_cutting, dummy, 0, 0, 0.0, 1.0,
-                       hlen, hext, True, 0.0, state, g, came, heap, touched, mcache, buf)
+                       hlen, hext, True, 0.0, hlen, hext, state, g, came, heap, touched, mcache,
+                       buf)
         flat = _store(buf, cnt, i, flat, offsets, keys)
     return flat[:offsets[n]], offsets, keys
 
 
 @numba.njit(cache=True)
 def fit_segment_weights(cells, offsets, via_idx, occ, extra, corner_cutting, candidates,
-                        lam_lo, lam_hi, t, hlen, hext, pmin):
+                        lam_lo, lam_hi, t, hlen, hext, pmin, flen, fext):
     """For each path ``i`` (cells ``cells[offsets[i]:offsets[i+1]]``) and each
     of its segments between consecutive via indices ``via_idx[i]`` (positions
     on the path, first 0, last the goal), the candidate weight gene whose
@@ -420,7 +446,7 @@ def fit_segment_weights(cells, offsets, via_idx, occ, extra, corner_cutting, can
                 a, b = _weights(candidates[q], lam_lo, lam_hi)
                 cnt = _segment(flat_occ, h, w, extra, cells[base + p0], cells[base + p1], a, b,
                                corner_cutting, dummy, 0, 0, 0.0, 1.0, hlen, hext,
-                               cells[base + p1] == t, pmin, state, g, came, heap, touched,
+                               cells[base + p1] == t, pmin, flen, fext, state, g, came, heap, touched,
                                mcache, buf)
                 miss = 0
                 for j in range(cnt):

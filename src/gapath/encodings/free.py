@@ -185,6 +185,7 @@ class FreeEncoding:
         # exact costs-to-go to the goal (heuristics of searches that end there)
         self._hlen, self._hext = K.goal_heuristics(occ, self._extra, self._t, self._cc)
         self._pmin = float(self._extra[comp].min())
+        self._flen, self._fext = K.goal_heuristics(occ, self._extra, self._s, self._cc, True)
         try:
             lo, hi = (float(v) for v in lam_range)
         except (TypeError, ValueError):
@@ -299,7 +300,8 @@ class FreeEncoding:
     def _fit(self, flat, offsets, via_idx):
         return K.fit_segment_weights(flat, offsets, np.ascontiguousarray(via_idx, np.int64),
                                      self._occ, self._extra, self._cc, FIT_CANDIDATES,
-                                     *self.lam_range, self._t, self._hlen, self._hext, self._pmin)
+                                     *self.lam_range, self._t, self._hlen, self._hext, self._pmin,
+                                     self._flen, self._fext)
 
 
 class ViaPointEncoding(FreeEncoding):
@@ -330,7 +332,8 @@ class ViaPointEncoding(FreeEncoding):
 
     def _decode_kernel(self, X):
         return K.decode_via(X, self.n_via, self._occ, self._extra, self._snap, self._s, self._t,
-                            self._cc, *self.lam_range, self._hlen, self._hext, self._pmin)
+                            self._cc, *self.lam_range, self._hlen, self._hext, self._pmin,
+                            self._flen, self._fext)
 
     def encode(self, paths, weights=None) -> np.ndarray:
         """Genomes of paths (workspace cells, start to goal).
