@@ -231,7 +231,7 @@ def test_weighted_seeds_decode_to_optimal_paths(seed):
 
 def test_exact_seeds_reproduce_most_exact_paths():
     ws = room(seed=4)
-    p = FreePathProblem(ws)
+    p = FreePathProblem(ws, encoding="via")
     ref = free_front(ws)
     X = p.encode(ref.paths)
     F = p.evaluate(X, return_as_dictionary=True)["F"]
@@ -240,9 +240,10 @@ def test_exact_seeds_reproduce_most_exact_paths():
     assert matched >= 0.8 * len(ref.F)
 
 
-def test_free_sampling_distinct_paths_and_seeds_first():
-    ws = room()
-    p = FreePathProblem(ws)
+@pytest.mark.parametrize("encoding", ["via", "field"])
+def test_free_sampling_distinct_paths_and_seeds_first(encoding):
+    ws = room(20, 24)
+    p = FreePathProblem(ws, encoding=encoding)
     X = FreeSampling()._do(p, 60, random_state=np.random.default_rng(0))
     assert X.shape == (60, p.n_var)
     keys = p.path_keys(X)
@@ -300,14 +301,15 @@ def test_brute_force_agrees_with_exact_free_front(seed):
             assert any(np.allclose(q, r, rtol=TOL, atol=0) for r in ref)
 
 
-def test_free_problem_on_a_tiny_map_finds_the_brute_force_front():
+@pytest.mark.parametrize("encoding", ["via", "field"])
+def test_free_problem_on_a_tiny_map_finds_the_brute_force_front(encoding):
     occ = np.array([[0, 0, 0, 0], [0, 1, 1, 0], [0, 0, 0, 0]], bool)
     ws = Workspace(occ, corner_cutting=False)
     paths = simple_paths(ws)
     P, L = pad_paths(paths)
     M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)[:, :2]
     nd = M[nondominated(M, tol=TOL)]
-    p = FreePathProblem(ws, n_via=2)
+    p = FreePathProblem(ws, encoding=encoding)
     res = run_fast(p, 1, pop=20, gen=10, sampling=FreeSampling("none"))
     front = path_front(p, res.pop.get("X"))
     for q in nd:
@@ -367,11 +369,12 @@ def test_unreachable_goal_is_a_no_path_error():
 
 
 @pytest.mark.parametrize("kwargs, match", [
-    (dict(n_via=-1), "n_via"),
-    (dict(n_via=1.5), "n_via"),
+    (dict(encoding="via", n_via=-1), "n_via"),
+    (dict(encoding="via", n_via=1.5), "n_via"),
     (dict(encoding="field", field_shape=(1, 3)), "field_shape"),
     (dict(encoding="field", field_shape=(40, 3)), "finer than"),
     (dict(encoding="field", beta=0), "beta"),
+    (dict(encoding="field", n_via=3), "does not apply"),
     (dict(encoding="nope"), "unknown encoding 'nope' for free paths"),
     (dict(objectives=("length", "height")), "unknown objective"),
     (dict(constraints="soft"), "constraint handling"),

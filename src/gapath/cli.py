@@ -42,7 +42,7 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
                         "(default: %(default)s)")
     p.add_argument("--encoding", default=None,
                    help="genome encoding: integer, binary, mixed or absolute for monotone paths "
-                        "(default integer); via or field for free paths (default via)")
+                        "(default integer); field or via for free paths (default field)")
     p.add_argument("--constraints", choices=("penalty", "constraint"), default=None,
                    help="obstacle handling (default: penalty; constraint for one objective)")
     p.add_argument("--sbx-eta", type=float, default=None,

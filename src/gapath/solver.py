@@ -90,7 +90,7 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding=None, p
         :class:`gapath.problems.GridPathProblem` (``paths="monotone"``,
         encoding default ``"integer"``) and
         :class:`gapath.problems.FreePathProblem` (``paths="free"``, encoding
-        default ``"via"``); ``constraints`` defaults by objective mode
+        default ``"field"``); ``constraints`` defaults by objective mode
         (:func:`objective_mode`).
     paths : ``"monotone"`` (default: Ahmed & Deb's column-monotone paths) or
         ``"free"`` (any simple 8-connected path); seeds from

@@ -450,7 +450,7 @@ class FieldEncoding(FreeEncoding):
 #: Free-path encodings by name.
 FREE_ENCODINGS = {"via": ViaPointEncoding, "field": FieldEncoding}
 #: The default free-path encoding (see docs/results/free_paths.md).
-DEFAULT_FREE_ENCODING = "via"
+DEFAULT_FREE_ENCODING = "field"
 
 
 def make_free_encoding(name: str, workspace, **options):
@@ -468,6 +468,13 @@ def make_free_encoding(name: str, workspace, **options):
     except (KeyError, TypeError):
         raise ConfigError(f"unknown encoding {name!r} for free paths; expected one of "
                           f"{', '.join(FREE_ENCODINGS)}") from None
+    import inspect
+
+    allowed = set(inspect.signature(cls.__init__).parameters) - {"self", "workspace"}
+    unknown = sorted(set(options) - allowed)
+    if unknown:
+        raise ConfigError(f"option {unknown[0]!r} does not apply to the {name!r} encoding; "
+                          f"its options are {', '.join(sorted(allowed))}")
     return cls(workspace, **options)
 
 

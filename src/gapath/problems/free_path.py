@@ -30,8 +30,10 @@ class FreePathProblem(Problem):
     objectives : names among ``length``, ``vulnerability``, ``smoothness``
         and, with ``costmap``, its layer objectives (a sequence or a
         comma-separated string).
-    encoding : ``"via"`` (default: via points) or ``"field"`` (cost field),
-        see :data:`gapath.encodings.free.FREE_ENCODINGS`.
+    encoding : ``"field"`` (default: a coarse cost field decoded by one
+        search) or ``"via"`` (via points joined by weighted segments), see
+        :data:`gapath.encodings.free.FREE_ENCODINGS` and
+        ``docs/results/free_paths.md`` for why the field is the default.
     constraints : ``"penalty"`` or ``"constraint"``, as for
         :class:`~gapath.problems.GridPathProblem`. Every genome of a free
         encoding decodes to a feasible path, so neither ever applies; the
@@ -62,7 +64,7 @@ class FreePathProblem(Problem):
     >>> import numpy as np
     >>> from gapath import Workspace
     >>> occ = np.zeros((8, 8), bool); occ[2:8, 3] = True
-    >>> problem = FreePathProblem(Workspace(occ), n_via=2)
+    >>> problem = FreePathProblem(Workspace(occ), encoding="via", n_via=2)
     >>> problem.n_var, problem.n_obj
     (7, 2)
     >>> out = problem.evaluate(np.full((1, 7), 0.5), return_as_dictionary=True)
@@ -195,7 +197,7 @@ def path_problem(workspace, objectives=("length", "vulnerability"), *, paths="mo
     """The path problem over the path set ``paths``: ``"monotone"``
     (:class:`~gapath.problems.GridPathProblem`, default encoding
     ``"integer"``) or ``"free"`` (:class:`FreePathProblem`, default encoding
-    ``"via"``).
+    ``"field"``).
 
     Raises
     ------

@@ -55,7 +55,8 @@ def free_seed_genomes(problem, source: str = "weighted", n_weights: int = 17,
 
 class FreeSampling(Sampling):
     """Initial population of a free-path problem: planner paths, then random
-    genomes, all decoding to distinct paths.
+    genomes, all decoding to distinct paths (fewer than asked when 100
+    rounds of random genomes find no more distinct paths: a tiny map).
 
     Parameters
     ----------
@@ -95,7 +96,7 @@ class FreeSampling(Sampling):
             missing = n_samples - len(X)
             if missing <= 0:
                 break
-            R = random_state.random((2 * missing, problem.n_var))
+            R = random_state.random((max(2 * missing, 50), problem.n_var))
             keys = problem.path_keys(R)
             R = R[~duplicate_mask(keys, problem.path_keys(X) if len(X) else None)
                   & ~duplicate_mask(keys)][:missing]
