@@ -75,8 +75,8 @@ def default_n_via(shape) -> int:
 def default_field_shape(shape) -> tuple[int, int]:
     """Default control grid ``(gy, gx)`` of the cost field for ``shape``."""
     h, w = shape
-    return (min(int(np.clip(round(h / 6), 3, 12)), max(h, 2)),
-            min(int(np.clip(round(w / 6), 3, 12)), max(w, 2)))
+    return (min(int(np.clip(round(h / 6), 4, 12)), max(h, 2)),
+            min(int(np.clip(round(w / 6), 4, 12)), max(w, 2)))
 
 
 def _check_int(value, name: str, lo: int) -> int:
