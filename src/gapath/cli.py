@@ -72,8 +72,9 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
     p.add_argument("--objectives", default="length,vulnerability",
                    help="comma-separated objectives among length, vulnerability, smoothness "
                         "(default: %(default)s)")
-    p.add_argument("--encoding", default="integer",
-                   help="genome encoding: integer, binary, mixed or absolute (default: %(default)s)")
+    p.add_argument("--encoding", default=None,
+                   help="genome encoding: integer, binary, mixed or absolute for monotone paths "
+                        "(default integer); field or via for free paths (default field)")
     p.add_argument("--constraints", choices=("penalty", "constraint"), default=None,
                    help="obstacle handling (default: penalty; constraint for one objective)")
     p.add_argument("--sbx-eta", type=float, default=None,
@@ -129,6 +130,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_map_arguments(p)
     _add_run_options(p, pop=500, gen=500, out="gapath-out")
+    p.add_argument("--paths", choices=("free", "monotone"), default="free",
+                   help="path set: any simple 8-connected path (free) or Ahmed & Deb's "
+                        "column-monotone paths (monotone) (default: %(default)s)")
     p.set_defaults(func=_solve)
 
     d = sub.add_parser("demo", help="the bundled scenario with Ahmed & Deb's settings")
@@ -198,7 +202,7 @@ def _run(args, workspace) -> int:
                   penalty=args.penalty, pop_size=args.pop, n_gen=args.gen,
                   tiebreak=None if args.tiebreak == "none" else args.tiebreak,
                   sbx_eta=args.sbx_eta, seed_from=args.seed_from, engine=args.engine,
-                  progress=not args.quiet)
+                  progress=not args.quiet, paths=getattr(args, "paths", "monotone"))
     out_dir = Path(args.out)
     reference = _reference(args, workspace)
     if args.runs != 1:

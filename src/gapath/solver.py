@@ -77,7 +77,7 @@ def objective_mode(objectives, constraints=None, sbx_eta=None, tiebreak="smoothn
                 tiebreak=tiebreak)
 
 
-def solve(workspace, *, objectives=("length", "vulnerability"), encoding="integer",
+def solve(workspace, *, objectives=("length", "vulnerability"), encoding=None, paths="monotone",
           constraints=None, penalty=1000.0, pop_size=500, n_gen=500, seed=1,
           tiebreak="smoothness", sbx_eta=None, seed_from="weighted", engine="fast",
           progress=False, callback=None) -> SolveResult:
@@ -87,8 +87,15 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     ----------
     workspace : :class:`gapath.Workspace`.
     objectives, encoding, constraints, penalty : see
-        :class:`gapath.problems.GridPathProblem`; ``constraints`` defaults
-        by objective mode (:func:`objective_mode`).
+        :class:`gapath.problems.GridPathProblem` (``paths="monotone"``,
+        encoding default ``"integer"``) and
+        :class:`gapath.problems.FreePathProblem` (``paths="free"``, encoding
+        default ``"field"``); ``constraints`` defaults by objective mode
+        (:func:`objective_mode`).
+    paths : ``"monotone"`` (default: Ahmed & Deb's column-monotone paths) or
+        ``"free"`` (any simple 8-connected path); seeds from
+        :class:`gapath.operators.sampling.free_sampling.FreeSampling` for
+        free paths (``"astar"`` seeds as ``"weighted"``).
     pop_size, n_gen : population size and generations (seeds: 500 x 500).
     seed : random seed; the same seed gives the same front, bit for bit.
     tiebreak : ``"smoothness"`` or ``None`` (see :func:`gapath.algorithms.paper_nsga2`).
@@ -122,19 +129,28 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding="intege
     seed = int(seed)
     mode = objective_mode(objectives, constraints, sbx_eta, tiebreak)
     constraints, sbx_eta = mode["constraints"], mode["sbx_eta"]
-    problem = GridPathProblem(workspace, objectives=objectives, encoding=encoding,
-                              constraints=constraints, penalty=penalty)
+    from gapath.problems.free_path import path_problem
+
+    problem = path_problem(workspace, objectives, paths=paths, encoding=encoding,
+                           constraints=constraints, penalty=penalty)
+    encoding = problem.encoding.name
+    if paths == "free":
+        from gapath.operators.sampling.free_sampling import FreeSampling
+
+        sampling = FreeSampling("weighted" if seed_from == "astar" else seed_from)
+    else:
+        sampling = None if seed_from == "none" else PlannerSampling(seed_from)
     if engine not in ENGINES:
         raise ConfigError(f"unknown engine {engine!r}; expected one of {', '.join(ENGINES)}")
     algorithm = ENGINES[engine](pop_size, encoding=encoding, tiebreak=tiebreak, sbx_eta=sbx_eta,
-                                sampling=None if seed_from == "none" else PlannerSampling(seed_from))
+                                sampling=sampling)
     bar = ProgressBar(n_gen, disable=not progress)
     callbacks = Callbacks(bar, callback)
 
     settings = dict(map=workspace.name, shape=list(workspace.shape), start=list(workspace.start),
                     goal=list(workspace.goal), cell_size=workspace.cell_size,
                     corner_cutting=workspace.corner_cutting, objectives=list(problem.objectives),
-                    encoding=encoding, constraints=constraints, penalty=problem.penalty,
+                    paths=paths, encoding=encoding, constraints=constraints, penalty=problem.penalty,
                     pop_size=pop_size, n_gen=n_gen, seed=seed, tiebreak=tiebreak, sbx_eta=sbx_eta,
                     seed_from=seed_from, engine=engine,
                     algorithm="NSGA-II (Ahmed & Deb 2013 settings)")

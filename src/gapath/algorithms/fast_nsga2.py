@@ -706,6 +706,9 @@ class FastNSGA2(Algorithm):
     def _keys(self, X):
         """Decoded column profiles of ``X`` (the identity of each path) and
         their hashes."""
+        if hasattr(self.problem, "path_keys"):              # free paths: identity rows
+            K = np.ascontiguousarray(self.problem.path_keys(X), dtype=np.int64)
+            return K, row_hashes(K)
         entries, exits = self.problem.encoding.decode(X)
         return profile_keys(np.asarray(entries, np.int64), np.asarray(exits, np.int64))
 

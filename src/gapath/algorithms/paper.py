@@ -118,7 +118,9 @@ def paper_nsga2(pop_size: int = 500, *, encoding: str = "integer",
         raise ConfigError(f"pop_size must be an integer >= 2, got {pop_size!r}")
     if tiebreak not in ("smoothness", None):
         raise ConfigError(f"tiebreak must be 'smoothness' or None, got {tiebreak!r}")
-    if encoding not in ENCODINGS:
+    from gapath.encodings.free import FREE_ENCODINGS
+
+    if encoding not in ENCODINGS and encoding not in FREE_ENCODINGS:
         raise ConfigError(f"unknown encoding {encoding!r}; expected one of {', '.join(ENCODINGS)}")
     ops = default_operators(encoding, sbx_prob=sbx_prob, sbx_eta=sbx_eta, pm_eta=pm_eta,
                             pm_prob_var=pm_prob_var)

@@ -65,7 +65,15 @@ def default_operators(encoding_name: str, *, sbx_prob: float = 0.9, sbx_eta: flo
                     crossover=MixedCrossover(prob=sbx_prob, eta=sbx_eta),
                     mutation=MixedMutation(eta=pm_eta, prob_var=pm_prob_var))
     from gapath.encodings import ENCODINGS
+    from gapath.encodings.free import FREE_ENCODINGS
 
+    if encoding_name in FREE_ENCODINGS:     # real genes in [0, 1]: pymoo's SBX and PM
+        from pymoo.operators.crossover.sbx import SBX
+        from pymoo.operators.mutation.pm import PM
+        from pymoo.operators.sampling.rnd import FloatRandomSampling
+
+        return dict(sampling=FloatRandomSampling(), crossover=SBX(prob=sbx_prob, eta=sbx_eta),
+                    mutation=PM(eta=pm_eta, prob_var=pm_prob_var))
     raise ConfigError(f"unknown encoding {encoding_name!r}; expected one of {', '.join(ENCODINGS)}")
 
 

@@ -64,6 +64,8 @@ class PathDuplicateElimination(DuplicateElimination):
         X = column(pop, "X")
         if self.problem is None:
             return np.asarray(X)
+        if hasattr(self.problem, "path_keys"):              # free paths: identity rows
+            return self.problem.path_keys(X)
         entries, exits = self.problem.encoding.decode(X)
         return np.concatenate([entries, exits], axis=1)
 

@@ -1,0 +1,182 @@
+"""Free-path GA against the exact free front, per encoding (issue 14).
+
+For each MovingAI map and each of its ``--queries`` longest ``.scen`` queries
+(by optimal length; MovingAI convention ``corner_cutting=False``), the exact
+free front (:func:`gapath.planners.exact.free_front`, objectives length and
+vulnerability) is computed, then one GA run per encoding and seeding:
+:class:`gapath.algorithms.FastNSGA2` on a
+:class:`gapath.problems.FreePathProblem`, population ``--pop`` for ``--gen``
+generations, seed ``--seed``, run as ``gapath solve --paths free`` runs it
+(:func:`gapath.solver.solve`: FastNSGA2, initial population from
+:class:`gapath.operators.sampling.free_sampling.FreeSampling`, ``weighted``:
+weighted-sum A* seeds, ``none``: all random; the smoothness tie-break with
+two objectives).
+
+Per run one JSON line: map, query, encoding, seeding, exact front size and
+seconds, GA front size, ``hv_ratio`` (SPEC normalisation), ``coverage``
+(share of exact points matched within the tolerance), GA wall seconds,
+seconds per generation, the HV ratio after generations 1, 10, 25, 50, 100,
+200 (``hv_at_gen``), the generation and seconds at which it first reached
+0.99 and 0.999, and the decode+evaluate throughput (paths per second
+over ``--pop * 5`` random genomes, cache cold). Wall-clock times on a shared
+machine: noisy.
+
+Usage::
+
+    python benchmarks/bench_free_paths.py [--maps room-32-32-4,...] [--queries 1]
+        [--encodings via,field] [--seed-from weighted,none] [--pop 200] [--gen 200]
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+
+from gapath.convergence import HypervolumeRatioCallback
+from gapath.loaders import load_movingai, load_scenarios
+from gapath.metrics import coverage, hv_ratio
+from gapath.planners.exact import free_front
+from gapath.problems import FreePathProblem
+from gapath.solver import solve
+
+ROOT = Path(__file__).resolve().parents[1]
+MAPS = ("room-32-32-4", "maze-32-32-2", "random-32-32-20", "random-64-64-10")
+
+
+def data_dir(arg=None) -> Path:
+    if arg:
+        return Path(arg)
+    env = os.environ.get("GAPATH_SHARED_DATA")
+    base = Path(env) if env else ROOT.parent / "shared" / "data"
+    return base / "movingai" / "mapf"
+
+
+def long_queries(folder: Path, name: str, n: int):
+    """The ``n`` longest queries of the map's scenario file (distinct pairs)."""
+    scen = sorted(load_scenarios(folder / f"{name}-random-1.scen"), key=lambda s: -s.optimal)
+    out, seen = [], set()
+    for s in scen:
+        if (s.start, s.goal) not in seen:
+            seen.add((s.start, s.goal))
+            out.append(s)
+        if len(out) == n:
+            break
+    return out
+
+
+def throughput(problem, n: int, seed: int) -> float:
+    X = np.random.default_rng(seed).random((n, problem.n_var))
+    problem.encoding._cache.clear()
+    t0 = time.perf_counter()
+    problem.evaluate(X, return_as_dictionary=True)
+    return n / (time.perf_counter() - t0)
+
+
+class _Timed(HypervolumeRatioCallback):
+    """The HV ratio every generation, with the wall time since the start."""
+
+    def __init__(self, reference):
+        super().__init__(reference)
+        self.t0 = time.perf_counter()
+        self.seconds = []
+
+    def notify(self, algorithm):
+        super().notify(algorithm)
+        self.seconds.append(time.perf_counter() - self.t0)
+
+
+def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
+    problem = FreePathProblem(ws, objectives, encoding=encoding, **options)
+    rate = throughput(problem, 5 * pop, seed)
+    tracker = _Timed(ref)
+    res = solve(ws, objectives=objectives, paths="free", encoding=encoding, pop_size=pop,
+                n_gen=gen, seed=seed, seed_from=seed_from, callback=tracker,
+                tiebreak="smoothness" if len(objectives) == 2 else None)
+    front = res.front
+    hist = tracker.history
+    checkpoints = {str(g): round(hist[g - 1][2], 6) for g in (1, 10, 25, 50, 100, 200, 500)
+                   if g <= len(hist)}
+
+    def reach(level):
+        for (g, _, h), t in zip(hist, tracker.seconds):
+            if h >= level:
+                return [g, round(t, 3)]
+        return None
+
+    return dict(encoding=encoding, n_var=problem.n_var, seed_from=seed_from, pop=pop, gen=gen,
+                seed=seed, ga_size=len(front), hv_ratio=hv_ratio(front.F, ref.F),
+                coverage=coverage(front.F, ref.F), ga_seconds=res.seconds,
+                seconds_per_gen=res.seconds / gen, paths_per_second=rate, n_eval=res.n_eval,
+                hv_at_gen=checkpoints, gen_seconds_to_099=reach(0.99),
+                gen_seconds_to_0999=reach(0.999))
+
+
+def summary(path) -> str:
+    """A Markdown table of the JSON lines in ``path`` (one row per run)."""
+    rows = ["| map | query | objectives | encoding | seeds | exact points | GA points | HV ratio "
+            "| coverage | HV at gen 1 / 10 / 50 | s/gen | paths/s |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for line in open(path):
+        d = json.loads(line)
+        h = d.get("hv_at_gen", {})
+        at = " / ".join(f"{h[g]:.4f}" if g in h else "-" for g in ("1", "10", "50"))
+        rows.append(f"| {d['map']} | {d['query']} | {len(d.get('objectives', [0, 0]))} "
+                    f"| {d['encoding']} | {d['seed_from']} | {d['exact_size']} | {d['ga_size']} "
+                    f"| {d['hv_ratio']:.6f} | {d['coverage']:.3f} | {at} "
+                    f"| {d['seconds_per_gen']:.3f} | {d['paths_per_second']:.0f} |")
+    return "\n".join(rows)
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--summary", metavar="JSONL", help="print a Markdown table of a results file "
+                                                      "and exit")
+    ap.add_argument("--maps", default=",".join(MAPS))
+    ap.add_argument("--queries", type=int, default=1)
+    ap.add_argument("--encodings", default="via,field")
+    ap.add_argument("--seed-from", default="weighted,none")
+    ap.add_argument("--pop", type=int, default=200)
+    ap.add_argument("--gen", type=int, default=200)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--objectives", default="length,vulnerability")
+    ap.add_argument("--n-via", type=int, default=None)
+    ap.add_argument("--data", default=None)
+    ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
+    a = ap.parse_args(argv)
+    if a.summary:
+        print(summary(a.summary))
+        return 0
+    folder = data_dir(a.data)
+    out = open(a.out, "a") if a.out else None
+    options = {} if a.n_via is None else {"n_via": a.n_via}
+    for name in a.maps.split(","):
+        for q, sc in enumerate(long_queries(folder, name, a.queries)):
+            ws = load_movingai(folder / f"{name}.map", start=sc.start, goal=sc.goal,
+                               corner_cutting=False)
+            t0 = time.perf_counter()
+            objectives = tuple(a.objectives.split(","))
+            ref = free_front(ws, objectives)
+            exact_s = time.perf_counter() - t0
+            for enc in a.encodings.split(","):
+                for sf in a.seed_from.split(","):
+                    opts = options if enc == "via" else {}
+                    rec = dict(map=name, query=q, objectives=list(objectives), start=list(sc.start), goal=list(sc.goal),
+                               optimal=sc.optimal, exact_size=len(ref), exact_seconds=exact_s)
+                    rec.update(run(ws, ref, objectives, enc, sf, a.pop, a.gen, a.seed, opts))
+                    line = json.dumps(rec)
+                    print(line, flush=True)
+                    if out:
+                        out.write(line + "\n")
+                        out.flush()
+    if out:
+        out.close()
+
+
+if __name__ == "__main__":
+    sys.exit(main())

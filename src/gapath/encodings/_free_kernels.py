@@ -1,0 +1,547 @@
+"""numba kernels of the free-path encodings (:mod:`gapath.encodings.free`).
+
+Everything works on the raveled grid (cell ``v = row * W + col``) and on a
+whole population at once:
+
+* :func:`component` -- the cells reachable from the start under the move
+  rule (8-connected, corner rule of the workspace);
+* :func:`snap_table` -- for every cell, the nearest cell of that component
+  (multi-source breadth-first search), so any point of the map snaps to a
+  reachable free cell;
+* :func:`_segment` -- one A* search between two cells of the component with
+  step cost ``a * step * m(v) + b * extra[v]`` (``m`` the bilinear cost field
+  of the field encoding, 1 for the via-point encoding);
+* :func:`decode_via` / :func:`decode_field` -- a population of genomes to
+  simple paths (flat cell indices with offsets) and their identity keys;
+* :func:`to_padded` -- flat paths to the padded ``(N, L, 2)`` cell arrays of
+  :func:`gapath.objectives.evaluate_paths`.
+
+Loops are cut while segments are joined: when a segment enters a cell the
+path already holds, the path is cut back to that cell, so every decoded path
+is simple; every step is a move of the search, so it respects the corner
+rule.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+
+import numba
+import numpy as np
+
+from gapath.planners._grid import DC, DR, NOT_HELD, STEP, move_mask, octile, open_decrease, \
+    open_pop, open_push
+
+_UNSEEN = 0
+_CLOSED = -1
+
+
+@numba.njit(cache=True)
+def component(occ, s, corner_cutting):
+    """Boolean mask ``(H*W,)`` of the cells reachable from cell ``s`` of the
+    ``(H, W)`` grid ``occ`` (the move rule is symmetric, so these are also
+    the cells from which ``s`` is reachable)."""
+    h, w = occ.shape
+    flat = occ.ravel()
+    seen = np.zeros(h * w, np.bool_)
+    if flat[s]:
+        return seen
+    queue = np.empty(h * w, np.int64)
+    queue[0] = s
+    seen[s] = True
+    head, tail = 0, 1
+    while head < tail:
+        u = queue[head]
+        head += 1
+        ur = u // w
+        uc = u - ur * w
+        moves = move_mask(flat, h, w, ur, uc, corner_cutting)
+        for k in range(8):
+            if (moves >> k) & 1:
+                v = u + DR[k] * w + DC[k]
+                if not seen[v]:
+                    seen[v] = True
+                    queue[tail] = v
+                    tail += 1
+    return seen
+
+
+@numba.njit(cache=True)
+def snap_table(comp, h, w):
+    """For every cell, the nearest cell of the component ``comp`` (breadth
+    first over 8-neighbours from all component cells at once; ties go to the
+    component cell met first in row-major order)."""
+    n = h * w
+    snap = np.full(n, -1, np.int64)
+    queue = np.empty(n, np.int64)
+    tail = 0
+    for v in range(n):
+        if comp[v]:
+            snap[v] = v
+            queue[tail] = v
+            tail += 1
+    head = 0
+    while head < tail:
+        u = queue[head]
+        head += 1
+        ur = u // w
+        uc = u - ur * w
+        for k in range(8):
+            r = ur + DR[k]
+            c = uc + DC[k]
+            if 0 <= r < h and 0 <= c < w:
+                v = r * w + c
+                if snap[v] < 0:
+                    snap[v] = snap[u]
+                    queue[tail] = v
+                    tail += 1
+    return snap
+
+
+@numba.njit(cache=True)
+def goal_heuristics(occ, extra, t, corner_cutting, forward=False):
+    """Exact costs-to-go to cell ``t`` by two backward Dijkstra searches
+    (moves are symmetric): ``hlen[v]`` the shortest length from ``v`` to
+    ``t`` (cell units) and ``hext[v]`` the smallest sum of ``extra`` over the
+    cells after ``v`` up to ``t`` included; ``inf`` where ``t`` is
+    unreachable. With them ``a * mmin * hlen + b * hext`` is a consistent
+    heuristic of the decoders' step cost towards ``t``.
+
+    With ``forward`` the costs from ``t`` instead (the sum of ``extra`` over
+    the cells after ``t`` up to ``v``): the landmark bounds of searches
+    between two other cells (see :func:`_segment`)."""
+    h, w = occ.shape
+    flat = occ.ravel()
+    n = h * w
+    out = np.full((2, n), np.inf)
+    for which in range(2):
+        dist = out[which]
+        dist[t] = 0.0
+        heap = [(0.0, t)]
+        while len(heap) > 0:
+            d, u = heapq.heappop(heap)
+            if d > dist[u]:
+                continue
+            ur = u // w
+            uc = u - ur * w
+            moves = move_mask(flat, h, w, ur, uc, corner_cutting)
+            for k in range(8):
+                if (moves >> k) & 1:
+                    v = u + DR[k] * w + DC[k]
+                    if which == 0:
+                        nd = d + STEP[k]
+                    elif forward:
+                        nd = d + extra[v]                # the step u -> v enters v
+                    else:
+                        nd = d + extra[u]                # the step v -> u enters u
+                    if nd < dist[v]:
+                        dist[v] = nd
+                        heapq.heappush(heap, (nd, v))
+    return out[0].copy(), out[1].copy()
+
+
+@numba.njit(cache=True, inline="always")
+def _field_value(genes, gy, gx, h, w, r, c):
+    """Bilinear interpolation of the ``gy x gx`` control genes at cell (r, c);
+    control point (i, j) sits at row ``i * (h - 1) / (gy - 1)``."""
+    fr = r * (gy - 1) / max(h - 1, 1)
+    fc = c * (gx - 1) / max(w - 1, 1)
+    i0 = min(int(fr), gy - 2)
+    j0 = min(int(fc), gx - 2)
+    ar = fr - i0
+    ac = fc - j0
+    g00 = genes[i0 * gx + j0]
+    g01 = genes[i0 * gx + j0 + 1]
+    g10 = genes[(i0 + 1) * gx + j0]
+    g11 = genes[(i0 + 1) * gx + j0 + 1]
+    return (1.0 - ar) * ((1.0 - ac) * g00 + ac * g01) + ar * ((1.0 - ac) * g10 + ac * g11)
+
+
+@numba.njit(cache=True, inline="always")
+def _landmark_h(v, t, tr, tc, w, ha, b, pmin, hlen, hext, flen, fext):
+    vr = v // w
+    vc = v - vr * w
+    hl = max(octile(vr, vc, tr, tc), hlen[v] - hlen[t], flen[t] - flen[v])
+    he = max(pmin * max(abs(vr - tr), abs(vc - tc)), hext[v] - hext[t], fext[t] - fext[v])
+    return ha * hl + b * he
+
+
+@numba.njit(cache=True)
+def _segment(occ, h, w, extra, s, t, a, b, corner_cutting, fgenes, gy, gx, beta, mmin,
+             hlen, hext, goal_h, pmin, flen, fext, state, g, came, heap, touched, mcache, buf):
+    """A* from cell ``s`` to cell ``t``; a step into ``v`` by move ``k`` costs
+    ``a * STEP[k] * m(v) + b * extra[v]``, ``m(v) = exp(beta * (2 f(v) - 1))``
+    for the bilinear field ``f`` of ``fgenes`` (``gy > 0``), else 1.
+
+    Heuristic: when ``goal_h`` (``t`` is the goal) ``a * mmin * hlen[v] + b *
+    hext[v]``, the exact costs-to-go of each part (:func:`goal_heuristics`);
+    otherwise ``a * mmin * hl + b * he`` with ``hl`` the largest of the octile
+    distance and the landmark bounds from the goal and the start (triangle
+    inequality: ``d(v, t) >= hlen[v] - hlen[t]`` and ``>= flen[t] - flen[v]``,
+    ``flen``/``fext`` the costs from the start) and ``he`` the same for the
+    cell cost, at least ``pmin`` (a floor of ``extra``) per step. All are
+    consistent (``mmin`` bounds ``m``).
+
+    Writes the cells ``s .. t`` into ``buf``; returns their number (0 when
+    ``t`` is unreachable). Scratch arrays as in :mod:`gapath.planners.astar`
+    (``state`` all zero on entry and on return)."""
+    offset = np.empty(8, np.int64)
+    for k in range(8):
+        offset[k] = DR[k] * w + DC[k]
+    tr = t // w
+    tc = t - tr * w
+    ha = a * mmin
+    g[s] = 0.0
+    touched[0] = s
+    n_touched = 1
+    if goal_h:
+        hs = ha * hlen[s] + b * hext[s]
+    else:
+        hs = _landmark_h(s, t, tr, tc, w, ha, b, pmin, hlen, hext, flen, fext)
+    size, held = open_push(heap, state, 0, NOT_HELD, hs, hs, s)
+    reached = False
+    use_field = gy > 0
+    while True:
+        u, size, held = open_pop(heap, state, size, held)
+        if u < 0:
+            break
+        state[u] = _CLOSED
+        if u == t:
+            reached = True
+            break
+        ur = u // w
+        uc = u - ur * w
+        moves = move_mask(occ, h, w, ur, uc, corner_cutting)
+        gu = g[u]
+        for k in range(8):
+            if not (moves >> k) & 1:
+                continue
+            v = u + offset[k]
+            sv = state[v]
+            if sv == _CLOSED:
+                continue
+            vr = ur + DR[k]
+            vc = uc + DC[k]
+            if use_field:
+                if sv == _UNSEEN:
+                    mcache[v] = math.exp(beta * (2.0 * _field_value(fgenes, gy, gx, h, w, vr, vc)
+                                                 - 1.0))
+                step = a * STEP[k] * mcache[v] + b * extra[v]
+            else:
+                step = a * STEP[k] + b * extra[v]
+            ng = gu + step
+            if sv != _UNSEEN and ng >= g[v]:
+                continue
+            g[v] = ng
+            came[v] = k
+            if goal_h:
+                hv = ha * hlen[v] + b * hext[v]
+            else:
+                hv = _landmark_h(v, t, tr, tc, w, ha, b, pmin, hlen, hext, flen, fext)
+            if sv == _UNSEEN:
+                touched[n_touched] = v
+                n_touched += 1
+                size, held = open_push(heap, state, size, held, ng + hv, hv, v)
+            else:
+                held = open_decrease(heap, state, held, ng + hv, hv, v)
+    for i in range(n_touched):
+        state[touched[i]] = _UNSEEN
+    if not reached:
+        return 0
+    m = 1
+    v = t
+    while v != s:
+        v -= offset[came[v]]
+        m += 1
+    v = t
+    for i in range(m - 1, -1, -1):
+        buf[i] = v
+        if i > 0:
+            v -= offset[came[v]]
+    return m
+
+
+@numba.njit(cache=True, inline="always")
+def _weights(gene, lam_lo, lam_hi):
+    """Length and cell-cost weights ``(a, b)``, ``a + b = 1``, of a weight
+    gene in [0, 1]: the cell cost counts ``lam = 10 ** (lam_lo + (lam_hi -
+    lam_lo) * gene)`` times as much as the length."""
+    x = min(max(gene, 0.0), 1.0)
+    lam = 10.0 ** (lam_lo + (lam_hi - lam_lo) * x)
+    return 1.0 / (1.0 + lam), lam / (1.0 + lam)
+
+
+@numba.njit(cache=True, inline="always")
+def _append(c, cur, pos, m):
+    """Append cell ``c`` to the simple path ``cur[:m]``, cutting the loop when
+    ``c`` is already on it; return the new length."""
+    p = pos[c]
+    if p >= 0:
+        for q in range(p + 1, m):
+            pos[cur[q]] = -1
+        return p + 1
+    pos[c] = m
+    cur[m] = c
+    return m + 1
+
+
+@numba.njit(cache=True)
+def _store(cur, m, i, flat, offsets, keys):
+    """Copy path ``cur[:m]`` as individual ``i`` into ``flat`` (grown when
+    full) and its identity key (length and two 64-bit hashes) into ``keys``."""
+    start = offsets[i]
+    if start + m > flat.shape[0]:
+        grown = np.empty(max(2 * flat.shape[0], start + m), np.int64)
+        grown[:start] = flat[:start]
+        flat = grown
+    h1 = np.uint64(1469598103934665603)
+    h2 = np.uint64(7)
+    for j in range(m):
+        c = np.uint64(cur[j] + 1)
+        flat[start + j] = cur[j]
+        h1 = (h1 ^ c) * np.uint64(1099511628211)
+        h2 = h2 * np.uint64(6364136223846793005) + c * np.uint64(1442695040888963407)
+    offsets[i + 1] = start + m
+    keys[i, 0] = m
+    keys[i, 1] = np.int64(h1)
+    keys[i, 2] = np.int64(h2)
+    return flat
+
+
+@numba.njit(cache=True)
+def _scratch(n):
+    return (np.zeros(n, np.int64), np.empty(n), np.empty(n, np.uint8), np.empty(3 * n),
+            np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64))
+
+
+@numba.njit(cache=True)
+def _via_cell(u, v, h, w, snap):
+    r = min(max(int(u * h), 0), h - 1)
+    c = min(max(int(v * w), 0), w - 1)
+    return snap[r * w + c]
+
+
+@numba.njit(cache=True)
+def decode_via(X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext,
+               pmin, flen, fext):
+    """Paths of via-point genomes ``X`` (N, 3 K + 1): genes ``2k, 2k + 1``
+    place via point ``k`` (row and column fractions, snapped to the start's
+    component), genes ``2K .. 3K`` weight the ``K + 1`` segments.
+
+    Returns ``(flat, offsets, keys)``: the cells of path ``i`` are
+    ``flat[offsets[i]:offsets[i + 1]]`` (row-major indices), ``keys[i]`` its
+    identity (length, two hashes)."""
+    h, w = occ.shape
+    flat_occ = occ.ravel()
+    n = X.shape[0]
+    state, g, came, heap, touched, mcache, buf = _scratch(h * w)
+    pos = np.full(h * w, -1, np.int64)
+    cur = np.empty(h * w, np.int64)
+    flat = np.empty(max(16, n * (h + w)), np.int64)
+    offsets = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    dummy = np.zeros(1)
+    for i in range(n):
+        pos[s] = 0
+        cur[0] = s
+        m = 1
+        prev = s
+        for k in range(n_via + 1):
+            nxt = t if k == n_via else _via_cell(X[i, 2 * k], X[i, 2 * k + 1], h, w, snap)
+            if nxt == prev:
+                continue
+            a, b = _weights(X[i, 2 * n_via + k], lam_lo, lam_hi)
+            cnt = _segment(flat_occ, h, w, extra, prev, nxt, a, b, corner_cutting, dummy, 0, 0,
+                           0.0, 1.0, hlen, hext, nxt == t, pmin, flen, fext, state, g, came, heap, touched,
+                           mcache, buf)
+            for j in range(1, cnt):
+                m = _append(buf[j], cur, pos, m)
+            prev = nxt
+        for j in range(m):
+            pos[cur[j]] = -1
+        flat = _store(cur, m, i, flat, offsets, keys)
+    return flat[:offsets[n]], offsets, keys
+
+
+@numba.njit(cache=True)
+def decode_field(X, gy, gx, beta, occ, extra, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext):
+    """Paths of cost-field genomes ``X`` (N, gy * gx + 1): genes ``0 ..
+    gy * gx - 1`` are the control points of the cost multiplier field (row
+    major), the last gene weights the cell cost against the length. One A*
+    search per genome. Returns ``(flat, offsets, keys)`` as :func:`decode_via`."""
+    h, w = occ.shape
+    flat_occ = occ.ravel()
+    n = X.shape[0]
+    nf = gy * gx
+    state, g, came, heap, touched, mcache, buf = _scratch(h * w)
+    flat = np.empty(max(16, n * (h + w)), np.int64)
+    offsets = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    genes = np.empty(nf)
+    for i in range(n):
+        gmin = 1.0
+        for j in range(nf):
+            genes[j] = min(max(X[i, j], 0.0), 1.0)
+            gmin = min(gmin, genes[j])
+        a, b = _weights(X[i, nf], lam_lo, lam_hi)
+        mmin = math.exp(beta * (2.0 * gmin - 1.0))
+        cnt = _segment(flat_occ, h, w, extra, s, t, a, b, corner_cutting, genes, gy, gx, beta,
+                       mmin, hlen, hext, True, 0.0, hlen, hext, state, g, came, heap, touched, mcache, buf)
+        flat = _store(buf, cnt, i, flat, offsets, keys)
+    return flat[:offsets[n]], offsets, keys
+
+
+@numba.njit(cache=True)
+def weighted_paths(occ, extra, s, t, corner_cutting, genes, lam_lo, lam_hi, hlen, hext):
+    """The single-search paths ``s -> t`` for each weight gene of ``genes``
+    (the decoders' cost with a neutral field). Returns ``(flat, offsets, keys)``."""
+    h, w = occ.shape
+    flat_occ = occ.ravel()
+    n = genes.shape[0]
+    state, g, came, heap, touched, mcache, buf = _scratch(h * w)
+    flat = np.empty(max(16, n * (h + w)), np.int64)
+    offsets = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    dummy = np.zeros(1)
+    for i in range(n):
+        a, b = _weights(genes[i], lam_lo, lam_hi)
+        cnt = _segment(flat_occ, h, w, extra, s, t, a, b, corner_cutting, dummy, 0, 0, 0.0, 1.0,
+                       hlen, hext, True, 0.0, hlen, hext, state, g, came, heap, touched, mcache,
+                       buf)
+        flat = _store(buf, cnt, i, flat, offsets, keys)
+    return flat[:offsets[n]], offsets, keys
+
+
+@numba.njit(cache=True)
+def fit_segment_weights(cells, offsets, via_idx, occ, extra, corner_cutting, candidates,
+                        lam_lo, lam_hi, t, hlen, hext, pmin, flen, fext):
+    """For each path ``i`` (cells ``cells[offsets[i]:offsets[i+1]]``) and each
+    of its segments between consecutive via indices ``via_idx[i]`` (positions
+    on the path, first 0, last the goal), the candidate weight gene whose
+    segment search reproduces the path's sub-path best: the fewest cells not
+    on the sub-path, ties to the closer length. Returns ``(N, n_seg)``."""
+    h, w = occ.shape
+    flat_occ = occ.ravel()
+    n, n_pts = via_idx.shape
+    n_seg = n_pts - 1
+    state, g, came, heap, touched, mcache, buf = _scratch(h * w)
+    mark = np.zeros(h * w, np.int64)
+    out = np.zeros((n, n_seg))
+    dummy = np.zeros(1)
+    for i in range(n):
+        base = offsets[i]
+        for k in range(n_seg):
+            p0 = via_idx[i, k]
+            p1 = via_idx[i, k + 1]
+            if p1 <= p0:
+                out[i, k] = 0.0
+                continue
+            for j in range(p0, p1 + 1):
+                mark[cells[base + j]] = 1
+            best = -1.0
+            best_miss = 1 << 60
+            best_dl = 1 << 60
+            for q in range(candidates.shape[0]):
+                a, b = _weights(candidates[q], lam_lo, lam_hi)
+                cnt = _segment(flat_occ, h, w, extra, cells[base + p0], cells[base + p1], a, b,
+                               corner_cutting, dummy, 0, 0, 0.0, 1.0, hlen, hext,
+                               cells[base + p1] == t, pmin, flen, fext, state, g, came, heap, touched,
+                               mcache, buf)
+                miss = 0
+                for j in range(cnt):
+                    if mark[buf[j]] == 0:
+                        miss += 1
+                dl = abs(cnt - (p1 - p0 + 1))
+                if miss < best_miss or (miss == best_miss and dl < best_dl):
+                    best_miss = miss
+                    best_dl = dl
+                    best = candidates[q]
+                if best_miss == 0 and best_dl == 0:
+                    break
+            for j in range(p0, p1 + 1):
+                mark[cells[base + j]] = 0
+            out[i, k] = best
+    return out
+
+
+@numba.njit(cache=True)
+def to_padded(flat, offsets, w):
+    """Padded ``(N, L, 2)`` cells (zeros past each length) and lengths of
+    flat paths."""
+    n = offsets.shape[0] - 1
+    lengths = np.empty(n, np.int64)
+    L = 1
+    for i in range(n):
+        lengths[i] = offsets[i + 1] - offsets[i]
+        L = max(L, lengths[i])
+    out = np.zeros((n, L, 2), np.int64)
+    for i in range(n):
+        for j in range(lengths[i]):
+            v = flat[offsets[i] + j]
+            r = v // w
+            out[i, j, 0] = r
+            out[i, j, 1] = v - r * w
+    return out, lengths
+
+
+@numba.njit(cache=True)
+def gather(flat_a, off_a, flat_b, off_b, src, idx):
+    """Flat paths picked row by row: row ``i`` is path ``idx[i]`` of ``a``
+    when ``src[i] == 0``, of ``b`` otherwise."""
+    n = src.shape[0]
+    offsets = np.zeros(n + 1, np.int64)
+    for i in range(n):
+        j = idx[i]
+        m = (off_a[j + 1] - off_a[j]) if src[i] == 0 else (off_b[j + 1] - off_b[j])
+        offsets[i + 1] = offsets[i] + m
+    flat = np.empty(offsets[n], np.int64)
+    for i in range(n):
+        j = idx[i]
+        if src[i] == 0:
+            flat[offsets[i]:offsets[i + 1]] = flat_a[off_a[j]:off_a[j + 1]]
+        else:
+            flat[offsets[i]:offsets[i + 1]] = flat_b[off_b[j]:off_b[j + 1]]
+    return flat, offsets
+
+
+@numba.njit(cache=True)
+def layer_values(paths, lengths, layers, agg, solar_angle0, solar_rate):
+    """Costmap layer objectives of padded paths: for ``agg[j] == 0`` the mean
+    of cell layer ``layers[j]`` over the path's cells, for ``agg[j] == 1`` the
+    solar cost summed over the steps (as :mod:`gapath.costmap` defines it)."""
+    n = paths.shape[0]
+    k = agg.shape[0]
+    out = np.zeros((n, k))
+    for i in range(n):
+        m = lengths[i]
+        for j in range(k):
+            acc = 0.0
+            if agg[j] == 0:
+                for q in range(m):
+                    acc += layers[j, paths[i, q, 0], paths[i, q, 1]]
+                out[i, j] = acc / m
+            else:
+                for q in range(1, m):
+                    dr = paths[i, q, 0] - paths[i, q - 1, 0]
+                    dc = paths[i, q, 1] - paths[i, q - 1, 1]
+                    norm = math.sqrt(dr * dr + dc * dc)
+                    th = solar_angle0 + solar_rate * (q - 1)
+                    acc += 0.5 * (1.0 + (dc * math.cos(th) - dr * math.sin(th)) / norm)
+                out[i, j] = acc
+    return out
+
+
+@numba.njit(cache=True)
+def row_hash(X):
+    """64-bit hash of every row of the float matrix ``X`` (its bit patterns)."""
+    n, m = X.shape
+    bits = X.view(np.int64)
+    out = np.empty(n, np.int64)
+    for i in range(n):
+        x = np.uint64(1469598103934665603)
+        for j in range(m):
+            x = (x ^ np.uint64(bits[i, j])) * np.uint64(1099511628211)
+            x ^= x >> np.uint64(29)
+        out[i] = np.int64(x)
+    return out
