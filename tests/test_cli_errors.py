@@ -198,17 +198,28 @@ def test_solve_without_a_monotone_path_exits_1_with_the_reason(tmp_path, capsys)
     out = tmp_path / "out"
     with warnings.catch_warnings():
         warnings.simplefilter("error")                # no leaked matplotlib legend warning
-        code, _, err = run(capsys, ["solve", m, *BACKTRACK_ARGS, "--pop", 10, "--gen", 3,
-                                    "--reference", "free", "--out", out, "--quiet"])
+        code, _, err = run(capsys, ["solve", m, *BACKTRACK_ARGS, "--paths", "monotone", "--pop",
+                                    10, "--gen", 3, "--reference", "free", "--out", out, "--quiet"])
     assert code == EXIT_NO_RESULT
     assert err.startswith("gapath: no column-monotone path joins (0, 0) and (0, 4); every route "
-                          "must step back a column -- try `gapath exact ")
+                          "must step back a column -- try `--paths free` (the GA over all simple "
+                          "8-connected paths) or `gapath exact ")
     assert f"{m} --mode free --start 0,0 --goal 0,4`" in err
     summary = strict_json(out / "summary.json")       # the empty front is written, strictly
     assert summary["front_size"] == 0
     assert summary["quality"]["igd_plus"] is None
     assert summary["quality"]["hv_ratio"] == 0.0
     assert (out / "front.png").exists() and (out / "paths.png").exists()
+
+
+def test_solve_finds_free_paths_where_no_monotone_path_exists(tmp_path, capsys):
+    m = write(tmp_path, "back.txt", BACKTRACK)
+    out = tmp_path / "out"
+    code, _, err = run(capsys, ["solve", m, *BACKTRACK_ARGS, "--pop", 10, "--gen", 3,
+                                "--reference", "free", "--out", out, "--quiet"])
+    assert code == 0, err
+    summary = strict_json(out / "summary.json")
+    assert summary["settings"]["paths"] == "free" and summary["front_size"] >= 1
 
 
 def test_exact_monotone_without_path_suggests_free_mode(tmp_path, capsys):

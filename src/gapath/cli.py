@@ -204,6 +204,10 @@ def _run(args, workspace) -> int:
                   sbx_eta=args.sbx_eta, seed_from=args.seed_from, engine=args.engine,
                   progress=not args.quiet, paths=getattr(args, "paths", "monotone"))
     out_dir = Path(args.out)
+    if kwargs["paths"] == "free":          # no path at all: exit 1 with the reason, before the GA
+        why = no_path_error(workspace, monotone=False)
+        if why is not None:
+            raise why
     reference = _reference(args, workspace)
     if args.runs != 1:
         return _multirun(args, workspace, kwargs, out_dir, reference)
@@ -329,7 +333,8 @@ def _exact_free_command(args) -> str:
         cell = getattr(args, flag, None)
         if cell is not None:
             cmd += [f"--{flag}", f"{cell[0]},{cell[1]}"]
-    return "try `" + " ".join(cmd) + "` (the exact front of all 8-connected paths)"
+    return ("try `--paths free` (the GA over all simple 8-connected paths) or `"
+            + " ".join(cmd) + "` (their exact front)")
 
 
 def empty_front_error(workspace, n_gen: int, n_eval: int, runs: int = 1,

@@ -172,7 +172,7 @@ class FreeEncoding:
             raise NoPathError(
                 f"no feasible path from start {workspace.start} to goal {workspace.goal} in "
                 f"{workspace.name!r} ({h}x{w}, 8-connected, corner cutting {rule}; "
-                f"{int(comp.sum())} cells are reachable from the start)")
+                f"{int(comp.sum())} {'cell is' if int(comp.sum()) == 1 else 'cells are'} reachable from the start)")
         self.n_reachable = int(comp.sum())
         self._snap = K.snap_table(comp, h, w)
         if extra is None:
