@@ -603,3 +603,32 @@ def test_engines_auto_is_saved_resolved_and_fast_matches_paper():
         assert p["status"] == f["status"] == "ok" and p["key"] != f["key"]
         assert (p["settings"]["engine"], f["settings"]["engine"]) == ("pymoo", "fast")
         assert p["front"] == f["front"] and p["indicators"] == f["indicators"] and p["n_gen"] == f["n_gen"]
+
+
+def test_spec_paths_setting_runs_free_paths_and_keeps_old_keys(tmp_path):
+    """``settings.paths: free`` runs the GA over free paths (a map without a
+    column-monotone path is solved); a spec without ``paths`` keeps the run
+    keys it had; an encoding of the other path set is refused when read."""
+    from gapath.errors import ConfigError
+    from gapath.experiments.runner import run_one
+    from gapath.experiments.spec import ExperimentSpec, run_key
+
+    base = dict(name="p", maps=[{"file": {"path": str(tmp_path / "back.txt"), "start": [0, 0],
+                                          "goal": [0, 4]}}],
+                settings={"pop_size": 8, "n_gen": 2}, seeds=[1])
+    (tmp_path / "back.txt").write_text("...#.\n##.#.\n...#.\n.###.\n.....\n")  # steps back a column
+    plain = ExperimentSpec.from_dict(base).runs()[0]
+    assert "paths" not in plain["settings"]
+    assert run_key(plain) == run_key(ExperimentSpec.from_dict(dict(base)).runs()[0])
+    free = ExperimentSpec.from_dict({**base, "encodings": ["field"],
+                                     "settings": {**base["settings"], "paths": "free"}}).runs()[0]
+    assert free["settings"]["paths"] == "free" and run_key(free) != run_key(plain)
+    res = run_one(free)
+    assert res["status"] == "ok", res
+    assert res["indicators"]["feasible"] and res["indicators"]["front_size"] >= 1
+    mono = run_one(plain)                    # no column-monotone path on this map
+    assert mono["status"] == "ok" and not mono["indicators"]["feasible"]
+    with pytest.raises(ConfigError, match="describes monotone paths"):
+        ExperimentSpec.from_dict({**base, "settings": {**base["settings"], "paths": "free"}})
+    with pytest.raises(ConfigError, match="expected one of monotone, free"):
+        ExperimentSpec.from_dict({**base, "settings": {**base["settings"], "paths": "any"}})

@@ -164,7 +164,8 @@ def _solve_kwargs(run: dict) -> dict:
     s = dict(run["settings"])
     kwargs = dict(objectives=tuple(s["objectives"]), constraints=s["constraints"],
                   penalty=s["penalty"], pop_size=s["pop_size"], n_gen=s["n_gen"],
-                  tiebreak=s["tiebreak"], sbx_eta=s["sbx_eta"], seed_from=s["seed_from"])
+                  tiebreak=s["tiebreak"], sbx_eta=s["sbx_eta"], seed_from=s["seed_from"],
+                  paths=s.get("paths", "monotone"))
     engine = run.get("engine", "paper")
     if "engine" in inspect.signature(solve).parameters:
         # solve's names: "fast" (FastNSGA2) and "pymoo" (paper_nsga2, pymoo's NSGA2)

@@ -15,13 +15,14 @@ or in a YAML / TOML file (:func:`load_spec`)::
       - {dense: {n: 32, p0: 0.3, seed: 7}}          # gapath.dense_workspace
       - {dense: {n: [16, 32], p0: 1.0, seed: run}}  # seed "run": the run's seed
       - {random: {shape: [32, 32], obstacles: 173, seed: 2013}}  # random_workspace
-    encodings: [integer]              # default [integer]
+    encodings: [integer]              # default [integer]; field or via with paths: free
     engines: [auto]                   # paper (alias pymoo) | fast | auto (default [auto]); alias: algorithms
     settings:                         # fixed gapath.solver.solve settings
       objectives: length,vulnerability   # or a list
       pop_size: 200
       n_gen: 500
       seed_from: none                 # weighted (default) | exact | none
+      paths: monotone                 # monotone (default) | free (any simple 8-connected path)
     grid:                             # axes of the grid: setting -> list of values
       pop_size: [100, 200]
     seeds: {start: 1, count: 100}     # or a list [1, 2, 3], or a count (seeds 1..count)
@@ -44,7 +45,11 @@ The same in TOML::
 Settings (keys of ``settings`` and ``grid``) are those of
 :func:`gapath.solver.solve`: ``objectives``, ``constraints``, ``penalty``,
 ``pop_size``, ``n_gen``, ``tiebreak`` (``smoothness`` or ``none``),
-``sbx_eta`` and ``seed_from``. Missing ones take solve's defaults, and the
+``sbx_eta``, ``seed_from`` and ``paths`` (``monotone``, Ahmed & Deb's
+column-monotone paths, or ``free``; every encoding of the spec must describe
+that path set). Missing ones take solve's defaults (``paths`` is recorded
+only when given, so the keys of runs stored before it existed stay the
+same), and the
 objective mode's defaults (``constraints``, ``sbx_eta``) are resolved, so
 every run records every value it ran with. Map generators accept ``start``,
 ``goal`` and ``corner_cutting`` too. Engines: ``paper`` is
@@ -94,6 +99,11 @@ ENGINES = ("paper", "fast", "auto")
 SETTINGS = dict(objectives=("length", "vulnerability"), constraints=None, penalty=1000.0,
                 pop_size=500, n_gen=500, tiebreak="smoothness", sbx_eta=None,
                 seed_from="weighted")
+
+#: Settings a spec may give that :data:`SETTINGS` does not fill in when they
+#: are absent (so that the keys of runs stored before they existed stay the
+#: same), with their meaning when absent.
+OPTIONAL_SETTINGS = dict(paths="monotone")
 
 #: Per-experiment options and their defaults.
 OPTIONS = dict(stop_at_first_feasible=False, record_first_feasible=False, reference=None)
@@ -427,12 +437,30 @@ def _setting(name: str, value, where: _Where, key: str):
         return None if value is None else _float(value, where, key, lo=0.0)
     choices = {"constraints": (None, "penalty", "constraint"),
                "tiebreak": ("smoothness", None),
-               "seed_from": ("weighted", "exact", "none")}[name]
+               "seed_from": ("weighted", "exact", "none"),
+               "paths": ("monotone", "free")}[name]
     if name == "tiebreak" and value == "none":
         value = None
     if value not in choices:
         raise where.error(key, f"expected one of {', '.join(str(c) for c in choices)}, got {value!r}")
     return value
+
+
+def _check_paths(encodings, settings, axes, where: _Where) -> None:
+    """Every encoding of the spec describes every path set it is run on
+    (``paths``: ``monotone`` for integer, binary, mixed and absolute,
+    ``free`` for field and via)."""
+    from gapath.encodings.free import FREE_ENCODINGS
+
+    path_sets = set(axes.get("paths", [settings.get("paths", OPTIONAL_SETTINGS["paths"])]))
+    for i, e in enumerate(encodings):
+        needs = "free" if e in FREE_ENCODINGS else "monotone"
+        other = path_sets - {needs}
+        if other:
+            raise where.error(f"encodings[{i}]", f"encoding {e!r} describes {needs} paths, but the "
+                                                  f"spec runs it on {other.pop()} paths (settings."
+                                                  f"paths); use field or via for free paths and "
+                                                  f"integer, binary, mixed or absolute for monotone")
 
 
 def _complete_settings(settings: dict) -> dict:
@@ -555,10 +583,11 @@ class ExperimentSpec:
         encodings = []
         for i, e in enumerate(_list(self.encodings, where, "encodings")):
             from gapath.encodings import ENCODINGS
+            from gapath.encodings.free import FREE_ENCODINGS
 
-            if e not in ENCODINGS:
+            if e not in ENCODINGS and e not in FREE_ENCODINGS:
                 raise where.error(f"encodings[{i}]", f"unknown encoding {e!r}; expected one of "
-                                                      f"{', '.join(ENCODINGS)}")
+                                                      f"{', '.join([*ENCODINGS, *FREE_ENCODINGS])}")
             encodings.append(e)
         engines = []
         for i, e in enumerate(_list(self.engines, where, "engines")):
@@ -569,15 +598,16 @@ class ExperimentSpec:
             if e not in engines:
                 engines.append(e)
         settings = _mapping(self.settings, where, "settings")
-        _unknown(settings, tuple(SETTINGS), where, "settings", "setting")
+        _unknown(settings, tuple(SETTINGS) + tuple(OPTIONAL_SETTINGS), where, "settings", "setting")
         settings = {k: _setting(k, v, where, f"settings.{k}") for k, v in settings.items()}
         grid = _mapping(self.grid, where, "grid")
-        _unknown(grid, tuple(SETTINGS), where, "grid", "setting")
+        _unknown(grid, tuple(SETTINGS) + tuple(OPTIONAL_SETTINGS), where, "grid", "setting")
         axes = {}
         for k, values in grid.items():
             if not isinstance(values, (list, tuple)) or not values:
                 raise where.error(f"grid.{k}", f"expected a non-empty list of values, got {values!r}")
             axes[k] = [_setting(k, v, where, f"grid.{k}[{i}]") for i, v in enumerate(values)]
+        _check_paths(encodings, settings, axes, where)
         options = _mapping(self.options, where, "options")
         _unknown(options, tuple(OPTIONS), where, "options", "option")
         opts = dict(OPTIONS)
