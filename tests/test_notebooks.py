@@ -12,7 +12,8 @@ NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
 
 
 @pytest.mark.parametrize("name", ["01_quickstart.ipynb", "02_encodings.ipynb", "03_dense.ipynb",
-                                  "04_exact_vs_ga.ipynb", "05_mars.ipynb", "06_dynamic.ipynb"])
+                                  "04_exact_vs_ga.ipynb", "05_mars.ipynb", "06_dynamic.ipynb",
+                                  "07_free_paths.ipynb"])
 def test_notebook_runs_in_quick_mode(name, monkeypatch):
     path = NOTEBOOKS / name
     nb = nbformat.read(path, as_version=4)
