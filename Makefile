@@ -7,7 +7,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install --disable-pip-version-check -q -c constraints.txt
 
-.PHONY: demo test bench docs wheel clean
+.PHONY: demo test lint bench docs wheel clean
 
 $(BIN)/python:
 	$(PYTHON) -c 'import sys; assert sys.version_info[:2] == (3, 11), "gapath needs Python 3.11, found " + sys.version' 
@@ -33,7 +33,13 @@ $(VENV)/.bench-installed: $(VENV)/.dev-installed
 demo: $(VENV)/.installed
 	$(BIN)/gapath demo
 
-test: $(VENV)/.dev-installed
+# lint (ruff), format check and types (mypy on the core modules, see pyproject.toml)
+lint: $(VENV)/.dev-installed
+	$(BIN)/ruff check .
+	$(BIN)/ruff format --check .
+	$(BIN)/mypy
+
+test: lint
 	GAPATH_REQUIRE_DOCS=1 $(BIN)/python -m pytest
 
 bench: $(VENV)/.bench-installed

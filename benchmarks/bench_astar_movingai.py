@@ -54,6 +54,7 @@ COMPARE_MAPS = ("random512-10-0", "random512-40-0", "maze512-1-0", "8room_000")
 # data
 # ---------------------------------------------------------------------------
 
+
 def default_data_dir() -> Path | None:
     candidates = [Path(__file__).resolve().parents[2] / "shared" / "data"]
     if os.environ.get("GAPATH_SHARED_DATA"):
@@ -81,7 +82,7 @@ def _load_file_fallback(scen_path: Path):  # pragma: no cover
     map_name = rows[0][1].replace("\\", "/").split("/")[-1]
     text = (scen_path.parent / map_name).read_text().splitlines()
     h = int(text[1].split()[1])
-    occ = np.array([[ch not in ".GS" for ch in ln.rstrip("\r")] for ln in text[4:4 + h]], bool)
+    occ = np.array([[ch not in ".GS" for ch in ln.rstrip("\r")] for ln in text[4 : 4 + h]], bool)
     scens = [((int(r[5]), int(r[4])), (int(r[7]), int(r[6])), float(r[8])) for r in rows]
     return occ, map_name, scens
 
@@ -115,6 +116,7 @@ def _loadavg():
 # part 1: all scenarios
 # ---------------------------------------------------------------------------
 
+
 def run_scenarios(scen_files, stride: int, out) -> dict:
     grand_matched = grand_total = 0
     all_times = []
@@ -124,7 +126,7 @@ def run_scenarios(scen_files, stride: int, out) -> dict:
         sample = scens[::stride]
         start, goal, _ = next(s for s in scens if s[0] != s[1])
         ws = Workspace(occ, start, goal, corner_cutting=False)
-        astar(ws)                                   # warm-up (JIT compile, scratch arrays)
+        astar(ws)  # warm-up (JIT compile, scratch arrays)
         times, expansions = [], []
         matched = 0
         worst = 0.0
@@ -138,8 +140,7 @@ def run_scenarios(scen_files, stride: int, out) -> dict:
             matched += ok
             worst = max(worst, abs(res.cost - optimal) / max(1.0, optimal))
             if (i + 1) % 500 == 0:
-                progress(f"  {scen_path.name}: {i + 1}/{len(sample)} "
-                         f"({time.perf_counter() - t_file:.1f} s)")
+                progress(f"  {scen_path.name}: {i + 1}/{len(sample)} ({time.perf_counter() - t_file:.1f} s)")
         record = {
             "part": "scenarios",
             "file": f"{scen_path.parent.name}/{scen_path.name}",
@@ -156,14 +157,21 @@ def run_scenarios(scen_files, stride: int, out) -> dict:
             "seconds": round(time.perf_counter() - t_file, 2),
         }
         emit(record, out)
-        progress(f"{record['file']}: {matched}/{len(sample)} matched, "
-                 f"median {record['median_ms']} ms, {record['seconds']} s")
+        progress(
+            f"{record['file']}: {matched}/{len(sample)} matched, "
+            f"median {record['median_ms']} ms, {record['seconds']} s"
+        )
         grand_matched += matched
         grand_total += len(sample)
         all_times.extend(times)
-    summary = {"part": "scenarios-summary", "files": len(scen_files), "matched": grand_matched,
-               "total": grand_total, "median_ms": round(1e3 * statistics.median(all_times), 4),
-               "seconds": round(time.perf_counter() - t_all, 1)}
+    summary = {
+        "part": "scenarios-summary",
+        "files": len(scen_files),
+        "matched": grand_matched,
+        "total": grand_total,
+        "median_ms": round(1e3 * statistics.median(all_times), 4),
+        "seconds": round(time.perf_counter() - t_all, 1),
+    }
     emit(summary, out)
     return summary
 
@@ -172,9 +180,9 @@ def run_scenarios(scen_files, stride: int, out) -> dict:
 # part 2: against pathfinding
 # ---------------------------------------------------------------------------
 
+
 def _pf_cost(path_xy) -> float:
-    n_diag = sum(1 for (x0, y0), (x1, y1) in zip(path_xy[:-1], path_xy[1:])
-                 if x0 != x1 and y0 != y1)
+    n_diag = sum(1 for (x0, y0), (x1, y1) in zip(path_xy[:-1], path_xy[1:]) if x0 != x1 and y0 != y1)
     return (len(path_xy) - 1 - n_diag) + SQRT2 * n_diag
 
 
@@ -185,13 +193,17 @@ def run_comparison(grid_dir: Path, n_per_map: int, out) -> list[dict]:
         from pathfinding.core.grid import Grid
         from pathfinding.finder.a_star import AStarFinder
     except ImportError:
-        rec = {"part": "pathfinding", "skipped": True,
-               "note": "PyPI package 'pathfinding' is not installed "
-                       "(pip install pathfinding) - comparison skipped"}
+        rec = {
+            "part": "pathfinding",
+            "skipped": True,
+            "note": "PyPI package 'pathfinding' is not installed "
+            "(pip install pathfinding) - comparison skipped",
+        }
         emit(rec, out)
         return [rec]
     try:
         from importlib.metadata import version
+
         pf_version = version("pathfinding")
     except Exception:  # pragma: no cover
         pf_version = getattr(pathfinding, "__version__", "unknown")
@@ -210,7 +222,7 @@ def run_comparison(grid_dir: Path, n_per_map: int, out) -> list[dict]:
         sample = [scens[i] for i in idx if scens[i][0] != scens[i][1]]
         start, goal, _ = sample[0]
         ws = Workspace(occ, start, goal, corner_cutting=False)
-        astar(ws)                                   # warm-up
+        astar(ws)  # warm-up
         progress(f"pathfinding {pf_version} on {name}: building its grid ...")
         grid = Grid(matrix=(~occ).astype(np.int8))
         finder = AStarFinder(diagonal_movement=DiagonalMovement.only_when_no_obstacle)
@@ -223,7 +235,7 @@ def run_comparison(grid_dir: Path, n_per_map: int, out) -> list[dict]:
             t_ours = time.perf_counter() - t0
 
             grid.cleanup()
-            grid.dirty = False                      # cleaned outside the timer
+            grid.dirty = False  # cleaned outside the timer
             a = grid.node(s[1], s[0])
             b = grid.node(g[1], g[0])
             t0 = time.perf_counter()
@@ -236,8 +248,10 @@ def run_comparison(grid_dir: Path, n_per_map: int, out) -> list[dict]:
             ours_ms.append(1e3 * t_ours)
             theirs_ms.append(1e3 * t_theirs)
             ratios.append(t_theirs / t_ours)
-            progress(f"  {name} {k + 1}/{len(sample)}: cost {res.cost:.4f} vs {theirs_cost:.4f}, "
-                     f"{1e3 * t_ours:.2f} ms vs {1e3 * t_theirs:.0f} ms")
+            progress(
+                f"  {name} {k + 1}/{len(sample)}: cost {res.cost:.4f} vs {theirs_cost:.4f}, "
+                f"{1e3 * t_ours:.2f} ms vs {1e3 * t_theirs:.0f} ms"
+            )
         rec = {
             "part": "pathfinding",
             "map": name,
@@ -254,24 +268,40 @@ def run_comparison(grid_dir: Path, n_per_map: int, out) -> list[dict]:
         records.append(rec)
         ratios_all.extend(ratios)
     if ratios_all:
-        emit({"part": "pathfinding-summary", "pathfinding_version": pf_version,
-              "n": len(ratios_all),
-              "identical_costs": sum(r.get("identical_costs", 0) for r in records),
-              "median_speedup": round(statistics.median(ratios_all), 1),
-              "loadavg": _loadavg()}, out)
+        emit(
+            {
+                "part": "pathfinding-summary",
+                "pathfinding_version": pf_version,
+                "n": len(ratios_all),
+                "identical_costs": sum(r.get("identical_costs", 0) for r in records),
+                "median_speedup": round(statistics.median(ratios_all), 1),
+                "loadavg": _loadavg(),
+            },
+            out,
+        )
     return records
 
 
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--quick", action="store_true",
-                        help="every 50th scenario and 3 comparison queries per map")
-    parser.add_argument("--stride", type=int, default=None,
-                        help="run every STRIDE-th scenario (default 1, --quick 50)")
-    parser.add_argument("--compare", type=int, default=None,
-                        help="comparison queries per 512x512 map (default 12, --quick 3; 0 = skip)")
-    parser.add_argument("--data", type=Path, default=None,
-                        help="shared data folder (default ../shared/data or $GAPATH_SHARED_DATA)")
+    parser.add_argument(
+        "--quick", action="store_true", help="every 50th scenario and 3 comparison queries per map"
+    )
+    parser.add_argument(
+        "--stride", type=int, default=None, help="run every STRIDE-th scenario (default 1, --quick 50)"
+    )
+    parser.add_argument(
+        "--compare",
+        type=int,
+        default=None,
+        help="comparison queries per 512x512 map (default 12, --quick 3; 0 = skip)",
+    )
+    parser.add_argument(
+        "--data",
+        type=Path,
+        default=None,
+        help="shared data folder (default ../shared/data or $GAPATH_SHARED_DATA)",
+    )
     parser.add_argument("--out", type=Path, default=None, help="also write the JSON lines here")
     args = parser.parse_args(argv)
     stride = args.stride or (50 if args.quick else 1)
@@ -284,10 +314,22 @@ def main(argv=None) -> int:
     out = open(args.out, "w") if args.out else None
     try:
         import numba
-        emit({"part": "setup", "python": platform.python_version(), "numpy": np.__version__,
-              "numba": numba.__version__, "machine": platform.machine(),
-              "cpus": os.cpu_count(), "stride": stride, "compare_per_map": n_compare,
-              "data": str(data), "loadavg": _loadavg()}, out)
+
+        emit(
+            {
+                "part": "setup",
+                "python": platform.python_version(),
+                "numpy": np.__version__,
+                "numba": numba.__version__,
+                "machine": platform.machine(),
+                "cpus": os.cpu_count(),
+                "stride": stride,
+                "compare_per_map": n_compare,
+                "data": str(data),
+                "loadavg": _loadavg(),
+            },
+            out,
+        )
         summary = run_scenarios(scen_files, stride, out)
         if n_compare > 0:
             run_comparison(data / "movingai" / "grid", n_compare, out)

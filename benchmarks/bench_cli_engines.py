@@ -47,8 +47,8 @@ import time
 
 from pymoo.core.callback import Callback
 
-from gapath import default_workspace
 import gapath.callbacks
+from gapath import default_workspace
 from gapath.callbacks import Callbacks
 from gapath.cli import build_parser
 from gapath.convergence import HypervolumeRatioCallback
@@ -59,8 +59,9 @@ CONFIGS = (("fast", True), ("fast", False), ("pymoo", True), ("pymoo", False))
 
 
 def emit(**record):
-    record.setdefault("machine", f"{platform.machine()} {os.cpu_count()} cpu, "
-                                 f"python {platform.python_version()}")
+    record.setdefault(
+        "machine", f"{platform.machine()} {os.cpu_count()} cpu, python {platform.python_version()}"
+    )
     record["load_avg_1min"] = round(os.getloadavg()[0], 2)
     print(json.dumps(record), flush=True)
 
@@ -68,11 +69,20 @@ def emit(**record):
 def cli_kwargs(argv):
     """``solve``'s keyword arguments for ``gapath solve ARGV`` (as ``gapath.cli._run``)."""
     args = build_parser().parse_args(["solve", "default", *argv])
-    return dict(objectives=args.objectives, encoding=args.encoding, constraints=args.constraints,
-                penalty=args.penalty, pop_size=args.pop, n_gen=args.gen,
-                tiebreak=None if args.tiebreak == "none" else args.tiebreak,
-                sbx_eta=args.sbx_eta, seed_from=args.seed_from, engine=args.engine,
-                progress=not args.quiet, seed=args.seed)
+    return dict(
+        objectives=args.objectives,
+        encoding=args.encoding,
+        constraints=args.constraints,
+        penalty=args.penalty,
+        pop_size=args.pop,
+        n_gen=args.gen,
+        tiebreak=None if args.tiebreak == "none" else args.tiebreak,
+        sbx_eta=args.sbx_eta,
+        seed_from=args.seed_from,
+        engine=args.engine,
+        progress=not args.quiet,
+        seed=args.seed,
+    )
 
 
 class GenerationClock(Callback):
@@ -90,8 +100,11 @@ class GenerationClock(Callback):
         if self.first is None:
             self.first = (gen, t)
         self.last = (gen, t)
-        if self.pop_built_at is None and getattr(algorithm, "_pop", None) is not None \
-                and hasattr(algorithm, "arrays"):
+        if (
+            self.pop_built_at is None
+            and getattr(algorithm, "_pop", None) is not None
+            and hasattr(algorithm, "arrays")
+        ):
             self.pop_built_at = gen
 
     def ms_per_gen(self) -> float:
@@ -125,8 +138,7 @@ class BarTimer:
 def run(ws, engine, bar, common, reference=None):
     """One ``solve`` as ``gapath solve default COMMON [--engine pymoo] [--quiet]``
     (with ``reference``: ``--reference monotone``, the CLI's hv tracker)."""
-    argv = [*common] + ([] if engine == "fast" else ["--engine", "pymoo"]) \
-        + ([] if bar else ["--quiet"])
+    argv = [*common] + ([] if engine == "fast" else ["--engine", "pymoo"]) + ([] if bar else ["--quiet"])
     clock = GenerationClock()
     callback = clock if reference is None else Callbacks(HypervolumeRatioCallback(reference), clock)
     with open(os.devnull, "w") as sink, contextlib.redirect_stderr(sink):
@@ -152,7 +164,7 @@ def main(argv=None):
         a.pop, a.gen, a.repeats = 100, 30, 1
     ws = default_workspace()
     common = ["--pop", str(a.pop), "--gen", str(a.gen)]
-    for engine in ("fast", "pymoo"):          # warm-up: numba compile, planners
+    for engine in ("fast", "pymoo"):  # warm-up: numba compile, planners
         run(ws, engine, True, ["--pop", str(a.pop), "--gen", "3"])
     reference = reference_front(ws, ["length", "vulnerability"], "monotone")
     configs = CONFIGS + (("fast", "reference"),)
@@ -161,30 +173,45 @@ def main(argv=None):
     for rep in range(a.repeats):
         k = rep % len(configs)
         for engine, bar in configs[k:] + configs[:k]:
-            r, clock = run(ws, engine, bool(bar), common,
-                           reference if bar == "reference" else None)
+            r, clock = run(ws, engine, bool(bar), common, reference if bar == "reference" else None)
             ms = clock.ms_per_gen()
             times[(engine, bar)].append(ms)
             fronts.setdefault(engine, r.front.F.tolist())
-            emit(record="cli_engines.run", engine=engine, bar=bar, repeat=rep, pop=a.pop,
-                 n_gen=a.gen, cpu_ms_per_gen=round(ms, 4), pop_built_at=clock.pop_built_at,
-                 front_size=len(r.front))
-    bar_us = {e: statistics.median(run_timing_bar(ws, e, common) for _ in range(a.repeats))
-              for e in ("fast", "pymoo")}
+            emit(
+                record="cli_engines.run",
+                engine=engine,
+                bar=bar,
+                repeat=rep,
+                pop=a.pop,
+                n_gen=a.gen,
+                cpu_ms_per_gen=round(ms, 4),
+                pop_built_at=clock.pop_built_at,
+                front_size=len(r.front),
+            )
+    bar_us = {
+        e: statistics.median(run_timing_bar(ws, e, common) for _ in range(a.repeats))
+        for e in ("fast", "pymoo")
+    }
     label = {True: "bar", False: "quiet", "reference": "bar+reference"}
     med = {f"{e}+{label[b]}": statistics.median(v) for (e, b), v in times.items()}
-    emit(record="cli_engines.summary", pop=a.pop, n_gen=a.gen, repeats=a.repeats,
-         clock="process_time (CPU)", cpu_ms_per_gen={k: round(v, 4) for k, v in med.items()},
-         speedup_with_bar=round(med["pymoo+bar"] / med["fast+bar"], 2),
-         speedup_quiet=round(med["pymoo+quiet"] / med["fast+quiet"], 2),
-         bar_overhead_pct={e: round(100 * (med[f"{e}+bar"] / med[f"{e}+quiet"] - 1), 2)
-                           for e in ("fast", "pymoo")},
-         bar_notify_cpu_us_per_gen={e: round(v, 2) for e, v in bar_us.items()},
-         bar_notify_pct_of_gen={e: round(100 * v / (1000 * med[f"{e}+bar"]), 3)
-                                for e, v in bar_us.items()},
-         reference_tracker_pct=round(100 * (med["fast+bar+reference"] / med["fast+bar"] - 1), 2),
-         same_front=fronts["fast"] == fronts["pymoo"],
-         targets={"speedup_with_bar": ">= 15", "bar_overhead_pct": "<= 5"})
+    emit(
+        record="cli_engines.summary",
+        pop=a.pop,
+        n_gen=a.gen,
+        repeats=a.repeats,
+        clock="process_time (CPU)",
+        cpu_ms_per_gen={k: round(v, 4) for k, v in med.items()},
+        speedup_with_bar=round(med["pymoo+bar"] / med["fast+bar"], 2),
+        speedup_quiet=round(med["pymoo+quiet"] / med["fast+quiet"], 2),
+        bar_overhead_pct={
+            e: round(100 * (med[f"{e}+bar"] / med[f"{e}+quiet"] - 1), 2) for e in ("fast", "pymoo")
+        },
+        bar_notify_cpu_us_per_gen={e: round(v, 2) for e, v in bar_us.items()},
+        bar_notify_pct_of_gen={e: round(100 * v / (1000 * med[f"{e}+bar"]), 3) for e, v in bar_us.items()},
+        reference_tracker_pct=round(100 * (med["fast+bar+reference"] / med["fast+bar"] - 1), 2),
+        same_front=fronts["fast"] == fronts["pymoo"],
+        targets={"speedup_with_bar": ">= 15", "bar_overhead_pct": "<= 5"},
+    )
 
 
 if __name__ == "__main__":

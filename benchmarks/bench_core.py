@@ -57,15 +57,15 @@ class ElementwisePathProblem(ElementwiseProblem):
         self.encoding = IntegerEncoding(Frame.of(workspace))  # for gapath's repair
         self.pot = workspace.potential
         self.occ = workspace.occ
-        super().__init__(n_var=self.encoding.n_var, n_obj=2, xl=self.encoding.xl,
-                         xu=self.encoding.xu, vtype=int)
+        super().__init__(
+            n_var=self.encoding.n_var, n_obj=2, xl=self.encoding.xl, xu=self.encoding.xu, vtype=int
+        )
 
     def _decode(self, x):
-        (sr, sc), (gr, gc) = self.workspace.start, self.workspace.goal
+        (sr, sc), (gr, _gc) = self.workspace.start, self.workspace.goal
         h = self.workspace.shape[0]
         r = sr - int(x[0])
-        path = [(rr, sc) for rr in range(sr, r - 1, -1)] if r <= sr else \
-            [(rr, sc) for rr in range(sr, r + 1)]
+        path = [(rr, sc) for rr in range(sr, r - 1, -1)] if r <= sr else [(rr, sc) for rr in range(sr, r + 1)]
         for k in range(1, len(x) + 1):
             c = sc + k
             t = min(max(r - int(x[k]), 0), h - 1) if k < len(x) else gr
@@ -122,10 +122,20 @@ def main():
     runs = {}
     for seed_from in ("weighted", "none"):
         runs[seed_from] = r = solve(ws, pop_size=500, n_gen=n_gen, seed=1, seed_from=seed_from)
-        emit(bench="core.quality", map=ws.name, pop=500, n_gen=n_gen, seed=1, seed_from=seed_from,
-             seconds=round(r.seconds, 2), front_size=len(r.front), exact_size=len(exact.F),
-             hv_ratio=round(hv_ratio(r.front.F, exact.F), 6),
-             exact_points_found=round(coverage(r.front.F, exact.F), 4), target_hv_ratio=0.99)
+        emit(
+            bench="core.quality",
+            map=ws.name,
+            pop=500,
+            n_gen=n_gen,
+            seed=1,
+            seed_from=seed_from,
+            seconds=round(r.seconds, 2),
+            front_size=len(r.front),
+            exact_size=len(exact.F),
+            hv_ratio=round(hv_ratio(r.front.F, exact.F), 6),
+            exact_points_found=round(coverage(r.front.F, exact.F), 4),
+            target_hv_ratio=0.99,
+        )
     res = runs["weighted"].pymoo_result
 
     # 2. speed -----------------------------------------------------------
@@ -134,12 +144,20 @@ def main():
     t_elem = time_per_gen(ElementwisePathProblem(ws), lambda: paper_nsga2(500), g)
     t_floor = time_per_gen(TrivialProblem(problem.n_var), lambda: NSGA2(pop_size=500), g)
     t_fast = time_per_gen(problem, lambda: FastNSGA2(500), g)
-    emit(bench="core.speed", map=ws.name, pop=500, generations_timed=g,
-         gapath_ms_per_gen=round(1e3 * t_vec, 2), elementwise_ms_per_gen=round(1e3 * t_elem, 2),
-         pymoo_floor_ms_per_gen=round(1e3 * t_floor, 2),
-         elementwise_over_gapath=round(t_elem / t_vec, 2), target_elementwise_over_gapath=1.4,
-         gapath_over_floor=round(t_vec / t_floor, 3), target_gapath_over_floor=1.25,
-         fast_nsga2_ms_per_gen=round(1e3 * t_fast, 2))
+    emit(
+        bench="core.speed",
+        map=ws.name,
+        pop=500,
+        generations_timed=g,
+        gapath_ms_per_gen=round(1e3 * t_vec, 2),
+        elementwise_ms_per_gen=round(1e3 * t_elem, 2),
+        pymoo_floor_ms_per_gen=round(1e3 * t_floor, 2),
+        elementwise_over_gapath=round(t_elem / t_vec, 2),
+        target_elementwise_over_gapath=1.4,
+        gapath_over_floor=round(t_vec / t_floor, 3),
+        target_gapath_over_floor=1.25,
+        fast_nsga2_ms_per_gen=round(1e3 * t_fast, 2),
+    )
 
     # 3. kernel throughput ----------------------------------------------
     rng = np.random.default_rng(0)
@@ -158,8 +176,13 @@ def main():
         rate = reps * len(X) / (time.perf_counter() - t0)
         entries, exits = enc.decode(X[:500])
         mean_cells = float((np.abs(exits - entries) + 1).sum(axis=1).mean())
-        emit(bench="core.throughput", population=label, mean_cells_per_path=round(mean_cells, 1),
-             paths_per_second=int(rate), target_paths_per_second=2_000_000)
+        emit(
+            bench="core.throughput",
+            population=label,
+            mean_cells_per_path=round(mean_cells, 1),
+            paths_per_second=int(rate),
+            target_paths_per_second=2_000_000,
+        )
 
 
 if __name__ == "__main__":

@@ -56,10 +56,18 @@ def movingai_64():
     if not (folder / "random-64-64-10.map").is_file():
         return []
     sc = load_scenarios(folder / "random-64-64-10-random-1.scen")[0]
-    scen = load_movingai(folder / "random-64-64-10.map", sc.start, sc.goal, corner_cutting=False,
-                         name="random-64-64-10(scen 1)")
-    corners = scen.replace(start=nearest_free(scen.occ, (63, 0)),
-                           goal=nearest_free(scen.occ, (0, 63)), name="random-64-64-10(corners)")
+    scen = load_movingai(
+        folder / "random-64-64-10.map",
+        sc.start,
+        sc.goal,
+        corner_cutting=False,
+        name="random-64-64-10(scen 1)",
+    )
+    corners = scen.replace(
+        start=nearest_free(scen.occ, (63, 0)),
+        goal=nearest_free(scen.occ, (0, 63)),
+        name="random-64-64-10(corners)",
+    )
     return [scen, corners]
 
 
@@ -68,8 +76,12 @@ def nearest_free(occ, cell):
     then row-major order)."""
     h, w = occ.shape
     r0, c0 = cell
-    free = [(max(abs(r - r0), abs(c - c0)), abs(r - r0) + abs(c - c0), r, c)
-            for r in range(h) for c in range(w) if not occ[r, c]]
+    free = [
+        (max(abs(r - r0), abs(c - c0)), abs(r - r0) + abs(c - c0), r, c)
+        for r in range(h)
+        for c in range(w)
+        if not occ[r, c]
+    ]
     _, _, r, c = min(free)
     return r, c
 

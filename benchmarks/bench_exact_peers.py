@@ -70,8 +70,7 @@ def has_avx512() -> bool:
 
 def build(out: Path) -> dict:
     """Build the peers into ``out``; returns the paths of the programs."""
-    proc = subprocess.run(["bash", str(PEERS / "build.sh"), str(out)], capture_output=True,
-                          text=True)
+    proc = subprocess.run(["bash", str(PEERS / "build.sh"), str(out)], capture_output=True, text=True)
     if proc.returncode != 0:
         raise RuntimeError(f"build.sh failed: {proc.stderr[-2000:]}")
     return {"boa": out / "boa" / "boa", "moa": out / "moa" / "moastarv"}
@@ -86,7 +85,7 @@ def queries(name: str, k: int) -> list:
 
 def run_gapath(ws, objectives, repeats, tie_break):
     """Median wall and thread-CPU milliseconds of ``repeats`` calls, and the front."""
-    free_front(ws, objectives, tie_break=tie_break)   # warm-up (and numba compilation)
+    free_front(ws, objectives, tie_break=tie_break)  # warm-up (and numba compilation)
     wall, cpu, front = [], [], None
     for _ in range(repeats):
         t, c = time.perf_counter(), time.thread_time()
@@ -133,8 +132,12 @@ def main(argv=None) -> int:
     ap.add_argument("--queries", type=int, default=5, help="queries per map (.scen lines)")
     ap.add_argument("--objectives", default="2,3")
     ap.add_argument("--maps", default=None, help="comma-separated map names (default: all)")
-    ap.add_argument("--tie-break", default="smoothest", choices=("smoothest", "none"),
-                    help="gapath's tie_break for two objectives (default: %(default)s)")
+    ap.add_argument(
+        "--tie-break",
+        default="smoothest",
+        choices=("smoothest", "none"),
+        help="gapath's tie_break for two objectives (default: %(default)s)",
+    )
     ap.add_argument("--quick", action="store_true", help="2 queries per map, 1 repeat")
     args = ap.parse_args(argv)
     if args.quick:
@@ -159,12 +162,11 @@ def main(argv=None) -> int:
         progs = build(tmp / "build")
         for n_obj in counts:
             objectives = LV if n_obj == 2 else LVS
-            for name in (MAPS2 if n_obj == 2 else MAPS3):
+            for name in MAPS2 if n_obj == 2 else MAPS3:
                 if wanted and name not in wanted:
                     continue
                 for qi, sc in queries(name, args.queries):
-                    ws = load_movingai(MAPF / f"{name}.map", sc.start, sc.goal,
-                                       corner_cutting=False)
+                    ws = load_movingai(MAPF / f"{name}.map", sc.start, sc.goal, corner_cutting=False)
                     s2 = convert.choose_s2(ws, n_obj)[0]
                     graph = tmp / "graph.txt"
                     info = (convert.graph2 if n_obj == 2 else convert.graph3)(ws, graph, s2)
@@ -174,18 +176,32 @@ def main(argv=None) -> int:
                     ratio = g_ms / max(c_ms, 1e-3)
                     ratios.setdefault(f"{name}/{n_obj}", []).append(ratio)
                     ratios_cpu.setdefault(f"{name}/{n_obj}", []).append(g_cpu / max(c_ms, 1e-3))
-                    emit(map=name, query=qi, objectives=n_obj, gapath_ms=round(g_ms, 3),
-                         gapath_cpu_ms=round(g_cpu, 3), c_ms=round(c_ms, 3),
-                         ratio=round(ratio, 2), ratio_cpu=round(g_cpu / max(c_ms, 1e-3), 2),
-                         gapath_points=len(front),
-                         c_points=len(cF), hv=round(hv_ratio(cF, front.F), 6),
-                         gapath_expansions=front.stats["expansions"], c_expansions=c_exp,
-                         peak_mb=round(front.stats["peak_bytes"] / 1e6, 2),
-                         c_solver="BOA*" if n_obj == 2 else "LT-MOA*v",
-                         tie_break=args.tie_break if n_obj == 2 else None)
+                    emit(
+                        map=name,
+                        query=qi,
+                        objectives=n_obj,
+                        gapath_ms=round(g_ms, 3),
+                        gapath_cpu_ms=round(g_cpu, 3),
+                        c_ms=round(c_ms, 3),
+                        ratio=round(ratio, 2),
+                        ratio_cpu=round(g_cpu / max(c_ms, 1e-3), 2),
+                        gapath_points=len(front),
+                        c_points=len(cF),
+                        hv=round(hv_ratio(cF, front.F), 6),
+                        gapath_expansions=front.stats["expansions"],
+                        c_expansions=c_exp,
+                        peak_mb=round(front.stats["peak_bytes"] / 1e6, 2),
+                        c_solver="BOA*" if n_obj == 2 else "LT-MOA*v",
+                        tie_break=args.tie_break if n_obj == 2 else None,
+                    )
+
     def spread(v):
-        return {"median": round(statistics.median(v), 2), "min": round(min(v), 2),
-                "max": round(max(v), 2), "queries": len(v)}
+        return {
+            "median": round(statistics.median(v), 2),
+            "min": round(min(v), 2),
+            "max": round(max(v), 2),
+            "queries": len(v),
+        }
 
     emit(summary={k: {"wall": spread(v), "cpu": spread(ratios_cpu[k])} for k, v in ratios.items()})
     return 0

@@ -45,7 +45,6 @@ import statistics
 import tempfile
 import time
 
-
 #: p0 of the rows of the default slice (``--slice table1``).
 TABLE1_P0S = (0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
 
@@ -60,11 +59,9 @@ def slice_spec(quick: bool, which: str = "table1"):
     if quick:
         return table1_spec(grids=(16,), p0s=(0.4, 0.6), runs=4, engine="auto", name="bench-slice")
     if which == "short":
-        return table1_spec(grids=(16,), p0s=(0.2, 0.4, 0.6, 0.8), runs=16, engine="auto",
-                           name="bench-short")
+        return table1_spec(grids=(16,), p0s=(0.2, 0.4, 0.6, 0.8), runs=16, engine="auto", name="bench-short")
     if which == "dense32":
-        return table1_spec(grids=(32,), p0s=(0.4, 0.6, 0.8, 1.0), runs=8, engine="auto",
-                           name="bench-slice")
+        return table1_spec(grids=(32,), p0s=(0.4, 0.6, 0.8, 1.0), runs=8, engine="auto", name="bench-slice")
     return table1_spec(grids=(16, 32), p0s=TABLE1_P0S, runs=20, engine="auto", name="bench-table1")
 
 
@@ -130,7 +127,7 @@ EXECUTORS = {
     "dask-local": "--scheduler local: dask LocalCluster, 2 worker processes, gapath's Dask settings",
     # diagnostics, not run by default
     "dask-keep-malloc": "dask LocalCluster, 2 worker processes, GAPATH_KEEP_MALLOC=1 "
-                        "(the nanny's MALLOC_TRIM_THRESHOLD_ left in force)",
+    "(the nanny's MALLOC_TRIM_THRESHOLD_ left in force)",
     "dask-noprofile": "dask LocalCluster, 2 worker processes, worker profiler off",
     "dask-lean": "dask LocalCluster, 2 worker processes, gapath's Dask settings (client by address)",
     "dask-local-default": "local_client(2, config={}): --scheduler local's code path, Dask's defaults",
@@ -163,11 +160,18 @@ def started(name: str):
     import distributed
 
     env = {"GAPATH_KEEP_MALLOC": "1"} if name == "dask-keep-malloc" else {}
-    config = {"dask-noprofile": {"distributed.worker.profile.enabled": False},
-              "dask-lean": DASK_CONFIG}.get(name, {})
+    config = {"dask-noprofile": {"distributed.worker.profile.enabled": False}, "dask-lean": DASK_CONFIG}.get(
+        name, {}
+    )
     with dask.config.set(config):
-        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                      host="127.0.0.1", dashboard_address=None, env=env) as cluster:
+        with distributed.LocalCluster(
+            n_workers=2,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=None,
+            env=env,
+        ) as cluster:
             with distributed.Client(cluster.scheduler_address) as client:
                 client.wait_for_workers(2)
                 yield client
@@ -208,7 +212,7 @@ def bench_throughput(spec, rounds: int, executors, batch_seconds: float | None) 
     cpus = {e: [] for e in executors}
     cold = {e: [] for e in executors}
     for i in range(rounds):
-        for entry in (executors if i % 2 == 0 else executors[::-1]):
+        for entry in executors if i % 2 == 0 else executors[::-1]:
             name, batch = _batch_of(entry, batch_seconds)
             t0 = time.perf_counter()
             with started(name) as ex:
@@ -222,26 +226,45 @@ def bench_throughput(spec, rounds: int, executors, batch_seconds: float | None) 
     for entry in executors:
         name, batch = _batch_of(entry, batch_seconds)
         med[entry] = statistics.median(walls[entry])
-        line(bench="runs_per_minute", name=entry, executor=EXECUTORS[name],
-             batch_seconds=_effective_batch(name, batch), runs=n,
-             median_s=round(med[entry], 3), runs_per_minute=round(60 * n / med[entry], 1),
-             times_s=[round(t, 3) for t in walls[entry]], cpu_s=[round(c, 2) for c in cpus[entry]],
-             startup_and_warmup_s=round(statistics.median(cold[entry]), 2))
+        line(
+            bench="runs_per_minute",
+            name=entry,
+            executor=EXECUTORS[name],
+            batch_seconds=_effective_batch(name, batch),
+            runs=n,
+            median_s=round(med[entry], 3),
+            runs_per_minute=round(60 * n / med[entry], 1),
+            times_s=[round(t, 3) for t in walls[entry]],
+            cpu_s=[round(c, 2) for c in cpus[entry]],
+            startup_and_warmup_s=round(statistics.median(cold[entry]), 2),
+        )
     out = {}
     if "pool1" in med and "pool2" in med:
         out["speedup_2_vs_1_workers"] = round(med["pool1"] / med["pool2"], 3)
-        out["speedup_2_vs_1_workers_per_round"] = [round(a / b, 3) for a, b in zip(walls["pool1"], walls["pool2"])]
+        out["speedup_2_vs_1_workers_per_round"] = [
+            round(a / b, 3) for a, b in zip(walls["pool1"], walls["pool2"])
+        ]
     if "pool2" in med:
         for entry in executors:
             if entry != "pool2" and not entry.startswith("pool1"):
                 key = entry.replace("-", "_")
                 out[f"{key}_vs_pool2_time_ratio"] = round(med[entry] / med["pool2"], 3)
                 # the same round's timings, paired
-                out[f"{key}_vs_pool2_paired_ratios"] = [round(a / b, 3) for a, b in zip(walls[entry], walls["pool2"])]
-                out[f"{key}_vs_pool2_cpu_ratio"] = round(statistics.median(cpus[entry]) / statistics.median(cpus["pool2"]), 3)
+                out[f"{key}_vs_pool2_paired_ratios"] = [
+                    round(a / b, 3) for a, b in zip(walls[entry], walls["pool2"])
+                ]
+                out[f"{key}_vs_pool2_cpu_ratio"] = round(
+                    statistics.median(cpus[entry]) / statistics.median(cpus["pool2"]), 3
+                )
     if out:
-        line(bench="scaling", batch_seconds=batch_seconds, rounds=rounds, runs=n,
-             target_dask_within=0.10, **out)
+        line(
+            bench="scaling",
+            batch_seconds=batch_seconds,
+            rounds=rounds,
+            runs=n,
+            target_dask_within=0.10,
+            **out,
+        )
 
 
 def bench_store(n: int = 300) -> None:
@@ -271,12 +294,21 @@ def bench_store(n: int = 300) -> None:
             write_t.append(t2 - t1)
             list_t.append((t3 - t2) / (i + 1))  # one listing serves every run of an invocation
         files = len(os.listdir(store.runs_dir))
-    med = {k: statistics.median(v) * 1e3 for k, v in (("hash", hash_t), ("write", write_t), ("listing", list_t))}
-    line(bench="store_overhead", runs=n, result_bytes=size, files=files,
-         hash_ms=round(med["hash"], 3), write_ms=round(med["write"], 3),
-         listing_ms_per_run=round(med["listing"], 4),
-         total_ms_per_run=round(sum(med.values()), 3), target_ms=5.0,
-         front_size=result["indicators"]["front_size"])
+    med = {
+        k: statistics.median(v) * 1e3 for k, v in (("hash", hash_t), ("write", write_t), ("listing", list_t))
+    }
+    line(
+        bench="store_overhead",
+        runs=n,
+        result_bytes=size,
+        files=files,
+        hash_ms=round(med["hash"], 3),
+        write_ms=round(med["write"], 3),
+        listing_ms_per_run=round(med["listing"], 4),
+        total_ms_per_run=round(sum(med.values()), 3),
+        target_ms=5.0,
+        front_size=result["indicators"]["front_size"],
+    )
 
 
 def main() -> None:
@@ -285,14 +317,25 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=3, help="rounds (every executor once per round)")
     ap.add_argument("--no-throughput", action="store_true")
     ap.add_argument("--no-store", action="store_true", help="skip the store overhead figure")
-    ap.add_argument("--executors", default="pool1,pool2,dask,dask-local",
-                    help=f"comma-separated, of {', '.join(EXECUTORS)}; NAME@B: with batch_seconds B "
-                         "(default: pool1,pool2,dask,dask-local)")
-    ap.add_argument("--slice", choices=("table1", "dense32", "short"), default="table1",
-                    help="the timed slice (see slice_spec)")
-    ap.add_argument("--batch-seconds", type=float, default=None,
-                    help="run_experiment's batch_seconds (0: one run per task; default: "
-                         "run_experiment's, 0.25 s on the pool and 1 s on Dask)")
+    ap.add_argument(
+        "--executors",
+        default="pool1,pool2,dask,dask-local",
+        help=f"comma-separated, of {', '.join(EXECUTORS)}; NAME@B: with batch_seconds B "
+        "(default: pool1,pool2,dask,dask-local)",
+    )
+    ap.add_argument(
+        "--slice",
+        choices=("table1", "dense32", "short"),
+        default="table1",
+        help="the timed slice (see slice_spec)",
+    )
+    ap.add_argument(
+        "--batch-seconds",
+        type=float,
+        default=None,
+        help="run_experiment's batch_seconds (0: one run per task; default: "
+        "run_experiment's, 0.25 s on the pool and 1 s on Dask)",
+    )
     args = ap.parse_args()
     from gapath.experiments.spec import resolve_engine
 
@@ -300,8 +343,12 @@ def main() -> None:
     if not args.no_store:
         bench_store(60 if args.quick else 300)
     if not args.no_throughput:
-        bench_throughput(slice_spec(args.quick, args.slice), 1 if args.quick else args.repeat,
-                         args.executors.split(","), args.batch_seconds)
+        bench_throughput(
+            slice_spec(args.quick, args.slice),
+            1 if args.quick else args.repeat,
+            args.executors.split(","),
+            args.batch_seconds,
+        )
 
 
 if __name__ == "__main__":

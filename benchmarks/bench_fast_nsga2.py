@@ -56,8 +56,9 @@ MAPS = ("random-32-32-10", "room-32-32-4")
 
 
 def emit(**record):
-    record.setdefault("machine", f"{platform.machine()} {os.cpu_count()} cpu, "
-                                 f"python {platform.python_version()}")
+    record.setdefault(
+        "machine", f"{platform.machine()} {os.cpu_count()} cpu, python {platform.python_version()}"
+    )
     record["load_avg_1min"] = round(os.getloadavg()[0], 2)
     print(json.dumps(record), flush=True)
 
@@ -71,7 +72,7 @@ def timed_run(problem, algorithm, n_gen, seed):
 
 def fast(pop_size):
     alg = FastNSGA2(pop_size)
-    alg.clock = time.thread_time          # phase timings in CPU time
+    alg.clock = time.thread_time  # phase timings in CPU time
     return alg
 
 
@@ -94,7 +95,7 @@ def movingai_workspace(name):
 
 def speed(args, problem):
     n_gen = 60 if args.quick else 500
-    minimize(problem, paper_nsga2(500), ("n_gen", 3), seed=1)     # warm-up (and numba caches)
+    minimize(problem, paper_nsga2(500), ("n_gen", 3), seed=1)  # warm-up (and numba caches)
     minimize(problem, fast(500), ("n_gen", 3), seed=1)
     stock_w, stock_c, fast_w, fast_c, same = [], [], [], [], []
     for _ in range(args.repeats):
@@ -106,17 +107,26 @@ def speed(args, problem):
         fast_c.append(c)
         same.append(bool(np.array_equal(a.pop.get("X"), b.pop.get("X"))))
     sw, sc, fw, fc = (float(np.median(v)) for v in (stock_w, stock_c, fast_w, fast_c))
-    emit(bench="fast_nsga2.speed", map=problem.workspace.name, pop=500, n_gen=n_gen,
-         repeats=args.repeats,
-         paper_nsga2_wall_s=round(sw, 2), paper_nsga2_cpu_s=round(sc, 2),
-         fast_nsga2_wall_s=round(fw, 3), fast_nsga2_cpu_s=round(fc, 3),
-         fast_nsga2_wall_runs_s=[round(v, 3) for v in fast_w],
-         fast_nsga2_cpu_runs_s=[round(v, 3) for v in fast_c],
-         speedup_wall=round(sw / fw, 1), speedup_cpu=round(sc / fc, 1),
-         paper_nsga2_ms_per_gen=round(1e3 * sc / n_gen, 2),
-         fast_nsga2_ms_per_gen=round(1e3 * fc / n_gen, 2),
-         identical_populations=all(same), target_speedup=15,
-         target_fast_nsga2_s=2.0 * n_gen / 500)
+    emit(
+        bench="fast_nsga2.speed",
+        map=problem.workspace.name,
+        pop=500,
+        n_gen=n_gen,
+        repeats=args.repeats,
+        paper_nsga2_wall_s=round(sw, 2),
+        paper_nsga2_cpu_s=round(sc, 2),
+        fast_nsga2_wall_s=round(fw, 3),
+        fast_nsga2_cpu_s=round(fc, 3),
+        fast_nsga2_wall_runs_s=[round(v, 3) for v in fast_w],
+        fast_nsga2_cpu_runs_s=[round(v, 3) for v in fast_c],
+        speedup_wall=round(sw / fw, 1),
+        speedup_cpu=round(sc / fc, 1),
+        paper_nsga2_ms_per_gen=round(1e3 * sc / n_gen, 2),
+        fast_nsga2_ms_per_gen=round(1e3 * fc / n_gen, 2),
+        identical_populations=all(same),
+        target_speedup=15,
+        target_fast_nsga2_s=2.0 * n_gen / 500,
+    )
 
 
 def fig3(args, problem):
@@ -131,15 +141,30 @@ def fig3(args, problem):
         for k in PHASES:
             per_gen[k].append(1e3 * t[k] / n_gen)
         rest.append(1e3 * (c - sum(t.values())) / n_gen)
-    emit(bench="fast_nsga2.fig3", map=problem.workspace.name, runs=n_runs, pop=500, n_gen=n_gen,
-         seeds=list(range(1, n_runs + 1)), wall_s=round(wall, 2), cpu_s=round(cpu, 2),
-         target_s=20.0 * n_runs * n_gen / 5000)
+    emit(
+        bench="fast_nsga2.fig3",
+        map=problem.workspace.name,
+        runs=n_runs,
+        pop=500,
+        n_gen=n_gen,
+        seeds=list(range(1, n_runs + 1)),
+        wall_s=round(wall, 2),
+        cpu_s=round(cpu, 2),
+        target_s=20.0 * n_runs * n_gen / 5000,
+    )
     phases = {k: round(float(np.median(v)), 3) for k, v in per_gen.items()}
     total = sum(phases.values()) + float(np.median(rest))
-    emit(bench="fast_nsga2.breakdown", map=problem.workspace.name, pop=500, n_gen=n_gen,
-         clock="thread CPU time, median over runs", ms_per_gen=phases,
-         pymoo_and_glue_ms_per_gen=round(float(np.median(rest)), 3),
-         total_ms_per_gen=round(total, 3), floor_target_ms_per_gen=[1, 2])
+    emit(
+        bench="fast_nsga2.breakdown",
+        map=problem.workspace.name,
+        pop=500,
+        n_gen=n_gen,
+        clock="thread CPU time, median over runs",
+        ms_per_gen=phases,
+        pymoo_and_glue_ms_per_gen=round(float(np.median(rest)), 3),
+        total_ms_per_gen=round(total, 3),
+        floor_target_ms_per_gen=[1, 2],
+    )
 
 
 def equivalence(args):
@@ -160,23 +185,40 @@ def equivalence(args):
             for key, res in (("paper_nsga2", a), ("fast_nsga2", b)):
                 ratios[key].append(hv_ratio(path_front(problem, res.pop.get("X")).F, exact.F))
             identical += bool(np.array_equal(a.pop.get("X"), b.pop.get("X")))
-        stats = {k: dict(median=round(float(np.median(v)), 6),
-                         q1=round(float(np.quantile(v, 0.25)), 6),
-                         q3=round(float(np.quantile(v, 0.75)), 6)) for k, v in ratios.items()}
+        stats = {
+            k: dict(
+                median=round(float(np.median(v)), 6),
+                q1=round(float(np.quantile(v, 0.25)), 6),
+                q3=round(float(np.quantile(v, 0.75)), 6),
+            )
+            for k, v in ratios.items()
+        }
         test = mannwhitneyu(ratios["fast_nsga2"], ratios["paper_nsga2"], alternative="less")
-        emit(bench="fast_nsga2.equivalence", map=name, scen_line=line, start=list(ws.start),
-             goal=list(ws.goal), exact_front_size=len(exact.F), seeds=n_seeds, pop=pop,
-             n_gen=n_gen, hv_ratio=stats, identical_populations=f"{identical}/{n_seeds}",
-             mannwhitney_u=float(test.statistic), p_fast_worse=round(float(test.pvalue), 4),
-             fast_not_worse=bool(test.pvalue > 0.05))
+        emit(
+            bench="fast_nsga2.equivalence",
+            map=name,
+            scen_line=line,
+            start=list(ws.start),
+            goal=list(ws.goal),
+            exact_front_size=len(exact.F),
+            seeds=n_seeds,
+            pop=pop,
+            n_gen=n_gen,
+            hv_ratio=stats,
+            identical_populations=f"{identical}/{n_seeds}",
+            mannwhitney_u=float(test.statistic),
+            p_fast_worse=round(float(test.pvalue), 4),
+            fast_not_worse=bool(test.pvalue > 0.05),
+        )
 
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="small budgets")
     ap.add_argument("--repeats", type=int, default=3, help="speed runs per engine (default 3)")
-    ap.add_argument("--parts", default="speed,fig3,equivalence",
-                    help="comma-separated parts to run (default all)")
+    ap.add_argument(
+        "--parts", default="speed,fig3,equivalence", help="comma-separated parts to run (default all)"
+    )
     ap.add_argument("--study-pop", type=int, default=200, help="equivalence study pop size")
     ap.add_argument("--study-gens", type=int, default=200, help="equivalence study generations")
     ap.add_argument("--study-seeds", type=int, default=20, help="equivalence study seeds")

@@ -95,13 +95,21 @@ def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
     problem = FreePathProblem(ws, objectives, encoding=encoding, **options)
     rate = throughput(problem, 5 * pop, seed)
     tracker = _Timed(ref)
-    res = solve(ws, objectives=objectives, paths="free", encoding=encoding, pop_size=pop,
-                n_gen=gen, seed=seed, seed_from=seed_from, callback=tracker,
-                tiebreak="smoothness" if len(objectives) == 2 else None)
+    res = solve(
+        ws,
+        objectives=objectives,
+        paths="free",
+        encoding=encoding,
+        pop_size=pop,
+        n_gen=gen,
+        seed=seed,
+        seed_from=seed_from,
+        callback=tracker,
+        tiebreak="smoothness" if len(objectives) == 2 else None,
+    )
     front = res.front
     hist = tracker.history
-    checkpoints = {str(g): round(hist[g - 1][2], 6) for g in (1, 10, 25, 50, 100, 200, 500)
-                   if g <= len(hist)}
+    checkpoints = {str(g): round(hist[g - 1][2], 6) for g in (1, 10, 25, 50, 100, 200, 500) if g <= len(hist)}
 
     def reach(level):
         for (g, _, h), t in zip(hist, tracker.seconds):
@@ -109,34 +117,49 @@ def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
                 return [g, round(t, 3)]
         return None
 
-    return dict(encoding=encoding, n_var=problem.n_var, seed_from=seed_from, pop=pop, gen=gen,
-                seed=seed, ga_size=len(front), hv_ratio=hv_ratio(front.F, ref.F),
-                coverage=coverage(front.F, ref.F), ga_seconds=res.seconds,
-                seconds_per_gen=res.seconds / gen, paths_per_second=rate, n_eval=res.n_eval,
-                hv_at_gen=checkpoints, gen_seconds_to_099=reach(0.99),
-                gen_seconds_to_0999=reach(0.999))
+    return dict(
+        encoding=encoding,
+        n_var=problem.n_var,
+        seed_from=seed_from,
+        pop=pop,
+        gen=gen,
+        seed=seed,
+        ga_size=len(front),
+        hv_ratio=hv_ratio(front.F, ref.F),
+        coverage=coverage(front.F, ref.F),
+        ga_seconds=res.seconds,
+        seconds_per_gen=res.seconds / gen,
+        paths_per_second=rate,
+        n_eval=res.n_eval,
+        hv_at_gen=checkpoints,
+        gen_seconds_to_099=reach(0.99),
+        gen_seconds_to_0999=reach(0.999),
+    )
 
 
 def summary(path) -> str:
     """A Markdown table of the JSON lines in ``path`` (one row per run)."""
-    rows = ["| map | query | objectives | encoding | seeds | exact points | GA points | HV ratio "
-            "| coverage | HV at gen 1 / 10 / 50 | s/gen | paths/s |",
-            "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    rows = [
+        "| map | query | objectives | encoding | seeds | exact points | GA points | HV ratio "
+        "| coverage | HV at gen 1 / 10 / 50 | s/gen | paths/s |",
+        "|---|---|---|---|---|---|---|---|---|---|---|---|",
+    ]
     for line in open(path):
         d = json.loads(line)
         h = d.get("hv_at_gen", {})
         at = " / ".join(f"{h[g]:.4f}" if g in h else "-" for g in ("1", "10", "50"))
-        rows.append(f"| {d['map']} | {d['query']} | {len(d.get('objectives', [0, 0]))} "
-                    f"| {d['encoding']} | {d['seed_from']} | {d['exact_size']} | {d['ga_size']} "
-                    f"| {d['hv_ratio']:.6f} | {d['coverage']:.3f} | {at} "
-                    f"| {d['seconds_per_gen']:.3f} | {d['paths_per_second']:.0f} |")
+        rows.append(
+            f"| {d['map']} | {d['query']} | {len(d.get('objectives', [0, 0]))} "
+            f"| {d['encoding']} | {d['seed_from']} | {d['exact_size']} | {d['ga_size']} "
+            f"| {d['hv_ratio']:.6f} | {d['coverage']:.3f} | {at} "
+            f"| {d['seconds_per_gen']:.3f} | {d['paths_per_second']:.0f} |"
+        )
     return "\n".join(rows)
 
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--summary", metavar="JSONL", help="print a Markdown table of a results file "
-                                                      "and exit")
+    ap.add_argument("--summary", metavar="JSONL", help="print a Markdown table of a results file and exit")
     ap.add_argument("--maps", default=",".join(MAPS))
     ap.add_argument("--queries", type=int, default=1)
     ap.add_argument("--encodings", default="via,field")
@@ -157,8 +180,7 @@ def main(argv=None):
     options = {} if a.n_via is None else {"n_via": a.n_via}
     for name in a.maps.split(","):
         for q, sc in enumerate(long_queries(folder, name, a.queries)):
-            ws = load_movingai(folder / f"{name}.map", start=sc.start, goal=sc.goal,
-                               corner_cutting=False)
+            ws = load_movingai(folder / f"{name}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
             t0 = time.perf_counter()
             objectives = tuple(a.objectives.split(","))
             ref = free_front(ws, objectives)
@@ -166,8 +188,16 @@ def main(argv=None):
             for enc in a.encodings.split(","):
                 for sf in a.seed_from.split(","):
                     opts = options if enc == "via" else {}
-                    rec = dict(map=name, query=q, objectives=list(objectives), start=list(sc.start), goal=list(sc.goal),
-                               optimal=sc.optimal, exact_size=len(ref), exact_seconds=exact_s)
+                    rec = dict(
+                        map=name,
+                        query=q,
+                        objectives=list(objectives),
+                        start=list(sc.start),
+                        goal=list(sc.goal),
+                        optimal=sc.optimal,
+                        exact_size=len(ref),
+                        exact_seconds=exact_s,
+                    )
                     rec.update(run(ws, ref, objectives, enc, sf, a.pop, a.gen, a.seed, opts))
                     line = json.dumps(rec)
                     print(line, flush=True)

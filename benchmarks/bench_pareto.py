@@ -44,26 +44,30 @@ def timed(fn):
 
 
 def bench_map(cm, name, repeats):
-    res = plan(cm, name, OBJECTIVES)                     # warm-up (and JIT)
+    res = plan(cm, name, OBJECTIVES)  # warm-up (and JIT)
     walls, cpus = [], []
     for _ in range(repeats):
         res, w, c = timed(lambda: plan(cm, name, OBJECTIVES))
         walls.append(w)
         cpus.append(c)
-    rec = {"planner": name, "plan_ms": 1000 * statistics.median(walls),
-           "plan_cpu_ms": 1000 * statistics.median(cpus), "expansions": res.expansions,
-           "F": [round(float(v), 6) for v in res.F]}
+    rec = {
+        "planner": name,
+        "plan_ms": 1000 * statistics.median(walls),
+        "plan_cpu_ms": 1000 * statistics.median(cpus),
+        "expansions": res.expansions,
+        "F": [round(float(v), 6) for v in res.F],
+    }
     if name in DSTAR:
         walls, cpus = [], []
         for _ in range(repeats):
             planner = DSTAR[name](cm, OBJECTIVES)
             path = planner.plan().path
             mid = len(path) // 2
-            cells = [tuple(c) for c in path[mid - 2:mid + 3]]
+            cells = [tuple(c) for c in path[mid - 2 : mid + 3]]
             planner.update_cells(cells, blocked=True)
             try:
                 _, w, c = timed(planner.replan)
-            except Exception:                             # goal cut off: not timed
+            except Exception:  # goal cut off: not timed
                 continue
             walls.append(w)
             cpus.append(c)
@@ -90,13 +94,30 @@ def main(argv=None) -> int:
         for name in PLANNERS:
             rec = bench_map(cm, name, args.repeats)
             per[name].append(rec)
-            print(json.dumps({"bench": "pareto_plan", "map": ws.name, "shape": list(ws.shape),
-                              "obstacles": ws.n_obstacles, "objectives": list(OBJECTIVES),
-                              "repeats": args.repeats, **rec}), flush=True)
+            print(
+                json.dumps(
+                    {
+                        "bench": "pareto_plan",
+                        "map": ws.name,
+                        "shape": list(ws.shape),
+                        "obstacles": ws.n_obstacles,
+                        "objectives": list(OBJECTIVES),
+                        "repeats": args.repeats,
+                        **rec,
+                    }
+                ),
+                flush=True,
+            )
     for name, recs in per.items():
-        out = {"bench": "pareto_summary", "planner": name, "maps": len(recs),
-               "shape": [100, 100], "objectives": list(OBJECTIVES), "repeats": args.repeats,
-               "machine": f"{platform.machine()} {platform.python_version()}, 2 shared cores"}
+        out = {
+            "bench": "pareto_summary",
+            "planner": name,
+            "maps": len(recs),
+            "shape": [100, 100],
+            "objectives": list(OBJECTIVES),
+            "repeats": args.repeats,
+            "machine": f"{platform.machine()} {platform.python_version()}, 2 shared cores",
+        }
         for key in ("plan_ms", "plan_cpu_ms", "replan_ms", "replan_cpu_ms", "expansions"):
             vals = [r[key] for r in recs if key in r]
             if vals:

@@ -87,8 +87,7 @@ def generated_workspace(kind, n, p0, seed):
 
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("store", help="a dense Table 1 store with a new map per run "
-                                  "(DIR/table1-per-run-maps)")
+    ap.add_argument("store", help="a dense Table 1 store with a new map per run (DIR/table1-per-run-maps)")
     ap.add_argument("--long", type=int, default=5000)
     ap.add_argument("--reseeds", type=int, default=10)
     ap.add_argument("--rows", default="16:0.5,16:0.6,16:0.7,16:0.8")
@@ -97,9 +96,11 @@ def main(argv=None):
     args = ap.parse_args(argv)
     skip = set(filter(None, args.skip.split(",")))
     if map_seed_of(args.store) != "run":
-        ap.error(f"{args.store}: expected a store with a new map per run (gapath experiment dense "
-                 f"--per-run-maps writes DIR/table1-per-run-maps), got map seed "
-                 f"{map_seed_of(args.store)!r}")
+        ap.error(
+            f"{args.store}: expected a store with a new map per run (gapath experiment dense "
+            f"--per-run-maps writes DIR/table1-per-run-maps), got map seed "
+            f"{map_seed_of(args.store)!r}"
+        )
     misses = unsuccessful_runs(args.store)
     for (n, p0), seeds in misses.items():
         if n > 16:  # the 32x32 rows are below 100 % in the paper too
@@ -109,15 +110,36 @@ def main(argv=None):
             if "longer" not in skip:
                 t0 = time.perf_counter()
                 g = first_feasible(ws, s, args.long)
-                print(json.dumps({"part": "longer", "grid": n, "p0": p0, "seed": s,
-                                  "n_gen": args.long, "first_feasible_gen": g,
-                                  "seconds": round(time.perf_counter() - t0, 2)}), flush=True)
+                print(
+                    json.dumps(
+                        {
+                            "part": "longer",
+                            "grid": n,
+                            "p0": p0,
+                            "seed": s,
+                            "n_gen": args.long,
+                            "first_feasible_gen": g,
+                            "seconds": round(time.perf_counter() - t0, 2),
+                        }
+                    ),
+                    flush=True,
+                )
             if "reseeded" not in skip:
                 gens = [first_feasible(ws, 1000 * s + k) for k in range(args.reseeds)]
-                print(json.dumps({"part": "reseeded", "grid": n, "p0": p0, "seed": s,
-                                  "ga_seeds": args.reseeds,
-                                  "success": sum(g is not None for g in gens),
-                                  "first_feasible_gens": gens}), flush=True)
+                print(
+                    json.dumps(
+                        {
+                            "part": "reseeded",
+                            "grid": n,
+                            "p0": p0,
+                            "seed": s,
+                            "ga_seeds": args.reseeds,
+                            "success": sum(g is not None for g in gens),
+                            "first_feasible_gens": gens,
+                        }
+                    ),
+                    flush=True,
+                )
     if "generator" not in skip:
         for item in args.rows.split(","):
             n, p0 = int(item.split(":")[0]), float(item.split(":")[1])
@@ -129,12 +151,23 @@ def main(argv=None):
                     obstacles.append(ws.n_obstacles)
                     gens.append(first_feasible(ws, s))
                 ok = [g for g in gens if g is not None]
-                print(json.dumps({"part": "generator", "generator": kind, "grid": n, "p0": p0,
-                                  "runs": args.maps, "success_pct": 100 * len(ok) / args.maps,
-                                  "median_gen": float(np.median(ok)) if ok else None,
-                                  "obstacles_mean": float(np.mean(obstacles)),
-                                  "unsuccessful_seeds": [s for s, g in enumerate(gens, 1) if g is None],
-                                  "seconds": round(time.perf_counter() - t0, 1)}), flush=True)
+                print(
+                    json.dumps(
+                        {
+                            "part": "generator",
+                            "generator": kind,
+                            "grid": n,
+                            "p0": p0,
+                            "runs": args.maps,
+                            "success_pct": 100 * len(ok) / args.maps,
+                            "median_gen": float(np.median(ok)) if ok else None,
+                            "obstacles_mean": float(np.mean(obstacles)),
+                            "unsuccessful_seeds": [s for s, g in enumerate(gens, 1) if g is None],
+                            "seconds": round(time.perf_counter() - t0, 1),
+                        }
+                    ),
+                    flush=True,
+                )
     return 0
 
 

@@ -52,15 +52,13 @@ def main(argv=None) -> int:
 
     study = run(n, seed=args.seed, progress=progress)
     fov_rows = [] if (args.quick or args.no_fov) else run_fov(n, seed=args.seed, progress=progress)
-    lines = [json.dumps({"benchmark": "dynamic_study", **r, "targets": targets(r)})
-             for r in study.table]
+    lines = [json.dumps({"benchmark": "dynamic_study", **r, "targets": targets(r)}) for r in study.table]
     lines += [json.dumps({"benchmark": "dynamic_study_fov", **r}) for r in fov_rows]
     print("\n".join(lines))
     if args.out:
         Path(args.out).write_text("\n".join(lines) + "\n")
     files = write_outputs(study, args.docs, gif=not args.no_gif, fov_rows=fov_rows)
-    print(f"wrote {', '.join(str(f) for f in files)} in {time.perf_counter() - t0:.0f} s",
-          file=sys.stderr)
+    print(f"wrote {', '.join(str(f) for f in files)} in {time.perf_counter() - t0:.0f} s", file=sys.stderr)
     return 0
 
 

@@ -29,7 +29,7 @@ def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     add_arguments(parser)
     args = parser.parse_args(argv)
-    if args.out is None and not args.quick:   # this script refreshes the committed results
+    if args.out is None and not args.quick:  # this script refreshes the committed results
         args.out = "docs/results"
     return run(args)
 

@@ -41,8 +41,6 @@ import statistics
 import time
 from pathlib import Path
 
-import numpy as np
-
 from gapath import NoPathError
 from gapath.loaders import load_movingai, load_scenarios
 from gapath.metrics import coverage, hv_ratio
@@ -50,13 +48,26 @@ from gapath.planners.exact import free_front, monotone_front
 from gapath.workspace import default_workspace
 
 OBJECTIVES = ("length", "vulnerability")
-MOVINGAI_MAPS = ("empty-32-32", "random-32-32-10", "random-32-32-20", "maze-32-32-2",
-                 "room-32-32-4")
+MOVINGAI_MAPS = ("empty-32-32", "random-32-32-10", "random-32-32-20", "maze-32-32-2", "room-32-32-4")
 ROOT = Path(__file__).resolve().parents[1]
-COLUMNS = ("map", "size", "start", "goal", "corner_cutting", "free_size", "monotone_size",
-           "hv_ratio", "coverage", "free_best_length", "monotone_best_length",
-           "free_best_vulnerability", "monotone_best_vulnerability", "free_seconds",
-           "monotone_seconds", "runs")
+COLUMNS = (
+    "map",
+    "size",
+    "start",
+    "goal",
+    "corner_cutting",
+    "free_size",
+    "monotone_size",
+    "hv_ratio",
+    "coverage",
+    "free_best_length",
+    "monotone_best_length",
+    "free_best_vulnerability",
+    "monotone_best_vulnerability",
+    "free_seconds",
+    "monotone_seconds",
+    "runs",
+)
 
 
 def data_dir(arg=None) -> Path:
@@ -81,14 +92,13 @@ def workspaces(folder: Path):
     yield default_workspace()
     for name in MOVINGAI_MAPS:
         sc = first_scenario(folder / f"{name}-random-1.scen")
-        yield load_movingai(folder / f"{name}.map", sc.start, sc.goal, corner_cutting=False,
-                            name=name)
+        yield load_movingai(folder / f"{name}.map", sc.start, sc.goal, corner_cutting=False, name=name)
 
 
 def timed(solver, ws, repeats):
     """``(front or None, median seconds)``; None when no path exists."""
     try:
-        front = solver(ws, OBJECTIVES)            # warm-up (and JIT)
+        front = solver(ws, OBJECTIVES)  # warm-up (and JIT)
     except NoPathError:
         return None, float("nan")
     times = []
@@ -104,9 +114,13 @@ def compare(ws, repeats) -> dict:
     mono, t_mono = timed(monotone_front, ws, repeats)
     h, w = ws.shape
     row = {
-        "map": ws.name, "size": f"{h}x{w}", "start": list(ws.start), "goal": list(ws.goal),
+        "map": ws.name,
+        "size": f"{h}x{w}",
+        "start": list(ws.start),
+        "goal": list(ws.goal),
         "corner_cutting": ws.corner_cutting,
-        "free_size": len(free), "monotone_size": len(mono) if mono is not None else 0,
+        "free_size": len(free),
+        "monotone_size": len(mono) if mono is not None else 0,
         "hv_ratio": hv_ratio(mono.F, free.F) if mono is not None else 0.0,
         "coverage": coverage(mono.F, free.F) if mono is not None else 0.0,
         "free_best_length": float(free.F[:, 0].min()),
@@ -134,9 +148,11 @@ def finding(r) -> str:
     dr = abs(r["start"][0] - r["goal"][0])
     dc = abs(r["start"][1] - r["goal"][1])
     if r["monotone_size"] == 0:
-        return (f"{name}: no feasible monotone path at all (every route must step back a "
-                f"column); the free front has {r['free_size']} "
-                f"point{'s' if r['free_size'] != 1 else ''}.")
+        return (
+            f"{name}: no feasible monotone path at all (every route must step back a "
+            f"column); the free front has {r['free_size']} "
+            f"point{'s' if r['free_size'] != 1 else ''}."
+        )
     parts = [f"HV ratio {r['hv_ratio']:.4f}"]
     for key, label in (("length", "shortest length"), ("vulnerability", "least vulnerability")):
         free, mono = r[f"free_best_{key}"], r[f"monotone_best_{key}"]
@@ -149,8 +165,10 @@ def finding(r) -> str:
     if r["hv_ratio"] >= 0.999:
         text += " Monotone paths lose (almost) nothing here."
     if dr > dc:
-        text += (f" Start and goal are {dr} rows but only {dc} columns apart, so a monotone "
-                 f"path has only {dc} column transitions to go round obstacles.")
+        text += (
+            f" Start and goal are {dr} rows but only {dc} columns apart, so a monotone "
+            f"path has only {dc} column transitions to go round obstacles."
+        )
     return text
 
 
@@ -192,7 +210,8 @@ def write_markdown(rows, path: Path):
             f"| {r['monotone_size']} | {r['hv_ratio']:.4f} | {r['coverage']:.2f} "
             f"| {_fmt(r['free_best_length'])} / {_fmt(r['monotone_best_length'])} "
             f"| {_fmt(r['free_best_vulnerability'])} / {_fmt(r['monotone_best_vulnerability'])} "
-            f"| {_fmt(r['free_seconds'], 3)} / {_fmt(r['monotone_seconds'], 3)} |")
+            f"| {_fmt(r['free_seconds'], 3)} / {_fmt(r['monotone_seconds'], 3)} |"
+        )
     lines += ["", "## Findings", ""]
     lines += [f"* {finding(r)}" for r in rows]
     lines += [
@@ -213,16 +232,16 @@ def write_csv(rows, path: Path):
         writer = csv.DictWriter(fh, fieldnames=COLUMNS)
         writer.writeheader()
         for r in rows:
-            writer.writerow({k: (" ".join(map(str, v)) if isinstance(v, list) else v)
-                             for k, v in r.items()})
+            writer.writerow({k: (" ".join(map(str, v)) if isinstance(v, list) else v) for k, v in r.items()})
 
 
 def main(argv=None):
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--repeats", type=int, default=5, help="timed runs per front (default 5)")
     parser.add_argument("--data", help="folder of the MovingAI maps and .scen files")
-    parser.add_argument("--out", default=str(ROOT / "docs" / "results"),
-                        help="output folder (default docs/results)")
+    parser.add_argument(
+        "--out", default=str(ROOT / "docs" / "results"), help="output folder (default docs/results)"
+    )
     args = parser.parse_args(argv)
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)

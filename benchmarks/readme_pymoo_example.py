@@ -44,20 +44,30 @@ def main() -> None:
     for variant, sampling in (("unseeded", None), ("PlannerSampling()", PlannerSampling())):
         kwargs = {} if sampling is None else {"sampling": sampling}
         t0 = time.process_time()
-        res = minimize(problem, make(pop_size=args.pop, **kwargs), ("n_gen", args.gen),
-                       seed=args.seed)
+        res = minimize(problem, make(pop_size=args.pop, **kwargs), ("n_gen", args.gen), seed=args.seed)
         cpu = time.process_time() - t0
         front = path_front(problem, res.pop.get("X"))
-        print(json.dumps({
-            "bench": "readme_pymoo_example", "engine": args.engine, "variant": variant,
-            "pop": args.pop, "gen": args.gen, "seed": args.seed, "front_size": len(front),
-            "min_length": round(float(front.F[:, 0].min()), 4) if len(front) else None,
-            "min_vulnerability": round(float(front.F[:, 1].min()), 4) if len(front) else None,
-            "hv_ratio_vs_exact_monotone": round(hv_ratio(front.F, exact), 4),
-            "exact_min_length": round(float(exact[:, 0].min()), 4),
-            "exact_min_vulnerability": round(float(exact[:, 1].min()), 4),
-            "exact_size": len(exact), "cpu_s": round(cpu, 1),
-        }), flush=True)
+        print(
+            json.dumps(
+                {
+                    "bench": "readme_pymoo_example",
+                    "engine": args.engine,
+                    "variant": variant,
+                    "pop": args.pop,
+                    "gen": args.gen,
+                    "seed": args.seed,
+                    "front_size": len(front),
+                    "min_length": round(float(front.F[:, 0].min()), 4) if len(front) else None,
+                    "min_vulnerability": round(float(front.F[:, 1].min()), 4) if len(front) else None,
+                    "hv_ratio_vs_exact_monotone": round(hv_ratio(front.F, exact), 4),
+                    "exact_min_length": round(float(exact[:, 0].min()), 4),
+                    "exact_min_vulnerability": round(float(exact[:, 1].min()), 4),
+                    "exact_size": len(exact),
+                    "cpu_s": round(cpu, 1),
+                }
+            ),
+            flush=True,
+        )
 
 
 if __name__ == "__main__":

@@ -30,24 +30,59 @@ sys.path.insert(0, str(ROOT / "src"))  # document this checkout's source
 #: The documented modules, in the order of the API reference: (section, modules).
 API_MODULES = [
     ("Package", ["gapath", "gapath.errors"]),
-    ("Maps and objectives", ["gapath.workspace", "gapath.loaders", "gapath.objectives",
-                             "gapath.costmap"]),
-    ("The genetic algorithm", ["gapath.encodings", "gapath.encodings.base",
-                               "gapath.encodings.integer", "gapath.encodings.binary",
-                               "gapath.encodings.mixed", "gapath.encodings.absolute",
-                               "gapath.problems", "gapath.operators", "gapath.algorithms",
-                               "gapath.front", "gapath.metrics"]),
-    ("Planners", ["gapath.planners", "gapath.planners.astar", "gapath.planners.dstar_lite",
-                  "gapath.planners.exact", "gapath.planners.pareto",
-                  "gapath.planners.weighted_sum", "gapath.planners.hybrid_astar",
-                  "gapath.planners.rrt"]),
-    ("Dynamic environments", ["gapath.dynamic", "gapath.dynamic.prediction",
-                              "gapath.dynamic.world", "gapath.dynamic.planners",
-                              "gapath.dynamic.results", "gapath.dynamic.simulation"]),
-    ("Experiments", ["gapath.experiments", "gapath.experiments.spec",
-                     "gapath.experiments.runner", "gapath.experiments.store",
-                     "gapath.experiments.report", "gapath.experiments.multirun",
-                     "gapath.experiments.dask_config"]),
+    ("Maps and objectives", ["gapath.workspace", "gapath.loaders", "gapath.objectives", "gapath.costmap"]),
+    (
+        "The genetic algorithm",
+        [
+            "gapath.encodings",
+            "gapath.encodings.base",
+            "gapath.encodings.integer",
+            "gapath.encodings.binary",
+            "gapath.encodings.mixed",
+            "gapath.encodings.absolute",
+            "gapath.problems",
+            "gapath.operators",
+            "gapath.algorithms",
+            "gapath.front",
+            "gapath.metrics",
+        ],
+    ),
+    (
+        "Planners",
+        [
+            "gapath.planners",
+            "gapath.planners.astar",
+            "gapath.planners.dstar_lite",
+            "gapath.planners.exact",
+            "gapath.planners.pareto",
+            "gapath.planners.weighted_sum",
+            "gapath.planners.hybrid_astar",
+            "gapath.planners.rrt",
+        ],
+    ),
+    (
+        "Dynamic environments",
+        [
+            "gapath.dynamic",
+            "gapath.dynamic.prediction",
+            "gapath.dynamic.world",
+            "gapath.dynamic.planners",
+            "gapath.dynamic.results",
+            "gapath.dynamic.simulation",
+        ],
+    ),
+    (
+        "Experiments",
+        [
+            "gapath.experiments",
+            "gapath.experiments.spec",
+            "gapath.experiments.runner",
+            "gapath.experiments.store",
+            "gapath.experiments.report",
+            "gapath.experiments.multirun",
+            "gapath.experiments.dask_config",
+        ],
+    ),
 ]
 
 #: Packages whose re-exported names are documented on their modules' pages
@@ -93,9 +128,14 @@ def _prune(folder: Path, keep: set[str]) -> None:
 def write_api_pages() -> None:
     """``api/index.rst`` and one ``api/<module>.rst`` per module of :data:`API_MODULES`."""
     folder = HERE / "api"
-    index = ["API reference", "=============", "",
-             "Generated from the numpydoc docstrings; the list of modules is",
-             "``API_MODULES`` in ``docs/conf.py``.", ""]
+    index = [
+        "API reference",
+        "=============",
+        "",
+        "Generated from the numpydoc docstrings; the list of modules is",
+        "``API_MODULES`` in ``docs/conf.py``.",
+        "",
+    ]
     keep = {"index.rst"}
     for section, modules in API_MODULES:
         index += [".. toctree::", f"   :caption: {section}", "   :maxdepth: 1", ""]
@@ -104,8 +144,7 @@ def write_api_pages() -> None:
             keep.add(f"{mod}.rst")
             title = f"``{mod}``"
             options = "   :ignore-module-all:\n" if mod in OWN_MEMBERS_ONLY else ""
-            _write(folder / f"{mod}.rst",
-                   f"{title}\n{'=' * len(title)}\n\n.. automodule:: {mod}\n{options}")
+            _write(folder / f"{mod}.rst", f"{title}\n{'=' * len(title)}\n\n.. automodule:: {mod}\n{options}")
         index.append("")
     _write(folder / "index.rst", "\n".join(index))
     _prune(folder, keep)
@@ -128,24 +167,30 @@ def write_notebook_pages() -> None:
     notebooks = sorted(p.name for p in (ROOT / "notebooks").glob("*.ipynb"))
     missing = [n for n in notebooks if n not in rows]
     if missing:
-        raise RuntimeError(f"notebooks/README.md has no table row for {', '.join(missing)}; "
-                           "add one (| `NAME.ipynb` | what | quick mode |)")
+        raise RuntimeError(
+            f"notebooks/README.md has no table row for {', '.join(missing)}; "
+            "add one (| `NAME.ipynb` | what | quick mode |)"
+        )
     keep = {"index.md"}
     for name in notebooks:
         stem = name.removesuffix(".ipynb")
         what, quick = (text.rstrip(".") for text in rows[name])
         keep.add(f"{stem}.md")
-        _write(folder / f"{stem}.md",
-               f"# {stem.replace('_', ' ')}\n\n"
-               f"Notebook: {{download}}`notebooks/{name} <../../notebooks/{name}>` "
-               f"(in the repository's `notebooks/` folder).\n\n"
-               f"{what[:1].upper()}{what[1:]}.\n\n"
-               f"With `GAPATH_QUICK=1` in the environment: {quick}.\n")
+        _write(
+            folder / f"{stem}.md",
+            f"# {stem.replace('_', ' ')}\n\n"
+            f"Notebook: {{download}}`notebooks/{name} <../../notebooks/{name}>` "
+            f"(in the repository's `notebooks/` folder).\n\n"
+            f"{what[:1].upper()}{what[1:]}.\n\n"
+            f"With `GAPATH_QUICK=1` in the environment: {quick}.\n",
+        )
     toc = "\n".join(n.removesuffix(".ipynb") for n in notebooks)
-    _write(folder / "index.md",
-           "# Notebooks\n\n"
-           "```{include} ../../notebooks/README.md\n:start-line: 1\n```\n\n"
-           f"```{{toctree}}\n:maxdepth: 1\n\n{toc}\n```\n")
+    _write(
+        folder / "index.md",
+        "# Notebooks\n\n"
+        "```{include} ../../notebooks/README.md\n:start-line: 1\n```\n\n"
+        f"```{{toctree}}\n:maxdepth: 1\n\n{toc}\n```\n",
+    )
     _prune(folder, keep)
 
 

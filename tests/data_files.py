@@ -51,8 +51,10 @@ def data_path(name: str) -> Path:
     """:func:`find_data`, or skip the calling test when no folder has the file."""
     path = find_data(name)
     if path is None:
-        pytest.skip(f"optional test data {name!r} not found (not in tests/data; "
-                    "looked in $GAPATH_SHARED_DATA and ../shared/data)")
+        pytest.skip(
+            f"optional test data {name!r} not found (not in tests/data; "
+            "looked in $GAPATH_SHARED_DATA and ../shared/data)"
+        )
     return path
 
 

@@ -27,8 +27,7 @@ def workspaces(draw, max_side=12):
 
 def genome_matrix(draw, n_var, values, max_rows=6):
     n = draw(st.integers(1, max_rows))
-    return np.array(draw(st.lists(st.lists(values, min_size=n_var, max_size=n_var),
-                                  min_size=n, max_size=n)))
+    return np.array(draw(st.lists(st.lists(values, min_size=n_var, max_size=n_var), min_size=n, max_size=n)))
 
 
 def frame_paths(ws, rng, n, max_step=3):
@@ -36,8 +35,10 @@ def frame_paths(ws, rng, n, max_step=3):
     (workspace cells), drawn in the canonical frame so that mirrored and
     transposed workspaces work too."""
     f = Frame.of(ws)
-    return [f.to_workspace(random_monotone_path(f.occ.shape, f.start, f.goal, rng, max_step=max_step))
-            for _ in range(n)]
+    return [
+        f.to_workspace(random_monotone_path(f.occ.shape, f.start, f.goal, rng, max_step=max_step))
+        for _ in range(n)
+    ]
 
 
 def assert_valid_simple(ws, path):

@@ -8,9 +8,15 @@ from gapath.experiments.store import ResultStore
 
 def small_spec(**kw):
     """Two maps x two population sizes x two seeds, a few generations."""
-    args = dict(name="tiny", maps=["default", {"dense": {"n": 8, "p0": 0.4, "seed": "run"}}],
-                engines=["paper"], settings={"pop_size": 12, "n_gen": 4, "seed_from": "none"},
-                grid={"pop_size": [12, 16]}, seeds=2, options={"record_first_feasible": True})
+    args = dict(
+        name="tiny",
+        maps=["default", {"dense": {"n": 8, "p0": 0.4, "seed": "run"}}],
+        engines=["paper"],
+        settings={"pop_size": 12, "n_gen": 4, "seed_from": "none"},
+        grid={"pop_size": [12, 16]},
+        seeds=2,
+        options={"record_first_feasible": True},
+    )
     args.update(kw)
     return ExperimentSpec(**args)
 

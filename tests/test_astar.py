@@ -27,8 +27,17 @@ import pytest
 from data_files import glob_data
 
 from gapath import ConfigError, NoPathError, Workspace
-from gapath.planners._grid import (DC, DR, HELD, NOT_HELD, can_step, move_mask,
-                                   open_decrease, open_pop, open_push)
+from gapath.planners._grid import (
+    DC,
+    DR,
+    HELD,
+    NOT_HELD,
+    can_step,
+    move_mask,
+    open_decrease,
+    open_pop,
+    open_push,
+)
 from gapath.planners.astar import PlanResult, astar
 
 SQRT2 = math.sqrt(2.0)
@@ -51,7 +60,7 @@ def _load_movingai_sample(scen_path: Path):
         return _read_movingai_fallback(scen_path)
     scens = load_scenarios(scen_path)
     ref = next(s for s in scens if s.start != s.goal)
-    ws = load_movingai(ref.resolve_map(), ref.start, ref.goal)   # MovingAI's rule by default
+    ws = load_movingai(ref.resolve_map(), ref.start, ref.goal)  # MovingAI's rule by default
     assert ws.corner_cutting is False
     return ws.occ, [(s.start, s.goal, s.optimal) for s in scens]
 
@@ -62,7 +71,7 @@ def _read_movingai_fallback(scen_path: Path):  # pragma: no cover
     map_name = rows[0][1].replace("\\", "/").split("/")[-1]
     text = (scen_path.parent / map_name).read_text().splitlines()
     h = int(text[1].split()[1])
-    grid = [ln.rstrip("\r") for ln in text[4:4 + h]]
+    grid = [ln.rstrip("\r") for ln in text[4 : 4 + h]]
     occ = np.array([[ch not in ".GS" for ch in ln] for ln in grid], dtype=bool)
     scens = [((int(r[5]), int(r[4])), (int(r[7]), int(r[6])), float(r[8])) for r in rows]
     return occ, scens
@@ -71,6 +80,7 @@ def _read_movingai_fallback(scen_path: Path):  # pragma: no cover
 # ---------------------------------------------------------------------------
 # reference solver and path checks
 # ---------------------------------------------------------------------------
+
 
 def brute_force(occ, start, goal, corner_cutting, cost=None) -> float:
     """Plain-Python Dijkstra over the 8-connected grid (inf if unreachable)."""
@@ -100,8 +110,7 @@ def brute_force(occ, start, goal, corner_cutting, cost=None) -> float:
     return math.inf
 
 
-def assert_valid_path(res: PlanResult, occ, start, goal, corner_cutting, cell_size=1.0,
-                      cost=None):
+def assert_valid_path(res: PlanResult, occ, start, goal, corner_cutting, cell_size=1.0, cost=None):
     path = res.path
     assert isinstance(path, np.ndarray) and path.ndim == 2 and path.shape[1] == 2
     assert np.issubdtype(path.dtype, np.integer)
@@ -146,6 +155,7 @@ def random_grid(rng, max_side=14):
 # MovingAI benchmark sample
 # ---------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("scen_path", SCEN_FILES, ids=lambda p: f"{p.parent.name}/{p.name}")
 def test_movingai_sample_matches_optimal(scen_path):
     occ, scens = _load_movingai_sample(scen_path)
@@ -170,6 +180,7 @@ def _workspace_for(occ, scens):
 # ---------------------------------------------------------------------------
 # agreement with brute force
 # ---------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("corner_cutting", [False, True])
 @pytest.mark.parametrize("with_cost", [False, True])
@@ -235,6 +246,7 @@ def test_octile_expands_fewer_cells_than_dijkstra():
 # tie-breaking and the kernel's building blocks
 # ---------------------------------------------------------------------------
 
+
 def _h(kind, r, c, tr, tc):
     dr, dc = abs(r - tr), abs(c - tc)
     if kind == "octile":
@@ -246,8 +258,7 @@ def _h(kind, r, c, tr, tc):
     return 0.0
 
 
-def reference_astar(occ, start, goal, corner_cutting, cost=None, weight=1.0,
-                    heuristic="octile"):
+def reference_astar(occ, start, goal, corner_cutting, cost=None, weight=1.0, heuristic="octile"):
     """Plain-Python A* with the documented order: ``(f, weight * h, index)``,
     moves E, NE, N, NW, W, SW, S, SE, parent changed only on a smaller g.
     Returns ``(path, expansions)`` (path None if unreachable)."""
@@ -259,7 +270,7 @@ def reference_astar(occ, start, goal, corner_cutting, cost=None, weight=1.0,
     expansions = 0
     while queue:
         _, _, u = heapq.heappop(queue)
-        if u in closed:                               # stale copy
+        if u in closed:  # stale copy
             continue
         closed.add(u)
         expansions += 1
@@ -346,7 +357,7 @@ def test_open_list_pops_like_a_plain_heap():
                 popped.append(v)
                 if v >= 0:
                     where[v] = 0
-                    key[v] = (math.inf, math.inf)    # closed: never pushed again
+                    key[v] = (math.inf, math.inf)  # closed: never pushed again
             n_open = sum(1 for v in key if where[v] != 0)
             assert size + (held[2] >= 0) == n_open
             assert sum(1 for v in key if where[v] == HELD) == (held[2] >= 0)
@@ -364,8 +375,7 @@ def test_move_mask_follows_the_move_rule(corner_cutting):
             for c in range(w):
                 mask = move_mask(flat, h, w, r, c, corner_cutting)
                 for k in range(8):
-                    assert bool(mask >> k & 1) == can_step(occ, r, c, DR[k], DC[k],
-                                                           corner_cutting)
+                    assert bool(mask >> k & 1) == can_step(occ, r, c, DR[k], DC[k], corner_cutting)
 
 
 def test_scratch_reuse_across_grids_and_threads():
@@ -388,9 +398,15 @@ def test_scratch_reuse_across_grids_and_threads():
                 res = astar(ws)
             except NoPathError:
                 res = None
-            out.append(ref is res is None or (
-                ref is not None and res is not None and np.array_equal(res.path, ref.path)
-                and res.expansions == ref.expansions))
+            out.append(
+                ref is res is None
+                or (
+                    ref is not None
+                    and res is not None
+                    and np.array_equal(res.path, ref.path)
+                    and res.expansions == ref.expansions
+                )
+            )
 
     results = []
     threads = [threading.Thread(target=check, args=(results,)) for _ in range(4)]
@@ -406,17 +422,16 @@ def test_scratch_reuse_across_grids_and_threads():
 # semantics
 # ---------------------------------------------------------------------------
 
+
 def test_corner_rule():
-    occ = np.array([[1, 0],
-                    [0, 1]], bool)
+    occ = np.array([[1, 0], [0, 1]], bool)
     ws = Workspace(occ, (1, 0), (0, 1), corner_cutting=True)
     res = astar(ws)
     assert res.path.tolist() == [[1, 0], [0, 1]] and res.cost == SQRT2
     with pytest.raises(NoPathError, match="corner cutting not allowed"):
         astar(ws.replace(corner_cutting=False))
     # one blocked side is enough to forbid the diagonal
-    occ = np.array([[0, 0],
-                    [0, 1]], bool)
+    occ = np.array([[0, 0], [0, 1]], bool)
     res = astar(Workspace(occ, (1, 0), (0, 1), corner_cutting=False))
     assert res.path.tolist() == [[1, 0], [0, 0], [0, 1]] and res.cost == 2.0
 
@@ -490,6 +505,7 @@ def test_cost_layer_is_not_modified_and_ints_accepted():
 # errors
 # ---------------------------------------------------------------------------
 
+
 @pytest.fixture
 def ws():
     occ = np.zeros((3, 4), bool)
@@ -497,28 +513,30 @@ def ws():
     return Workspace(occ)
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(start=(3, 0)), r"start \(3, 0\) is outside the 3x4 grid"),
-    (dict(start=(0, -1)), r"start \(0, -1\) is outside"),
-    (dict(goal=(0, 4)), r"goal \(0, 4\) is outside"),
-    (dict(start=(1, 1)), r"start \(1, 1\) is on an obstacle"),
-    (dict(goal=(1, 1)), r"goal \(1, 1\) is on an obstacle"),
-    (dict(start=(1,)), r"start must be a \(row, col\) pair"),
-    (dict(start="ab"), r"start must be a \(row, col\) pair"),
-    (dict(goal=(0.5, 1)), r"goal must be a \(row, col\) pair"),
-    (dict(cost=np.zeros((4, 3))), r"cost must have the grid's shape \(3, 4\), got shape \(4, 3\)"),
-    (dict(cost=np.zeros(12)), r"got shape \(12,\)"),
-    (dict(cost=np.full((3, 4), np.nan)), r"cost must be finite, got nan at \(row 0, col 0\)"),
-    (dict(cost=np.where(np.eye(3, 4, k=2) > 0, np.inf, 0.0)),
-     r"finite, got inf at \(row 0, col 2\)"),
-    (dict(cost=-np.eye(3, 4)), r"non-negative, got -1\.0 at \(row 0, col 0\)"),
-    (dict(cost=np.full((3, 4), "x")), r"cost must be a numeric array"),
-    (dict(cost=np.ones((3, 4), bool)), r"cost must be a numeric array"),
-    (dict(weight=-1), r"weight must be a finite number >= 0, got -1"),
-    (dict(weight=float("nan")), r"weight must be a finite number >= 0"),
-    (dict(weight="heavy"), r"weight must be a non-negative number, got 'heavy'"),
-    (dict(heuristic="manhattan"), r"heuristic must be one of .*got 'manhattan'"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(start=(3, 0)), r"start \(3, 0\) is outside the 3x4 grid"),
+        (dict(start=(0, -1)), r"start \(0, -1\) is outside"),
+        (dict(goal=(0, 4)), r"goal \(0, 4\) is outside"),
+        (dict(start=(1, 1)), r"start \(1, 1\) is on an obstacle"),
+        (dict(goal=(1, 1)), r"goal \(1, 1\) is on an obstacle"),
+        (dict(start=(1,)), r"start must be a \(row, col\) pair"),
+        (dict(start="ab"), r"start must be a \(row, col\) pair"),
+        (dict(goal=(0.5, 1)), r"goal must be a \(row, col\) pair"),
+        (dict(cost=np.zeros((4, 3))), r"cost must have the grid's shape \(3, 4\), got shape \(4, 3\)"),
+        (dict(cost=np.zeros(12)), r"got shape \(12,\)"),
+        (dict(cost=np.full((3, 4), np.nan)), r"cost must be finite, got nan at \(row 0, col 0\)"),
+        (dict(cost=np.where(np.eye(3, 4, k=2) > 0, np.inf, 0.0)), r"finite, got inf at \(row 0, col 2\)"),
+        (dict(cost=-np.eye(3, 4)), r"non-negative, got -1\.0 at \(row 0, col 0\)"),
+        (dict(cost=np.full((3, 4), "x")), r"cost must be a numeric array"),
+        (dict(cost=np.ones((3, 4), bool)), r"cost must be a numeric array"),
+        (dict(weight=-1), r"weight must be a finite number >= 0, got -1"),
+        (dict(weight=float("nan")), r"weight must be a finite number >= 0"),
+        (dict(weight="heavy"), r"weight must be a non-negative number, got 'heavy'"),
+        (dict(heuristic="manhattan"), r"heuristic must be one of .*got 'manhattan'"),
+    ],
+)
 def test_config_errors(ws, kwargs, match):
     with pytest.raises(ConfigError, match=match):
         astar(ws, **kwargs)

@@ -14,8 +14,7 @@ from pymoo.optimize import minimize
 from gapath import ConfigError, default_workspace
 from gapath.algorithms import FastNSGA2, paper_nsga2
 from gapath.algorithms.fast_nsga2 import PathArrays
-from gapath.callbacks import (Callbacks, ProgressBar, population_arrays,
-                              population_status)
+from gapath.callbacks import Callbacks, ProgressBar, population_arrays, population_status
 from gapath.convergence import HypervolumeRatioCallback
 from gapath.experiments.runner import FirstFeasible
 from gapath.front import path_front
@@ -66,8 +65,7 @@ def test_bar_and_callbacks_build_no_population_on_the_fast_engine(ws, monkeypatc
     first = FirstFeasible(stop=False)
     watch = _Watch()
     n_gen = 6
-    r = solve(ws, pop_size=40, n_gen=n_gen, seed=2, progress=True,
-              callback=Callbacks(hv, first, watch))
+    r = solve(ws, pop_size=40, n_gen=n_gen, seed=2, progress=True, callback=Callbacks(hv, first, watch))
     assert r.n_gen == n_gen and len(hv.history) == n_gen and first.generation == 1
     # the bar, the hv ratio and the first-feasible watch ran before _Watch every generation
     assert watch.pop_built == [False] * n_gen
@@ -77,12 +75,12 @@ def test_bar_and_callbacks_build_no_population_on_the_fast_engine(ws, monkeypatc
 
 def test_bar_reads_the_status_of_the_last_generation(ws):
     out = io.StringIO()
-    bar = ProgressBar(5, file=out, mininterval=1e9)    # never redrawn on time
+    bar = ProgressBar(5, file=out, mininterval=1e9)  # never redrawn on time
     r = solve(ws, pop_size=30, n_gen=5, seed=4, callback=bar)
     bar.close()
     assert bar.last_gen == 5 and bar.status["gen"] == 5
     expected = population_status(r.pymoo_result.algorithm)
-    assert expected.pop("gen") == 6      # pymoo's n_gen after the run
+    assert expected.pop("gen") == 6  # pymoo's n_gen after the run
     assert bar.status == {"gen": 5, **expected}
     text = out.getvalue()
     assert f"feasible={expected['feasible']} front={expected['front']}" in text
@@ -103,7 +101,7 @@ def test_bar_reads_the_status_only_when_it_redraws(ws, monkeypatch):
     bar = ProgressBar(6, file=io.StringIO(), mininterval=1e9)
     solve(ws, pop_size=20, n_gen=6, seed=1, callback=bar)
     bar.close()
-    assert calls == [1, 6]          # the first drawing and the last generation
+    assert calls == [1, 6]  # the first drawing and the last generation
     calls.clear()
     bar = ProgressBar(6, file=io.StringIO(), mininterval=0, miniters=1)
     solve(ws, pop_size=20, n_gen=6, seed=1, callback=bar)
@@ -116,8 +114,7 @@ def _status_from_population(pop, problem, n_gen):
     interfering = column(pop, "interfering")
     feasible = interfering == 0
     rank = column(pop, "rank")
-    status = {"gen": n_gen, "feasible": int(feasible.sum()),
-              "front": int(((rank == 0) & feasible).sum())}
+    status = {"gen": n_gen, "feasible": int(feasible.sum()), "front": int(((rank == 0) & feasible).sum())}
     if feasible.any():
         F = pop.get("F")[feasible]
         status.update({n: float(v) for n, v in zip(problem.objectives, F.min(axis=0))})
@@ -132,8 +129,7 @@ def test_status_equals_the_final_pymoo_population(ws, constraints):
     seeded = dict(sampling=PlannerSampling("weighted"))
     for name, algorithm in (("fast", FastNSGA2(40, **seeded)), ("pymoo", paper_nsga2(40, **seeded))):
         watches[name] = _Watch()
-        results[name] = minimize(problem, algorithm, ("n_gen", 5), seed=7,
-                                 callback=watches[name])
+        results[name] = minimize(problem, algorithm, ("n_gen", 5), seed=7, callback=watches[name])
     # the fast engine's arrays give what pymoo's own population gives
     assert watches["fast"].status == watches["pymoo"].status
     for name, res in results.items():
@@ -179,8 +175,15 @@ def test_hv_history_and_first_feasible_are_the_same_on_both_engines(ws):
     for engine in ("fast", "pymoo"):
         hv = HypervolumeRatioCallback(reference)
         first = FirstFeasible(stop=False)
-        r = solve(random_workspace((14, 14), 40, seed=3), pop_size=30, n_gen=6, seed=1,
-                  seed_from="none", engine=engine, callback=Callbacks(first))
+        r = solve(
+            random_workspace((14, 14), 40, seed=3),
+            pop_size=30,
+            n_gen=6,
+            seed=1,
+            seed_from="none",
+            engine=engine,
+            callback=Callbacks(first),
+        )
         solve(ws, pop_size=30, n_gen=6, seed=1, engine=engine, callback=hv)
         out[engine] = (hv.to_array(), first.generation, r)
     np.testing.assert_array_equal(out["fast"][0], out["pymoo"][0])
@@ -192,6 +195,7 @@ def test_hv_history_and_first_feasible_are_the_same_on_both_engines(ws):
 
 
 # -- decode once ------------------------------------------------------------
+
 
 def _count_decodes(monkeypatch, problem):
     """Rows decoded by problem.encoding outside and inside evaluations."""

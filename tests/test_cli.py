@@ -3,24 +3,25 @@ import json
 import subprocess
 import sys
 
-import numpy as np
 import pytest
 
 from gapath.cli import main
-from gapath.objectives import evaluate_path
 from gapath.loaders import load_text
+from gapath.objectives import evaluate_path
 
 
 @pytest.fixture
 def text_map(tmp_path):
-    rows = ["..........",
-            "...#......",
-            "......#...",
-            "..#.......",
-            ".....#..#.",
-            ".#........",
-            "....#.....",
-            ".........."]
+    rows = [
+        "..........",
+        "...#......",
+        "......#...",
+        "..#.......",
+        ".....#..#.",
+        ".#........",
+        "....#.....",
+        "..........",
+    ]
     p = tmp_path / "small.txt"
     p.write_text("\n".join(rows) + "\n")
     return p
@@ -28,8 +29,7 @@ def text_map(tmp_path):
 
 def test_solve_writes_all_outputs(text_map, tmp_path, capsys):
     out = tmp_path / "run"
-    code = main(["solve", str(text_map), "--pop", "30", "--gen", "10", "--seed", "2",
-                 "--out", str(out)])
+    code = main(["solve", str(text_map), "--pop", "30", "--gen", "10", "--seed", "2", "--out", str(out)])
     assert code == 0
     for name in ("front.csv", "paths.json", "summary.json", "front.png", "paths.png"):
         assert (out / name).stat().st_size > 0, name
@@ -52,33 +52,74 @@ def test_solve_writes_all_outputs(text_map, tmp_path, capsys):
 
 def test_solve_is_reproducible(text_map, tmp_path):
     for d in ("a", "b"):
-        assert main(["solve", str(text_map), "--pop", "20", "--gen", "6", "--out",
-                     str(tmp_path / d), "--quiet", "--no-plots"]) == 0
+        assert (
+            main(
+                [
+                    "solve",
+                    str(text_map),
+                    "--pop",
+                    "20",
+                    "--gen",
+                    "6",
+                    "--out",
+                    str(tmp_path / d),
+                    "--quiet",
+                    "--no-plots",
+                ]
+            )
+            == 0
+        )
     for name in ("front.csv", "paths.json"):
         assert (tmp_path / "a" / name).read_bytes() == (tmp_path / "b" / name).read_bytes()
 
 
 def test_solve_three_objectives_and_start_goal(text_map, tmp_path):
     out = tmp_path / "three"
-    assert main(["solve", str(text_map), "--objectives", "length,vulnerability,smoothness",
-                 "--start", "7,1", "--goal", "0,8", "--tiebreak", "none", "--constraints",
-                 "constraint", "--pop", "20", "--gen", "5", "--out", str(out), "--quiet"]) == 0
+    assert (
+        main(
+            [
+                "solve",
+                str(text_map),
+                "--objectives",
+                "length,vulnerability,smoothness",
+                "--start",
+                "7,1",
+                "--goal",
+                "0,8",
+                "--tiebreak",
+                "none",
+                "--constraints",
+                "constraint",
+                "--pop",
+                "20",
+                "--gen",
+                "5",
+                "--out",
+                str(out),
+                "--quiet",
+            ]
+        )
+        == 0
+    )
     rows = list(csv.reader((out / "front.csv").open()))
     assert rows[0] == ["length", "vulnerability", "smoothness"]
     rec = json.loads((out / "paths.json").read_text())[0]
     assert rec["path"][0] == [7, 1] and rec["path"][-1] == [0, 8]
 
 
-@pytest.mark.parametrize("args,message", [
-    (["solve", "missing.map"], "missing.map"),
-    (["solve", "{map}", "--start", "9,0"], "start (9, 0) is outside the 8x10 grid"),
-    (["solve", "{map}", "--goal", "1,3"], "goal (1, 3) is on an obstacle"),
-    (["solve", "{map}", "--objectives", "length,speed"], "unknown objective 'speed'"),
-    (["solve", "{map}", "--pop", "0"], "--pop must be an integer >= 1, got 0"),
-    (["solve", "{map}", "--gen", "-3"], "--gen must be an integer >= 1, got -3"),
-    (["solve", "{map}", "--encoding", "gray"], "unknown encoding 'gray'"),
-    (["solve", "{bad}"], "line 2"),
-])
+@pytest.mark.parametrize(
+    "args,message",
+    [
+        (["solve", "missing.map"], "missing.map"),
+        (["solve", "{map}", "--start", "9,0"], "start (9, 0) is outside the 8x10 grid"),
+        (["solve", "{map}", "--goal", "1,3"], "goal (1, 3) is on an obstacle"),
+        (["solve", "{map}", "--objectives", "length,speed"], "unknown objective 'speed'"),
+        (["solve", "{map}", "--pop", "0"], "--pop must be an integer >= 1, got 0"),
+        (["solve", "{map}", "--gen", "-3"], "--gen must be an integer >= 1, got -3"),
+        (["solve", "{map}", "--encoding", "gray"], "unknown encoding 'gray'"),
+        (["solve", "{bad}"], "line 2"),
+    ],
+)
 def test_bad_input_exits_2_with_a_clear_message(args, message, text_map, tmp_path, capsys):
     bad = tmp_path / "bad.txt"
     bad.write_text("....\n..x.\n....\n")
@@ -92,13 +133,17 @@ def test_bad_input_exits_2_with_a_clear_message(args, message, text_map, tmp_pat
 def test_cli_process_has_no_traceback(tmp_path):
     bad = tmp_path / "ragged.map"
     bad.write_text("type octile\nheight 2\nwidth 3\nmap\n...\n..\n")
-    proc = subprocess.run([sys.executable, "-m", "gapath.cli", "solve", str(bad)],
-                          capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "gapath.cli", "solve", str(bad)], capture_output=True, text=True
+    )
     assert proc.returncode == 2
     assert "ragged.map" in proc.stderr and "line 6" in proc.stderr
     assert "Traceback" not in proc.stderr
-    proc = subprocess.run([sys.executable, "-m", "gapath.cli", "solve", "default", "--start", "x"],
-                          capture_output=True, text=True)
+    proc = subprocess.run(
+        [sys.executable, "-m", "gapath.cli", "solve", "default", "--start", "x"],
+        capture_output=True,
+        text=True,
+    )
     assert proc.returncode == 2 and "ROW,COL" in proc.stderr
 
 
@@ -112,13 +157,47 @@ def test_exact_command_and_reference(text_map, tmp_path, capsys):
     for rec in json.loads((ex / "paths.json").read_text()):
         assert evaluate_path(ws, rec["path"])["interfering"] == 0
     run = tmp_path / "run"
-    assert main(["solve", str(text_map), "--pop", "40", "--gen", "10", "--out", str(run),
-                 "--reference", str(ex / "front.csv"), "--quiet", "--no-plots"]) == 0
+    assert (
+        main(
+            [
+                "solve",
+                str(text_map),
+                "--pop",
+                "40",
+                "--gen",
+                "10",
+                "--out",
+                str(run),
+                "--reference",
+                str(ex / "front.csv"),
+                "--quiet",
+                "--no-plots",
+            ]
+        )
+        == 0
+    )
     q = json.loads((run / "summary.json").read_text())["quality"]
     assert 0.0 < q["hv_ratio"] <= 1.0 + 1e-9
     assert q["reference_size"] == len(rows) - 1
-    assert main(["solve", str(text_map), "--pop", "40", "--gen", "5", "--out", str(run),
-                 "--reference", "monotone", "--quiet", "--no-plots"]) == 0
+    assert (
+        main(
+            [
+                "solve",
+                str(text_map),
+                "--pop",
+                "40",
+                "--gen",
+                "5",
+                "--out",
+                str(run),
+                "--reference",
+                "monotone",
+                "--quiet",
+                "--no-plots",
+            ]
+        )
+        == 0
+    )
     q2 = json.loads((run / "summary.json").read_text())["quality"]
     assert q2["reference"] == "monotone" and q2["reference_size"] == q["reference_size"]
     conv = (run / "convergence.csv").read_text().splitlines()
@@ -130,12 +209,46 @@ def test_exact_command_and_reference(text_map, tmp_path, capsys):
 def test_reference_file_errors(text_map, tmp_path, capsys):
     bad = tmp_path / "front.csv"
     bad.write_text("length,smoothness\n1,2\n")
-    assert main(["solve", str(text_map), "--pop", "10", "--gen", "2", "--out", str(tmp_path / "o"),
-                 "--reference", str(bad), "--quiet", "--no-plots"]) == 2
+    assert (
+        main(
+            [
+                "solve",
+                str(text_map),
+                "--pop",
+                "10",
+                "--gen",
+                "2",
+                "--out",
+                str(tmp_path / "o"),
+                "--reference",
+                str(bad),
+                "--quiet",
+                "--no-plots",
+            ]
+        )
+        == 2
+    )
     assert "reference front has objectives" in capsys.readouterr().err
     bad.write_text("length,vulnerability\n1,x\n")
-    assert main(["solve", str(text_map), "--pop", "10", "--gen", "2", "--out", str(tmp_path / "o"),
-                 "--reference", str(bad), "--quiet", "--no-plots"]) == 2
+    assert (
+        main(
+            [
+                "solve",
+                str(text_map),
+                "--pop",
+                "10",
+                "--gen",
+                "2",
+                "--out",
+                str(tmp_path / "o"),
+                "--reference",
+                str(bad),
+                "--quiet",
+                "--no-plots",
+            ]
+        )
+        == 2
+    )
     assert "line 2" in capsys.readouterr().err
 
 

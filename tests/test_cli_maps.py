@@ -75,6 +75,7 @@ def _corner_cut_scenarios(data_dir, name, k):
 # plan: the shortest path by default
 # ---------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("planner", ["astar", "dstar-lite", "dstar-po"])
 def test_plan_default_is_the_movingai_optimum(planner, data_dir, tmp_path, capsys):
     """With nothing but the map, start and goal, plan returns MovingAI's
@@ -83,9 +84,20 @@ def test_plan_default_is_the_movingai_optimum(planner, data_dir, tmp_path, capsy
     for i in _corner_cut_scenarios(data_dir, SCEN, 4):
         sc = scens[i]
         out = tmp_path / f"{planner}-{i}"
-        args = ["plan", str(sc.resolve_map()), "--planner", planner,
-                "--start", f"{sc.start[0]},{sc.start[1]}", "--goal", f"{sc.goal[0]},{sc.goal[1]}",
-                "--out", str(out), "--quiet", "--no-plots"]
+        args = [
+            "plan",
+            str(sc.resolve_map()),
+            "--planner",
+            planner,
+            "--start",
+            f"{sc.start[0]},{sc.start[1]}",
+            "--goal",
+            f"{sc.goal[0]},{sc.goal[1]}",
+            "--out",
+            str(out),
+            "--quiet",
+            "--no-plots",
+        ]
         assert main(args) == 0
         s = _summary(out)
         assert s["settings"]["objectives"] == ["length"]
@@ -96,27 +108,43 @@ def test_plan_default_is_the_movingai_optimum(planner, data_dir, tmp_path, capsy
 
 def test_plan_layers_are_opt_in(tmp_path):
     out = tmp_path / "layers"
-    assert main(["plan", "default", "--planner", "astar", "--layers", "elevation,solar,risk",
-                 "--out", str(out), "--quiet", "--no-plots"]) == 0
+    assert (
+        main(
+            [
+                "plan",
+                "default",
+                "--planner",
+                "astar",
+                "--layers",
+                "elevation,solar,risk",
+                "--out",
+                str(out),
+                "--quiet",
+                "--no-plots",
+            ]
+        )
+        == 0
+    )
     assert (out / "front.csv").read_text().splitlines()[0] == "length,elevation,solar,risk"
     assert _summary(out)["settings"]["terrain"] == "fractal seed=1"
     plain = tmp_path / "plain"
-    assert main(["plan", "default", "--planner", "astar", "--out", str(plain), "--quiet",
-                 "--no-plots"]) == 0
+    assert main(["plan", "default", "--planner", "astar", "--out", str(plain), "--quiet", "--no-plots"]) == 0
     assert _summary(plain)["settings"]["terrain"] is None
     # the layered path is never shorter than the shortest one
-    assert (_summary(plain)["objectives"]["length"]
-            <= _summary(out)["objectives"]["length"] + 1e-9)
+    assert _summary(plain)["objectives"]["length"] <= _summary(out)["objectives"]["length"] + 1e-9
 
 
-@pytest.mark.parametrize("flag,fragment", [
-    (["--dem", "x.npy"], "--dem sets the elevation layer"),
-    (["--risk", "3,3"], "--risk sets the risk layer"),
-    (["--layers", "height"], "--layers: unknown layer 'height'"),
-])
+@pytest.mark.parametrize(
+    "flag,fragment",
+    [
+        (["--dem", "x.npy"], "--dem sets the elevation layer"),
+        (["--risk", "3,3"], "--risk sets the risk layer"),
+        (["--layers", "height"], "--layers: unknown layer 'height'"),
+    ],
+)
 def test_layer_options_without_their_layer(flag, fragment, tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(tmp_path)
-    np.save(tmp_path / "x.npy", np.random.default_rng(1).random((8, 8)))   # a valid DEM
+    np.save(tmp_path / "x.npy", np.random.default_rng(1).random((8, 8)))  # a valid DEM
     assert main(["plan", "default", *flag, "--out", str(tmp_path / "o"), "--quiet"]) == 2
     err = capsys.readouterr().err
     assert fragment in err and "Traceback" not in err
@@ -140,6 +168,7 @@ def test_plan_reports_compile_time_apart(tmp_path, capsys):
 # corner rule by source, printed and stored
 # ---------------------------------------------------------------------------
 
+
 def test_corner_rule_by_source_in_every_command(data_dir, tmp_path, capsys):
     arena = data_dir / "movingai/grid/arena.map"
     text = tmp_path / "g.txt"
@@ -147,12 +176,18 @@ def test_corner_rule_by_source_in_every_command(data_dir, tmp_path, capsys):
     runs = [
         (["plan", str(arena), "--start", "40,3", "--goal", "3,40"], False, "MovingAI .map"),
         (["exact", str(arena), "--start", "40,3", "--goal", "3,40"], False, "MovingAI .map"),
-        (["solve", str(arena), "--start", "40,3", "--goal", "3,40", "--pop", "10", "--gen", "2"],
-         False, "MovingAI .map"),
+        (
+            ["solve", str(arena), "--start", "40,3", "--goal", "3,40", "--pop", "10", "--gen", "2"],
+            False,
+            "MovingAI .map",
+        ),
         (["plan", str(text)], True, "text grid"),
         (["exact", "default"], True, "bundled scenario"),
-        (["plan", str(arena), "--start", "40,3", "--goal", "3,40", "--corner-cutting"],
-         True, "--corner-cutting"),
+        (
+            ["plan", str(arena), "--start", "40,3", "--goal", "3,40", "--corner-cutting"],
+            True,
+            "--corner-cutting",
+        ),
         (["plan", str(text), "--no-corner-cutting"], False, "--no-corner-cutting"),
     ]
     for k, (args, expected, source) in enumerate(runs):
@@ -171,11 +206,16 @@ def test_corner_rule_by_source_in_every_command(data_dir, tmp_path, capsys):
 # --scen FILE:INDEX and gapath scen
 # ---------------------------------------------------------------------------
 
+
 def test_plan_scen_uses_the_line_and_reports_the_optimum(data_dir, tmp_path, capsys):
     scens = load_scenarios(data_dir / SCEN)
     out = tmp_path / "p"
-    assert main(["plan", "--scen", f"{data_dir / SCEN}:7", "--planner", "astar", "--out",
-                 str(out), "--no-plots"]) == 0
+    assert (
+        main(
+            ["plan", "--scen", f"{data_dir / SCEN}:7", "--planner", "astar", "--out", str(out), "--no-plots"]
+        )
+        == 0
+    )
     s = _summary(out)
     assert s["settings"]["start"] == list(scens[7].start)
     assert s["settings"]["goal"] == list(scens[7].goal)
@@ -190,8 +230,22 @@ def test_plan_scen_uses_the_line_and_reports_the_optimum(data_dir, tmp_path, cap
 def test_scen_with_corner_cutting_override_misses_the_optimum(data_dir, tmp_path, capsys):
     i = _corner_cut_scenarios(data_dir, SCEN, 1)[0]
     out = tmp_path / "cut"
-    assert main(["plan", "--scen", f"{data_dir / SCEN}:{i}", "--planner", "astar",
-                 "--corner-cutting", "--out", str(out), "--no-plots"]) == 0
+    assert (
+        main(
+            [
+                "plan",
+                "--scen",
+                f"{data_dir / SCEN}:{i}",
+                "--planner",
+                "astar",
+                "--corner-cutting",
+                "--out",
+                str(out),
+                "--no-plots",
+            ]
+        )
+        == 0
+    )
     rec = _summary(out)["scenario"]
     assert rec["matches"] is False and rec["length"] < rec["optimal"]
     assert "the optimum assumes no corner cutting" in capsys.readouterr().out
@@ -200,53 +254,97 @@ def test_scen_with_corner_cutting_override_misses_the_optimum(data_dir, tmp_path
 def test_scen_explicit_map_wins(data_dir, tmp_path):
     scen_dir = tmp_path / "elsewhere"
     scen_dir.mkdir()
-    shutil.copy(data_dir / SCEN, scen_dir / "s.scen")          # its map is not next to it
-    assert main(["plan", "--scen", f"{scen_dir / 's.scen'}:0", "--out", str(tmp_path / "x"),
-                 "--quiet"]) == 2
+    shutil.copy(data_dir / SCEN, scen_dir / "s.scen")  # its map is not next to it
+    assert main(["plan", "--scen", f"{scen_dir / 's.scen'}:0", "--out", str(tmp_path / "x"), "--quiet"]) == 2
     copy = tmp_path / "renamed.map"
     shutil.copy(data_dir / "movingai/mapf/random-32-32-20.map", copy)
     out = tmp_path / "y"
-    assert main(["plan", str(copy), "--scen", f"{scen_dir / 's.scen'}:0", "--planner", "astar",
-                 "--out", str(out), "--quiet", "--no-plots"]) == 0
+    assert (
+        main(
+            [
+                "plan",
+                str(copy),
+                "--scen",
+                f"{scen_dir / 's.scen'}:0",
+                "--planner",
+                "astar",
+                "--out",
+                str(out),
+                "--quiet",
+                "--no-plots",
+            ]
+        )
+        == 0
+    )
     assert _summary(out)["settings"]["map"] == "renamed"
     assert _summary(out)["scenario"]["matches"] is True
 
 
 def test_exact_and_solve_take_scen(data_dir, tmp_path):
     scens = load_scenarios(data_dir / ARENA_SCEN)
-    i = next(k for k, s in enumerate(scens) if abs(s.start[1] - s.goal[1]) >= 3
-             and s.optimal > 3)
+    i = next(k for k, s in enumerate(scens) if abs(s.start[1] - s.goal[1]) >= 3 and s.optimal > 3)
     ex = tmp_path / "exact"
-    assert main(["exact", "--scen", f"{data_dir / ARENA_SCEN}:{i}", "--mode", "free",
-                 "--objectives", "length", "--out", str(ex), "--quiet", "--no-plots"]) == 0
+    assert (
+        main(
+            [
+                "exact",
+                "--scen",
+                f"{data_dir / ARENA_SCEN}:{i}",
+                "--mode",
+                "free",
+                "--objectives",
+                "length",
+                "--out",
+                str(ex),
+                "--quiet",
+                "--no-plots",
+            ]
+        )
+        == 0
+    )
     rec = _summary(ex)["scenario"]
-    assert rec["matches"] is True      # the exact free front holds a shortest path
+    assert rec["matches"] is True  # the exact free front holds a shortest path
     so = tmp_path / "solve"
-    code = main(["solve", "--scen", f"{data_dir / ARENA_SCEN}:{i}", "--pop", "20", "--gen", "3",
-                 "--out", str(so), "--quiet", "--no-plots"])
+    code = main(
+        [
+            "solve",
+            "--scen",
+            f"{data_dir / ARENA_SCEN}:{i}",
+            "--pop",
+            "20",
+            "--gen",
+            "3",
+            "--out",
+            str(so),
+            "--quiet",
+            "--no-plots",
+        ]
+    )
     assert code in (0, 1)
     s = _summary(so)
     assert s["scenario"]["optimal"] == scens[i].optimal
     assert s["settings"]["start"] == list(scens[i].start) and s["settings"]["corner_cutting"] is False
-    if s["scenario"]["length"] is not None:   # monotone paths: never below the optimum
+    if s["scenario"]["length"] is not None:  # monotone paths: never below the optimum
         assert s["scenario"]["length"] >= scens[i].optimal * (1 - 1e-5)
 
 
-@pytest.mark.parametrize("args,fragment", [
-    (["plan", "--scen", "{scen}:99999"], "expected an index 0..408"),
-    (["plan", "--scen", "{scen}"], "expected FILE:INDEX"),
-    (["plan", "--scen", "{scen}:1", "--start", "1,1"], "--scen gives the start and the goal"),
-    (["plan", "{arena}", "--scen", "{scen}:1"], "is for a 32x32 map"),
-    (["plan"], "a MAP is needed"),
-    (["exact"], "a MAP is needed"),
-    (["solve"], "a MAP is needed"),
-])
+@pytest.mark.parametrize(
+    "args,fragment",
+    [
+        (["plan", "--scen", "{scen}:99999"], "expected an index 0..408"),
+        (["plan", "--scen", "{scen}"], "expected FILE:INDEX"),
+        (["plan", "--scen", "{scen}:1", "--start", "1,1"], "--scen gives the start and the goal"),
+        (["plan", "{arena}", "--scen", "{scen}:1"], "is for a 32x32 map"),
+        (["plan"], "a MAP is needed"),
+        (["exact"], "a MAP is needed"),
+        (["solve"], "a MAP is needed"),
+    ],
+)
 def test_scen_bad_input(args, fragment, data_dir, tmp_path, capsys):
-    args = [a.format(scen=data_dir / SCEN, arena=data_dir / "movingai/grid/arena.map")
-            for a in args]
+    args = [a.format(scen=data_dir / SCEN, arena=data_dir / "movingai/grid/arena.map") for a in args]
     try:
         code = main(args + ["--out", str(tmp_path / "o"), "--quiet"])
-    except SystemExit as exc:        # argparse's own errors
+    except SystemExit as exc:  # argparse's own errors
         code = exc.code
     assert code == 2
     err = capsys.readouterr().err
@@ -263,7 +361,7 @@ def test_scen_command_all_match(data_dir, capsys):
 def test_scen_command_reports_a_wrong_optimum(data_dir, tmp_path, capsys):
     lines = (data_dir / SCEN).read_text().splitlines()
     cols = lines[3].split("\t")
-    cols[8] = f"{float(cols[8]) + 1:.8f}"       # line 4: one more than the optimum
+    cols[8] = f"{float(cols[8]) + 1:.8f}"  # line 4: one more than the optimum
     lines[3] = "\t".join(cols)
     bad = tmp_path / "random-32-32-20-random-1.scen"
     bad.write_text("\n".join(lines[:11]) + "\n")
@@ -284,6 +382,7 @@ def test_scen_command_bad_input(tmp_path, capsys):
 # ---------------------------------------------------------------------------
 # ROS maps in their world frame
 # ---------------------------------------------------------------------------
+
 
 def test_ros_frame_agrees_with_map_server(data_dir):
     path = data_dir / DEPOT
@@ -319,8 +418,24 @@ def test_plan_start_goal_xy_on_a_ros_map(data_dir, tmp_path):
     (sx, sy), (gx, gy) = _ros_world(path, [s_cell, g_cell])
     out = tmp_path / "ros"
     # negative metres parse without '='
-    assert main(["plan", str(path), "--start-xy", f"{sx},{sy}", "--goal-xy", f"{gx},{gy}",
-                 "--planner", "astar", "--out", str(out), "--quiet"]) == 0
+    assert (
+        main(
+            [
+                "plan",
+                str(path),
+                "--start-xy",
+                f"{sx},{sy}",
+                "--goal-xy",
+                f"{gx},{gy}",
+                "--planner",
+                "astar",
+                "--out",
+                str(out),
+                "--quiet",
+            ]
+        )
+        == 0
+    )
     s = _summary(out)["settings"]
     assert (tuple(s["start"]), tuple(s["goal"])) == (s_cell, g_cell)
     assert s["corner_cutting"] is False and s["frame"]["origin"] == [-7.14, -7.83, 0]
@@ -333,8 +448,28 @@ def test_plan_start_goal_xy_on_a_ros_map(data_dir, tmp_path):
 def test_kinematic_plan_world_poses(data_dir, tmp_path):
     path = data_dir / "ros/lse_arena/lse_arena.yaml"
     out = tmp_path / "rrt"
-    assert main(["plan", str(path), "--start", "50,10", "--goal", "10,70", "--planner", "rrt",
-                 "--radius", "0.05", "--step", "0.2", "--out", str(out), "--quiet"]) == 0
+    assert (
+        main(
+            [
+                "plan",
+                str(path),
+                "--start",
+                "50,10",
+                "--goal",
+                "10,70",
+                "--planner",
+                "rrt",
+                "--radius",
+                "0.05",
+                "--step",
+                "0.2",
+                "--out",
+                str(out),
+                "--quiet",
+            ]
+        )
+        == 0
+    )
     rec = json.loads((out / "paths.json").read_text())[0]
     assert np.allclose(rec["world"], _ros_world(path, rec["path"]))
     wp = np.array(rec["world_poses"])
@@ -342,21 +477,32 @@ def test_kinematic_plan_world_poses(data_dir, tmp_path):
     assert np.allclose(wp[-1, :2], _ros_world(path, [(10, 70)])[0])
     d = np.diff(wp[:, :2], axis=0)
     moving = np.hypot(d[:, 0], d[:, 1]) > 1e-9
-    heading = np.arctan2(d[moving, 1], d[moving, 0])    # the world heading of each segment
+    heading = np.arctan2(d[moving, 1], d[moving, 0])  # the world heading of each segment
     diff = np.angle(np.exp(1j * (heading - wp[:-1][moving, 2])))
     assert np.allclose(diff, 0.0, atol=1e-5)
     assert "compile_s" in _summary(out)
 
 
-@pytest.mark.parametrize("args,fragment", [
-    (["--start-xy", "1,2"], "needs a map with a world frame"),
-    (["--start", "1,1", "--start-xy", "1,2"], "--start and --start-xy both give the start"),
-    (["--start-xy", "x,2"], "expected X,Y"),
-])
+@pytest.mark.parametrize(
+    "args,fragment",
+    [
+        (["--start-xy", "1,2"], "needs a map with a world frame"),
+        (["--start", "1,1", "--start-xy", "1,2"], "--start and --start-xy both give the start"),
+        (["--start-xy", "x,2"], "expected X,Y"),
+    ],
+)
 def test_xy_bad_input(args, fragment, data_dir, tmp_path, capsys):
     try:
-        code = main(["plan", str(data_dir / "movingai/grid/arena.map"), *args, "--out",
-                     str(tmp_path / "o"), "--quiet"])
+        code = main(
+            [
+                "plan",
+                str(data_dir / "movingai/grid/arena.map"),
+                *args,
+                "--out",
+                str(tmp_path / "o"),
+                "--quiet",
+            ]
+        )
     except SystemExit as exc:
         code = exc.code
     assert code == 2
@@ -364,8 +510,10 @@ def test_xy_bad_input(args, fragment, data_dir, tmp_path, capsys):
 
 
 def test_xy_outside_the_ros_map(data_dir, tmp_path, capsys):
-    assert main(["plan", str(data_dir / DEPOT), "--goal-xy", "100,0", "--out",
-                 str(tmp_path / "o"), "--quiet"]) == 2
+    assert (
+        main(["plan", str(data_dir / DEPOT), "--goal-xy", "100,0", "--out", str(tmp_path / "o"), "--quiet"])
+        == 2
+    )
     err = capsys.readouterr().err
     assert "--goal-xy" in err and "outside the map" in err and "-7.14.." in err
 
@@ -373,6 +521,7 @@ def test_xy_outside_the_ros_map(data_dir, tmp_path, capsys):
 # ---------------------------------------------------------------------------
 # plots: axis labels and units
 # ---------------------------------------------------------------------------
+
 
 def test_plots_have_axis_labels_with_units(data_dir):
     import matplotlib
@@ -411,16 +560,22 @@ def test_plots_have_axis_labels_with_units(data_dir):
 # messages in the CLI's words, papers by name
 # ---------------------------------------------------------------------------
 
-@pytest.mark.parametrize("args,fragment", [
-    (["--planner", "rrt", "--iterations", "0"], "--iterations must be an integer >= 1, got 0"),
-    (["--planner", "rrt", "--goal-bias", "2"], "--goal-bias must be a number in [0, 1], got 2.0"),
-    (["--planner", "hybrid-astar", "--heading-bins", "2"], "--heading-bins must be"),
-    (["--planner", "hybrid-astar", "--max-steer", "95"],
-     "--max-steer must be a number in (0, 90), got 95.0"),
-    (["--planner", "hybrid-astar", "--wheelbase", "-1"], "--wheelbase must be"),
-    (["--planner", "rrt", "--radius", "3"], "start cell ROW,COL 7,0 is in collision"),
-    (["--planner", "hybrid-astar", "--radius", "3"], "start cell ROW,COL 7,0 heading"),
-])
+
+@pytest.mark.parametrize(
+    "args,fragment",
+    [
+        (["--planner", "rrt", "--iterations", "0"], "--iterations must be an integer >= 1, got 0"),
+        (["--planner", "rrt", "--goal-bias", "2"], "--goal-bias must be a number in [0, 1], got 2.0"),
+        (["--planner", "hybrid-astar", "--heading-bins", "2"], "--heading-bins must be"),
+        (
+            ["--planner", "hybrid-astar", "--max-steer", "95"],
+            "--max-steer must be a number in (0, 90), got 95.0",
+        ),
+        (["--planner", "hybrid-astar", "--wheelbase", "-1"], "--wheelbase must be"),
+        (["--planner", "rrt", "--radius", "3"], "start cell ROW,COL 7,0 is in collision"),
+        (["--planner", "hybrid-astar", "--radius", "3"], "start cell ROW,COL 7,0 heading"),
+    ],
+)
 def test_kinematic_messages_use_flags_and_cells(args, fragment, tmp_path, capsys):
     grid = tmp_path / "g.txt"
     grid.write_text("\n".join(["." * 10] * 8) + "\n")
@@ -431,8 +586,22 @@ def test_kinematic_messages_use_flags_and_cells(args, fragment, tmp_path, capsys
 
 
 def test_simulate_messages_use_flags(tmp_path, capsys):
-    assert main(["simulate", "maze", "--planner", "rrt", "--iterations", "-5",
-                 "--out", str(tmp_path / "o"), "--quiet"]) == 2
+    assert (
+        main(
+            [
+                "simulate",
+                "maze",
+                "--planner",
+                "rrt",
+                "--iterations",
+                "-5",
+                "--out",
+                str(tmp_path / "o"),
+                "--quiet",
+            ]
+        )
+        == 2
+    )
     assert "--iterations must be" in capsys.readouterr().err
 
 
@@ -454,9 +623,31 @@ def test_heading_on_a_ros_map_is_a_map_frame_yaw(data_dir, tmp_path):
     path = data_dir / "ros/lse_arena/lse_arena.yaml"
     out = tmp_path / "h"
     # 90 degrees: north in the map frame, i.e. up the image
-    assert main(["plan", str(path), "--start", "50,10", "--goal", "10,12", "--planner",
-                 "hybrid-astar", "--radius", "0.05", "--wheelbase", "0.2", "--heading", "90",
-                 "--out", str(out), "--quiet", "--no-plots"]) == 0
+    assert (
+        main(
+            [
+                "plan",
+                str(path),
+                "--start",
+                "50,10",
+                "--goal",
+                "10,12",
+                "--planner",
+                "hybrid-astar",
+                "--radius",
+                "0.05",
+                "--wheelbase",
+                "0.2",
+                "--heading",
+                "90",
+                "--out",
+                str(out),
+                "--quiet",
+                "--no-plots",
+            ]
+        )
+        == 0
+    )
     rec = json.loads((out / "paths.json").read_text())[0]
     assert rec["world_poses"][0][2] == pytest.approx(math.pi / 2)
-    assert rec["poses"][0][2] == pytest.approx(-math.pi / 2)      # planner frame: y down
+    assert rec["poses"][0][2] == pytest.approx(-math.pi / 2)  # planner frame: y down

@@ -26,8 +26,7 @@ def reference(ws):
 
 
 def _run(problem, callback, n_gen=6, pop_size=40, seed=3):
-    return minimize(problem, paper_nsga2(pop_size), ("n_gen", n_gen), seed=seed,
-                    callback=callback)
+    return minimize(problem, paper_nsga2(pop_size), ("n_gen", n_gen), seed=seed, callback=callback)
 
 
 def test_history_rows_match_the_final_population(ws, reference):
@@ -116,7 +115,7 @@ def test_plot_convergence(tmp_path):
 
     ax = Figure().add_subplot()
     assert plot_convergence(history, ax, label="a") is ax
-    assert len(ax.lines) == 2      # the curve and the 1.0 line
+    assert len(ax.lines) == 2  # the curve and the 1.0 line
     with pytest.raises(ConfigError):
         plot_convergence(history, tmp_path / "x.png", x="time")
     with pytest.raises(ConfigError):
@@ -130,11 +129,11 @@ def test_fast_tolerance_front_is_nondominated_with_tolerance():
     rng = np.random.default_rng(0)
     for trial in range(30):
         n, m = rng.integers(65, 400), rng.integers(2, 4)
-        F = rng.integers(0, 12, size=(n, m)).astype(float)      # many ties
+        F = rng.integers(0, 12, size=(n, m)).astype(float)  # many ties
         # near-ties within and just outside the tolerance
         F += rng.choice([0.0, 0.5e-9, -0.5e-9, 5e-9], size=F.shape) * np.maximum(1, np.abs(F))
         if trial % 3 == 0:
-            F = np.vstack([F, F[:20]])                            # exact duplicates
+            F = np.vstack([F, F[:20]])  # exact duplicates
         np.testing.assert_array_equal(_nondominated_tol(F), nondominated(F, tol=TOL))
 
 
@@ -159,8 +158,13 @@ def test_every_row_is_the_hv_ratio_of_that_generation(ws, reference):
             self.rows.append(hv_ratio(F, reference.F) if len(F) else 0.0)
 
     cb, direct = HypervolumeRatioCallback(reference), Direct()
-    minimize(problem, FastNSGA2(40, sampling=PlannerSampling("weighted")), ("n_gen", 12), seed=4,
-             callback=Callbacks(cb, direct))
+    minimize(
+        problem,
+        FastNSGA2(40, sampling=PlannerSampling("weighted")),
+        ("n_gen", 12),
+        seed=4,
+        callback=Callbacks(cb, direct),
+    )
     H = cb.to_array()
     np.testing.assert_allclose(H[:, 2], direct.rows, rtol=0, atol=1e-12)
-    assert len(set(H[:, 2])) < len(H)      # some generations kept their front
+    assert len(set(H[:, 2])) < len(H)  # some generations kept their front

@@ -51,7 +51,7 @@ def test_dem_bilinear_and_reflect():
     # bilinear: pixel-centre alignment, corners clamp to the DEM corners
     out = elevation_from_dem(dem, (4, 4), normalise=False)
     assert out[0, 0] == 0.0 and out[3, 3] == 6.0
-    assert out[0, 1] == pytest.approx(0.5)          # x = 0.25 between 0 and 2
+    assert out[0, 1] == pytest.approx(0.5)  # x = 0.25 between 0 and 2
     np.testing.assert_allclose(out, out[:, ::-1][:, ::-1])
     # reflect: one pixel per cell, mirrored copies (period 2n)
     row = np.arange(3.0)[None, :]
@@ -74,7 +74,7 @@ def test_mars_dtm_window(data_dir):
     np.testing.assert_array_equal(raw[:, 20], dem[10:110, 69])
     np.testing.assert_array_equal(raw[:, 21], dem[10:110, 68])
     cm = Costmap(Workspace(np.zeros((30, 40), bool)))
-    cm.set_elevation(data_dir / "dem" / "mars_dtm.npy")     # bilinear over the whole DTM
+    cm.set_elevation(data_dir / "dem" / "mars_dtm.npy")  # bilinear over the whole DTM
     assert cm.layer("elevation").shape == (30, 40)
 
 
@@ -93,7 +93,7 @@ def test_fractal_terrain_seeded():
 
 def test_risk_layer_capped_inverse_square():
     r = risk_layer((5, 6), (2, 2))
-    assert r[2, 2] == 1.0 and r[2, 3] == 1.0            # capped at d <= 1
+    assert r[2, 2] == 1.0 and r[2, 3] == 1.0  # capped at d <= 1
     assert r[2, 4] == pytest.approx(1 / 4)
     assert r[0, 5] == pytest.approx(1 / (4 + 9))
     two = risk_layer((5, 6), [(2, 2), (0, 0)])
@@ -127,8 +127,10 @@ def test_evaluate_path_paper_definitions(ws):
     r = cm.layer("risk")
     assert v["risk"] == pytest.approx(np.mean([r[c] for c in path]))
     steps = [(-1, 1), (0, 1), (-1, 0)]
-    expect = sum(0.5 * (1 + (dc * math.cos(0.25 * k) - dr * math.sin(0.25 * k)) / math.hypot(dr, dc))
-                 for k, (dr, dc) in enumerate(steps))
+    expect = sum(
+        0.5 * (1 + (dc * math.cos(0.25 * k) - dr * math.sin(0.25 * k)) / math.hypot(dr, dc))
+        for k, (dr, dc) in enumerate(steps)
+    )
     assert v["solar"] == pytest.approx(expect)
 
 
@@ -141,13 +143,19 @@ def test_with_workspace_shares_layers(ws):
         cm.with_workspace(Workspace(np.zeros((3, 3), bool)))
 
 
-@pytest.mark.parametrize("values, match", [
-    (np.ones((6, 6)), r"layer 'slope' must have the grid's shape \(6, 7\), got shape \(6, 6\)"),
-    (np.full((6, 7), np.nan), r"layer 'slope' holds NaN at \(row 0, col 0\)"),
-    (np.where(np.eye(6, 7) > 0, -0.5, 1.0), r"layer 'slope' holds the negative value -0.5 at \(row 0, col 0\)"),
-    (np.full((6, 7), np.inf), r"layer 'slope' holds inf"),
-    (np.zeros((6, 7), bool), r"layer 'slope' must be a numeric array"),
-])
+@pytest.mark.parametrize(
+    "values, match",
+    [
+        (np.ones((6, 6)), r"layer 'slope' must have the grid's shape \(6, 7\), got shape \(6, 6\)"),
+        (np.full((6, 7), np.nan), r"layer 'slope' holds NaN at \(row 0, col 0\)"),
+        (
+            np.where(np.eye(6, 7) > 0, -0.5, 1.0),
+            r"layer 'slope' holds the negative value -0.5 at \(row 0, col 0\)",
+        ),
+        (np.full((6, 7), np.inf), r"layer 'slope' holds inf"),
+        (np.zeros((6, 7), bool), r"layer 'slope' must be a numeric array"),
+    ],
+)
 def test_bad_layers(ws, values, match):
     cm = Costmap(ws)
     with pytest.raises(ConfigError, match=match):

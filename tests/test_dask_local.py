@@ -5,14 +5,18 @@ a LocalCluster started with them stores the same results as the pool."""
 from pathlib import Path
 
 import pytest
-
 from experiment_cases import small_spec, stored
 
 from gapath import ConfigError
 from gapath.cli import main
 from gapath.experiments import dask_config
-from gapath.experiments.dask_config import (DASK_CONFIG, DASK_CONFIG_FILE, check_dask_config,
-                                            load_dask_config, local_client)
+from gapath.experiments.dask_config import (
+    DASK_CONFIG,
+    DASK_CONFIG_FILE,
+    check_dask_config,
+    load_dask_config,
+    local_client,
+)
 from gapath.experiments.runner import make_executor, run_experiment
 
 distributed = pytest.importorskip("distributed")
@@ -22,14 +26,18 @@ distributed = pytest.importorskip("distributed")
 # the settings and their YAML file
 # ---------------------------------------------------------------------------
 
+
 def test_shipped_yaml_file_holds_the_settings_and_loads_into_dask(tmp_path):
     import dask
 
     assert DASK_CONFIG_FILE.is_file() and DASK_CONFIG_FILE.suffix == ".yaml"
     assert load_dask_config() == DASK_CONFIG == load_dask_config(DASK_CONFIG_FILE)
     assert DASK_CONFIG["distributed.worker.profile.enabled"] is False
-    for key in ("distributed.admin.tick.interval", "distributed.admin.system-monitor.interval",
-                "distributed.worker.memory.monitor-interval"):
+    for key in (
+        "distributed.admin.tick.interval",
+        "distributed.admin.system-monitor.interval",
+        "distributed.worker.memory.monitor-interval",
+    ):
         assert key in DASK_CONFIG
     # what DASK_CONFIG=<file> does in `dask scheduler` / `dask worker`: Dask's own loader
     collected = dask.config.merge(*dask.config.collect_yaml([str(DASK_CONFIG_FILE)]))
@@ -41,20 +49,33 @@ def test_shipped_yaml_file_holds_the_settings_and_loads_into_dask(tmp_path):
     assert load_dask_config(copy) == DASK_CONFIG
 
 
-@pytest.mark.parametrize("text, message", [
-    ("distributed:\n  worker:\n    profile:\n      enabled: sometimes\n",
-     "distributed.worker.profile.enabled: expected true or false, got 'sometimes'"),
-    ("distributed:\n  admin:\n    tick:\n      interval: often\n",
-     "distributed.admin.tick.interval: expected a duration like '1s', got 'often'"),
-    ("distributed:\n  admin:\n    tick:\n      interval: -1s\n",
-     "distributed.admin.tick.interval: expected a duration like '1s', got '-1s'"),
-    ("distributed:\n  admin:\n    tick:\n      intervall: 1s\n",
-     "distributed.admin.tick.intervall: not a Dask setting"),
-    ("distributed:\n  scheduler:\n    worker-saturation: lots\n",
-     "distributed.scheduler.worker-saturation: expected a number, got 'lots'"),
-    ("distributed:\n  admin: [1, 2\n", "invalid YAML"),
-    ("- just\n- a list\n", "expected a mapping of Dask settings"),
-])
+@pytest.mark.parametrize(
+    "text, message",
+    [
+        (
+            "distributed:\n  worker:\n    profile:\n      enabled: sometimes\n",
+            "distributed.worker.profile.enabled: expected true or false, got 'sometimes'",
+        ),
+        (
+            "distributed:\n  admin:\n    tick:\n      interval: often\n",
+            "distributed.admin.tick.interval: expected a duration like '1s', got 'often'",
+        ),
+        (
+            "distributed:\n  admin:\n    tick:\n      interval: -1s\n",
+            "distributed.admin.tick.interval: expected a duration like '1s', got '-1s'",
+        ),
+        (
+            "distributed:\n  admin:\n    tick:\n      intervall: 1s\n",
+            "distributed.admin.tick.intervall: not a Dask setting",
+        ),
+        (
+            "distributed:\n  scheduler:\n    worker-saturation: lots\n",
+            "distributed.scheduler.worker-saturation: expected a number, got 'lots'",
+        ),
+        ("distributed:\n  admin: [1, 2\n", "invalid YAML"),
+        ("- just\n- a list\n", "expected a mapping of Dask settings"),
+    ],
+)
 def test_bad_dask_config_files_give_errors_naming_file_and_key(tmp_path, text, message):
     f = tmp_path / "bad.yaml"
     f.write_text(text)
@@ -66,8 +87,11 @@ def test_bad_dask_config_files_give_errors_naming_file_and_key(tmp_path, text, m
 
 
 def test_check_dask_config_accepts_good_values_and_local_client_checks_its_arguments():
-    good = {"distributed.scheduler.work-stealing": False, "distributed.admin.tick.interval": "500ms",
-            "distributed.scheduler.worker-saturation": 1.0}
+    good = {
+        "distributed.scheduler.work-stealing": False,
+        "distributed.admin.tick.interval": "500ms",
+        "distributed.scheduler.worker-saturation": 1.0,
+    }
     assert check_dask_config(good) == good
     with pytest.raises(ConfigError, match="at least 1 worker"):
         local_client(0)
@@ -84,12 +108,16 @@ def test_check_dask_config_accepts_good_values_and_local_client_checks_its_argum
 # --scheduler local
 # ---------------------------------------------------------------------------
 
+
 def _monitors(server) -> dict:
     """What a Dask server (scheduler, nanny or worker) runs with."""
     pcs = server.periodic_callbacks
-    return {"tick_s": server._tick_interval, "monitor_ms": pcs["monitor"].callback_time,
-            "profiler": "profile" in pcs,
-            "memory_monitor_ms": pcs["memory_monitor"].callback_time if "memory_monitor" in pcs else None}
+    return {
+        "tick_s": server._tick_interval,
+        "monitor_ms": pcs["monitor"].callback_time,
+        "profiler": "profile" in pcs,
+        "memory_monitor_ms": pcs["memory_monitor"].callback_time if "memory_monitor" in pcs else None,
+    }
 
 
 def test_local_client_runs_workers_and_scheduler_with_gapaths_settings():
@@ -106,13 +134,17 @@ def test_local_client_runs_workers_and_scheduler_with_gapaths_settings():
         assert client.scheduler.address.startswith("tcp://127.0.0.1:")
         assert sum(client.nthreads().values()) == 1
         # the worker process: gapath's settings in force, no profiler, 1 s monitors
-        (config, worker), = client.run(worker_settings).values()
+        ((config, worker),) = client.run(worker_settings).values()
         assert config == DASK_CONFIG
         assert worker == {"tick_s": 1.0, "monitor_ms": 2000, "profiler": False, "memory_monitor_ms": 1000}
         # the scheduler and the nanny (in this process) were built with them
-        assert _monitors(cluster.scheduler) == {"tick_s": 1.0, "monitor_ms": 2000, "profiler": False,
-                                                "memory_monitor_ms": None}
-        nanny, = cluster.workers.values()
+        assert _monitors(cluster.scheduler) == {
+            "tick_s": 1.0,
+            "monitor_ms": 2000,
+            "profiler": False,
+            "memory_monitor_ms": None,
+        }
+        (nanny,) = cluster.workers.values()
         assert _monitors(nanny)["tick_s"] == 1.0 and _monitors(nanny)["memory_monitor_ms"] == 1000
         # the scheduler's HTTP routes (health, metrics; no Bokeh dashboard) on loopback only
         http = cluster.scheduler.http_server
@@ -139,9 +171,24 @@ def test_scheduler_local_stores_the_same_results_as_the_pool(tmp_path, monkeypat
     spec_file.write_text(
         "name: tiny\nmaps: [default, {dense: {n: 8, p0: 0.4, seed: run}}]\nengines: [paper]\n"
         "settings: {pop_size: 12, n_gen: 4, seed_from: none}\ngrid: {pop_size: [12, 16]}\n"
-        "seeds: 3\noptions: {record_first_feasible: true}\n")
-    assert main(["experiment", "run", str(spec_file), "--out", str(tmp_path / "local"),
-                 "--workers", "1", "--quiet", "--no-report"]) == 0
+        "seeds: 3\noptions: {record_first_feasible: true}\n"
+    )
+    assert (
+        main(
+            [
+                "experiment",
+                "run",
+                str(spec_file),
+                "--out",
+                str(tmp_path / "local"),
+                "--workers",
+                "1",
+                "--quiet",
+                "--no-report",
+            ]
+        )
+        == 0
+    )
     pool, local, inline = stored(tmp_path / "pool"), stored(tmp_path / "local"), stored(tmp_path / "inline")
     assert len(pool) == 8 and len(local) == len(inline) == 12
     assert {k: local[k] for k in pool} == pool

@@ -24,8 +24,9 @@ def test_table1_spec_one_map_per_row_by_default():
     assert np.all(hi.occ[lo.occ]) and hi.n_obstacles > lo.n_obstacles
     per_run = dense.table1_spec(grids=(8,), p0s=(0.5,), runs=3, map_seed="run").runs()
     assert [r["map"]["dense"]["seed"] for r in per_run] == ["run"] * 3
-    assert dense.table1_spec(grids=(8,), p0s=(0.5,), runs=1, map_seed=7).runs()[0]["map"] == \
-        {"dense": {"n": 8, "p0": 0.5, "seed": 7}}
+    assert dense.table1_spec(grids=(8,), p0s=(0.5,), runs=1, map_seed=7).runs()[0]["map"] == {
+        "dense": {"n": 8, "p0": 0.5, "seed": 7}
+    }
 
 
 @pytest.mark.parametrize("bad", [-1, 1.5, "one", True, None])
@@ -39,8 +40,9 @@ def test_table1_spec_seeded_variant_differs_only_in_seeding():
     seeded = dense.table1_spec(grids=(8,), p0s=(0.5,), runs=2, seed_from="weighted")
     a, b = plain.runs()[0], seeded.runs()[0]
     assert a["settings"]["seed_from"] == "none" and b["settings"]["seed_from"] == "weighted"
-    assert {k: v for k, v in a["settings"].items() if k != "seed_from"} == \
-        {k: v for k, v in b["settings"].items() if k != "seed_from"}
+    assert {k: v for k, v in a["settings"].items() if k != "seed_from"} == {
+        k: v for k, v in b["settings"].items() if k != "seed_from"
+    }
     assert a["map"] == b["map"] and a["seed"] == b["seed"]
 
 
@@ -55,8 +57,12 @@ def test_report_lists_unsuccessful_runs_and_seeded_column(tmp_path):
     # single free path in time, the planner-seeded ones always can
     kw = dict(grids=(16,), p0s=(1.0,), runs=6, n_gen=2)
     run_experiment(dense.table1_spec(**kw), tmp_path / "t1", workers=0, progress=False)
-    run_experiment(dense.table1_spec(**kw, seed_from="weighted", name="s"), tmp_path / "seeded",
-                   workers=0, progress=False)
+    run_experiment(
+        dense.table1_spec(**kw, seed_from="weighted", name="s"),
+        tmp_path / "seeded",
+        workers=0,
+        progress=False,
+    )
     rep = dense.dense_report(tmp_path / "t1", tmp_path / "out", seeded_dir=tmp_path / "seeded")
     (row,) = rep["table1"]
     misses = rep["unsuccessful"].get((16, 1.0), [])
@@ -80,12 +86,15 @@ def test_report_lists_unsuccessful_runs_and_seeded_column(tmp_path):
 def test_report_other_maps_and_per_run_maps(tmp_path):
     kw = dict(grids=(16,), p0s=(0.9, 1.0), runs=4, n_gen=3)
     for m in (1, 2):
-        run_experiment(dense.table1_spec(**kw, map_seed=m, name=f"m{m}"), tmp_path / f"m{m}",
-                       workers=0, progress=False)
-    run_experiment(dense.table1_spec(**kw, map_seed="run", name="pr"), tmp_path / "pr",
-                   workers=0, progress=False)
-    rep = dense.dense_report(tmp_path / "m1", tmp_path / "out", other_map_dirs=[tmp_path / "m2"],
-                             per_run_dir=tmp_path / "pr")
+        run_experiment(
+            dense.table1_spec(**kw, map_seed=m, name=f"m{m}"), tmp_path / f"m{m}", workers=0, progress=False
+        )
+    run_experiment(
+        dense.table1_spec(**kw, map_seed="run", name="pr"), tmp_path / "pr", workers=0, progress=False
+    )
+    rep = dense.dense_report(
+        tmp_path / "m1", tmp_path / "out", other_map_dirs=[tmp_path / "m2"], per_run_dir=tmp_path / "pr"
+    )
     assert list(rep["other_maps"]) == [2]
     for p0 in (0.9, 1.0):
         # each map's row, recomputed from scratch with the GA seeds 1..4
@@ -106,13 +115,39 @@ def test_report_other_maps_and_per_run_maps(tmp_path):
 
 
 def test_cli_map_seeds_and_per_run_maps(tmp_path):
-    assert main(["experiment", "dense", "--quick", "--out", str(tmp_path), "--workers", "0", "--quiet",
-                 "--grids", "8", "--p0", "0.5", "--map-seeds", "3,1-2", "--per-run-maps",
-                 "--large-runs", "0"]) == 0
-    for name, seed in (("table1-map3", 3), ("table1-map1", 1), ("table1-map2", 2),
-                       ("table1-per-run-maps", "run")):
-        assert ResultStore(tmp_path / name).spec().to_dict()["maps"] == \
-            [{"dense": {"n": 8, "p0": 0.5, "seed": seed}}]
+    assert (
+        main(
+            [
+                "experiment",
+                "dense",
+                "--quick",
+                "--out",
+                str(tmp_path),
+                "--workers",
+                "0",
+                "--quiet",
+                "--grids",
+                "8",
+                "--p0",
+                "0.5",
+                "--map-seeds",
+                "3,1-2",
+                "--per-run-maps",
+                "--large-runs",
+                "0",
+            ]
+        )
+        == 0
+    )
+    for name, seed in (
+        ("table1-map3", 3),
+        ("table1-map1", 1),
+        ("table1-map2", 2),
+        ("table1-per-run-maps", "run"),
+    ):
+        assert ResultStore(tmp_path / name).spec().to_dict()["maps"] == [
+            {"dense": {"n": 8, "p0": 0.5, "seed": seed}}
+        ]
     md = (tmp_path / "dense.md").read_text()
     assert "dense_workspace(grid, p0, 3)" in md and "| map 3 | map 1 | map 2 |" in md
 
@@ -124,8 +159,9 @@ def test_cli_rejects_bad_map_seeds(tmp_path, bad, capsys):
 
 
 def test_unsuccessful_runs_empty_store_rows(tmp_path):
-    run_experiment(dense.table1_spec(grids=(8,), p0s=(0.1,), runs=3, n_gen=50), tmp_path,
-                   workers=0, progress=False)
+    run_experiment(
+        dense.table1_spec(grids=(8,), p0s=(0.1,), runs=3, n_gen=50), tmp_path, workers=0, progress=False
+    )
     assert dense.unsuccessful_runs(tmp_path) == {}
     rows = dense._rows(tmp_path)
     assert rows[0]["success_pct"] == 100 and np.isfinite(rows[0]["median_generations"])

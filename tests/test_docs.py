@@ -31,11 +31,12 @@ def _require_tools() -> None:
     missing = [t for t in TOOLS if importlib.util.find_spec(t) is None]
     if not missing:
         return
-    msg = (f"the docs tools are not installed ({', '.join(missing)}); "
-           "install them with: pip install -c constraints.txt -e '.[docs]'")
+    msg = (
+        f"the docs tools are not installed ({', '.join(missing)}); "
+        "install them with: pip install -c constraints.txt -e '.[docs]'"
+    )
     if os.environ.get("GAPATH_REQUIRE_DOCS") == "1":
-        pytest.fail(f"{msg} (GAPATH_REQUIRE_DOCS=1, as make test sets it, requires them)",
-                    pytrace=False)
+        pytest.fail(f"{msg} (GAPATH_REQUIRE_DOCS=1, as make test sets it, requires them)", pytrace=False)
     pytest.skip(f"{msg}; make test installs them and sets GAPATH_REQUIRE_DOCS=1")
 
 
@@ -45,11 +46,28 @@ def site(tmp_path_factory) -> Path:
     _require_tools()
     out = tmp_path_factory.mktemp("docs")
     proc = subprocess.run(
-        [sys.executable, "-m", "sphinx", "-W", "--keep-going", "-q", "-b", "html",
-         "-d", str(out / "doctrees"), str(DOCS), str(out / "html")],
-        capture_output=True, text=True, timeout=1200, cwd=ROOT)
+        [
+            sys.executable,
+            "-m",
+            "sphinx",
+            "-W",
+            "--keep-going",
+            "-q",
+            "-b",
+            "html",
+            "-d",
+            str(out / "doctrees"),
+            str(DOCS),
+            str(out / "html"),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=1200,
+        cwd=ROOT,
+    )
     assert proc.returncode == 0 and "WARNING" not in proc.stderr, (
-        f"sphinx-build -W failed (exit {proc.returncode}):\n{proc.stderr}")
+        f"sphinx-build -W failed (exit {proc.returncode}):\n{proc.stderr}"
+    )
     return out / "html"
 
 
@@ -89,13 +107,16 @@ def test_every_api_module_has_a_page_and_every_public_name_an_entry(site, conf):
             # on this page, or where it is defined (a re-export of a documented module)
             home = f"{getattr(obj, '__module__', mod)}.{getattr(obj, '__qualname__', name)}"
             # data (no __module__) re-exported by a package: documented on a submodule's page
-            homes = {f"{mod}.{name}", home} | {e for e in entries
-                                               if e.startswith(f"{mod}.") and e.endswith(f".{name}")
-                                               and not hasattr(obj, "__module__")}
+            homes = {f"{mod}.{name}", home} | {
+                e
+                for e in entries
+                if e.startswith(f"{mod}.") and e.endswith(f".{name}") and not hasattr(obj, "__module__")
+            }
             if name != "__version__" and not homes & entries:
                 undocumented.append(name)
-        assert not undocumented, (f"{mod}: public names without an entry in the API "
-                                  f"reference (no docstring?): {undocumented}")
+        assert not undocumented, (
+            f"{mod}: public names without an entry in the API reference (no docstring?): {undocumented}"
+        )
 
 
 def test_pymoo_page_is_the_readme_section(site):
@@ -115,18 +136,21 @@ def test_every_notebook_has_a_page_with_a_download(site):
         page = site / "notebooks" / f"{nb.stem}.html"
         assert page.exists(), f"no page for {nb.name}"
         assert f'href="{nb.stem}.html"' in index, f"{nb.name} missing from the notebooks index"
-        link = re.search(rf'href="(\.\./_downloads/[0-9a-f]+/{re.escape(nb.name)})"',
-                         page.read_text())
+        link = re.search(rf'href="(\.\./_downloads/[0-9a-f]+/{re.escape(nb.name)})"', page.read_text())
         assert link, f"{nb.name}: its page has no download link"
         assert (page.parent / link.group(1)).read_bytes() == nb.read_bytes()
 
 
-@pytest.mark.parametrize("page, source", [
-    ("CONVENTIONS.html", "docs/CONVENTIONS.md"),
-    ("EXPERIMENTS.html", "docs/EXPERIMENTS.md"),
-    ("DYNAMIC.html", "docs/DYNAMIC.md"),
-    ("benchmarks.html", "BENCHMARKS.md"),
-])
+@pytest.mark.parametrize(
+    "page, source",
+    [
+        ("ARCHITECTURE.html", "docs/ARCHITECTURE.md"),
+        ("CONVENTIONS.html", "docs/CONVENTIONS.md"),
+        ("EXPERIMENTS.html", "docs/EXPERIMENTS.md"),
+        ("DYNAMIC.html", "docs/DYNAMIC.md"),
+        ("benchmarks.html", "BENCHMARKS.md"),
+    ],
+)
 def test_guide_pages_are_in_the_site_and_linked_from_the_index(site, page, source):
     title = (ROOT / source).read_text().splitlines()[0].lstrip("# ").strip()
     assert " ".join(title.split()) in _text(site / page)

@@ -54,8 +54,7 @@ def random_changes(rng, planner, path):
     h, w = planner.occ.shape
     if path is not None and len(path) > 2 and rng.random() < 0.5:
         inner = path[1:-1]
-        cells = inner[rng.choice(len(inner), size=min(len(inner), int(rng.integers(1, 4))),
-                                 replace=False)]
+        cells = inner[rng.choice(len(inner), size=min(len(inner), int(rng.integers(1, 4))), replace=False)]
         blocked = np.ones(len(cells), bool)
     else:
         k = int(rng.integers(1, 6))
@@ -198,28 +197,26 @@ def test_replan_without_plan_and_changes_before_plan():
     occ = np.zeros((5, 5), bool)
     planner = DStarLite(Workspace(occ))
     planner.update_cells([(1, 1), (2, 2), (3, 3)], blocked=True)
-    res = planner.replan()          # plans from scratch
+    res = planner.replan()  # plans from scratch
     assert res.cost == astar(planner.workspace).cost
-    res2 = planner.replan()         # nothing changed: no work
+    res2 = planner.replan()  # nothing changed: no work
     assert res2.expansions == 0 and np.array_equal(res2.path, res.path)
 
 
 def test_update_cells_forms_and_counts():
     planner = DStarLite(Workspace(np.zeros((5, 5), bool)))
     planner.plan()
-    assert planner.update_cells((2, 2)) == 1                       # one cell, default blocked
-    assert planner.update_cells([(2, 2)], blocked=True) == 0       # no change
+    assert planner.update_cells((2, 2)) == 1  # one cell, default blocked
+    assert planner.update_cells([(2, 2)], blocked=True) == 0  # no change
     assert planner.update_cells(np.array([[2, 2], [1, 3]]), blocked=[False, True]) == 2
     assert planner.occ[1, 3] and not planner.occ[2, 2]
     with pytest.raises(ValueError):
-        planner.occ[0, 0] = True                                   # read-only view
+        planner.occ[0, 0] = True  # read-only view
     assert planner.replan().cost == astar(planner.workspace).cost
 
 
 def test_cell_size_and_corner_rule_carried_over():
-    occ = np.array([[0, 0, 0],
-                    [0, 1, 0],
-                    [0, 0, 0]], bool)
+    occ = np.array([[0, 0, 0], [0, 1, 0], [0, 0, 0]], bool)
     ws = Workspace(occ, (2, 0), (0, 2), cell_size=2.0, corner_cutting=False)
     planner = DStarLite(ws)
     res = planner.plan()

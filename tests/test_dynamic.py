@@ -45,12 +45,12 @@ def events(res, *kinds):
 # motion equations, hand-computed
 # ---------------------------------------------------------------------------
 
+
 def test_time_to_collision_hand_cases():
     # head-on, closing at 2 m/s from 10 m, radii summing to 1: (10 - 1) / 2
     assert time_to_collision((0, 0), (1, 0), (10, 0), (-1, 0), 1.0) == pytest.approx(4.5)
     # perpendicular tracks meeting at (5, 0) at t = 5: |d(t)| = sqrt(2) |5 - t| = 1
-    assert time_to_collision((0, 0), (1, 0), (5, -5), (0, 1), 1.0) == pytest.approx(
-        5 - 1 / math.sqrt(2))
+    assert time_to_collision((0, 0), (1, 0), (5, -5), (0, 1), 1.0) == pytest.approx(5 - 1 / math.sqrt(2))
     # same velocity, or moving apart: never
     assert time_to_collision((0, 0), (1, 0), (3, 0), (1, 0), 1.0) == math.inf
     assert time_to_collision((0, 0), (-1, 0), (3, 0), (1, 0), 1.0) == math.inf
@@ -68,7 +68,7 @@ def test_closest_approach_and_crossing_point():
     assert closest_approach((0, 0), (-1, 0), (3, 4), (1, 0)) == (0.0, 5.0)
     point, t_r, t_o = crossing_point((0, 0), (2, 0), (6, -6), (0, 1))
     assert np.allclose(point, (6, 0)) and t_r == pytest.approx(3) and t_o == pytest.approx(6)
-    assert crossing_point((0, 0), (1, 0), (0, 1), (1, 0)) is None     # parallel
+    assert crossing_point((0, 0), (1, 0), (0, 1), (1, 0)) is None  # parallel
     assert crossing_point((0, 0), (1, 0), (-5, -5), (0, -1)) is None  # behind both
 
 
@@ -95,6 +95,7 @@ def test_path_contact_hand_cases():
 # simulations
 # ---------------------------------------------------------------------------
 
+
 def test_moving_obstacle_crossing_the_path_replans_and_succeeds(open_ws):
     res = simulate(open_ws, "hybrid-astar", moving=[crosser()])
     assert res.success and res.reason == "goal"
@@ -111,11 +112,10 @@ def test_moving_obstacle_crossing_the_path_replans_and_succeeds(open_ws):
 
 def test_halts_when_the_obstacle_is_too_close(open_ws):
     # threshold so large that every predicted collision is handled by halting
-    res = simulate(open_ws, "hybrid-astar", moving=[crosser()],
-                   settings=SimSettings(replan_distance=100.0))
+    res = simulate(open_ws, "hybrid-astar", moving=[crosser()], settings=SimSettings(replan_distance=100.0))
     assert res.success
     assert events(res, "halt") and not events(res, "replan")
-    assert (res.trajectory[:, 4] == 0).sum() >= 3              # it stood still
+    assert (res.trajectory[:, 4] == 0).sum() >= 3  # it stood still
     # a short sensor: the obstacle is first seen inside the threshold
     res = simulate(open_ws, "astar", Robot(sensor_range=2.0), moving=[crosser()])
     assert res.success and events(res, "halt")
@@ -128,7 +128,7 @@ def test_backs_off_when_waiting_would_be_hit():
     occ = np.ones((5, 40), bool)
     occ[1:4, :] = False
     occ[1:4, 20:23] = True
-    occ[1, 20:23] = False           # a one-cell bypass the car cannot use quickly
+    occ[1, 20:23] = False  # a one-cell bypass the car cannot use quickly
     ws = Workspace(occ, (2, 1), (2, 38))
     mover = MovingObstacle((17.0, 2.0), (-0.4, 0.0), radius=0.4)
     res = simulate(ws, "astar", moving=[mover], settings=SimSettings(max_time=30.0))
@@ -149,8 +149,7 @@ def test_stationary_obstacle_is_sensed_and_avoided(open_ws):
 
 @pytest.mark.parametrize("name", list(PLANNERS))
 def test_every_planner_runs_in_the_simulation(open_ws, name):
-    res = simulate(open_ws, name, stationary=[StationaryObstacle([(7, 10)], 0.0)],
-                   moving=[crosser()], seed=2)
+    res = simulate(open_ws, name, stationary=[StationaryObstacle([(7, 10)], 0.0)], moving=[crosser()], seed=2)
     assert res.success, res.reason
     assert res.planner == name
     assert res.global_plan_seconds > 0
@@ -165,8 +164,7 @@ def test_determinism(open_ws):
 
 def test_failed_runs_report_their_reason(open_ws):
     wall = StationaryObstacle([(r, 15) for r in range(15)], appear_at=0.0)
-    res = simulate(open_ws, "hybrid-astar", stationary=[wall],
-                   settings=SimSettings(blocked_patience=2.0))
+    res = simulate(open_ws, "hybrid-astar", stationary=[wall], settings=SimSettings(blocked_patience=2.0))
     assert not res.success and res.reason == "blocked"
     res = simulate(open_ws, "astar", settings=SimSettings(max_time=5.0))
     assert not res.success and res.reason == "timeout"
@@ -217,6 +215,7 @@ def test_bad_inputs(open_ws):
 # the study, pictures and the CLI
 # ---------------------------------------------------------------------------
 
+
 def test_experiment_tables_and_outputs(tmp_path):
     from gapath.experiments.dynamic import run, write_outputs
 
@@ -252,8 +251,22 @@ def text_map(tmp_path):
 
 def test_cli_simulate(text_map, tmp_path, capsys):
     out = tmp_path / "sim"
-    code = main(["simulate", str(text_map), "--planner", "astar", "--obstacles", "1",
-                 "--stationary", "1", "--seed", "3", "--out", str(out)])
+    code = main(
+        [
+            "simulate",
+            str(text_map),
+            "--planner",
+            "astar",
+            "--obstacles",
+            "1",
+            "--stationary",
+            "1",
+            "--seed",
+            "3",
+            "--out",
+            str(out),
+        ]
+    )
     assert code == 0
     for name in ("trajectory.json", "summary.json", "run.png"):
         assert (out / name).stat().st_size > 0
@@ -271,7 +284,7 @@ def test_plan_helpers_for_gapath_plan(tmp_path):
     from gapath.commands.dynamic import add_planner_choices, plan_with, write_plan
 
     parser = argparse.ArgumentParser()
-    parser.add_argument("--seed", type=int, default=7)        # already there: kept
+    parser.add_argument("--seed", type=int, default=7)  # already there: kept
     names = add_planner_choices(parser)
     assert names == ("hybrid-astar", "rrt", "rrt-star")
     args = parser.parse_args([])
@@ -299,8 +312,21 @@ def test_experiment_command(tmp_path, capsys):
 
     parser = argparse.ArgumentParser()
     register_experiment(parser.add_subparsers(dest="command"))
-    args = parser.parse_args(["dynamic", "--runs", "1", "--planners", "astar", "--scenarios",
-                              "warehouse", "--no-gif", "--quiet", "--out", str(tmp_path)])
+    args = parser.parse_args(
+        [
+            "dynamic",
+            "--runs",
+            "1",
+            "--planners",
+            "astar",
+            "--scenarios",
+            "warehouse",
+            "--no-gif",
+            "--quiet",
+            "--out",
+            str(tmp_path),
+        ]
+    )
     assert args.func(args) == 0
     md = (tmp_path / "dynamic.md").read_text()
     assert "## warehouse" in md and "A* (grid)" in md

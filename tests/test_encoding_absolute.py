@@ -75,8 +75,9 @@ def test_encode_decode_round_trip_on_random_monotone_paths():
     assert np.array_equal(p.encode(p.decode(X)), X)
 
 
-@pytest.mark.parametrize("start,goal", [((0, 7), (5, 0)), ((5, 3), (0, 3)), ((1, 2), (4, 2)),
-                                        ((2, 0), (3, 7))])
+@pytest.mark.parametrize(
+    "start,goal", [((0, 7), (5, 0)), ((5, 3), (0, 3)), ((1, 2), (4, 2)), ((2, 0), (3, 7))]
+)
 def test_mirrored_and_transposed_frames(start, goal):
     ws = empty_ws(6, 8, start, goal)
     p = GridPathProblem(ws, encoding="absolute")

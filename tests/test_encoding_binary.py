@@ -15,8 +15,8 @@ from gapath import ConfigError
 from gapath.encodings import BinaryEncoding, Frame
 from gapath.problems import GridPathProblem
 
-PATH_1 = "000" "11010" "11000" "10000" "00001" "00000" "10000" "11"
-PATH_2 = "101" "11000" "01000" "11000" "00001" "00000" "11001" "11"
+PATH_1 = "00011010110001000000001000001000011"
+PATH_2 = "10111000010001100000001000001100111"
 
 
 def bits(s):
@@ -32,7 +32,7 @@ def reference_decode(enc, genome):
     clamped = False
 
     def y(o):
-        return int("".join("1" if b else "0" for b in g[o:o + nb]), 2)
+        return int("".join("1" if b else "0" for b in g[o : o + nb]), 2)
 
     def clamp(v):
         nonlocal clamped
@@ -111,11 +111,11 @@ def test_paper_examples():
 def test_horizontal_then_vertical_moves():
     # 10-y is C-Dy (up), 01-y C-Ey (down): the column is entered level
     enc = BinaryEncoding(Frame.of(empty_ws(8, 4, start=(4, 0), goal=(4, 3))))
-    genome = "000" "10010" "01011" "11"
+    genome = "000100100101111"
     entries, exits = enc.decode(bits(genome))
     assert entries[0].tolist() == [4, 4, 2, 4] and exits[0].tolist() == [4, 2, 5, 4]
     # the start column moves down when the closing bits start with 0
-    entries, exits = enc.decode(bits("011" "10000" "10000" "00"))
+    entries, exits = enc.decode(bits("011100001000000"))
     assert exits[0].tolist() == [7, 7, 7, 4]
 
 
@@ -133,8 +133,9 @@ def test_encode_decode_round_trip_on_random_monotone_paths():
     assert same_paths(paths, p.decode(X))
 
 
-@pytest.mark.parametrize("start,goal", [((0, 7), (5, 0)), ((5, 3), (0, 3)), ((1, 2), (4, 2)),
-                                        ((2, 0), (3, 7))])
+@pytest.mark.parametrize(
+    "start,goal", [((0, 7), (5, 0)), ((5, 3), (0, 3)), ((1, 2), (4, 2)), ((2, 0), (3, 7))]
+)
 def test_mirrored_and_transposed_frames(start, goal):
     ws = empty_ws(6, 8, start, goal)
     p = GridPathProblem(ws, encoding="binary")
@@ -154,7 +155,7 @@ def test_edge_fix_draws_rows_with_linear_probability():
     enc = BinaryEncoding(Frame.of(ws))
     assert enc.n_y_bits == 3
     # start: 2 up (row 3); gene 1: A-D7 from row 3, far beyond the top edge
-    X = np.tile(bits("010" "11111" "11"), (60000, 1))
+    X = np.tile(bits("0101111111"), (60000, 1))
     Xf = enc.edge_fix(X, np.random.default_rng(5))
     rows = enc.decode(Xf)[1][:, 1]
     counts = np.bincount(rows, minlength=6)[:4]  # rows 0..3
@@ -164,11 +165,11 @@ def test_edge_fix_draws_rows_with_linear_probability():
 
 def test_edge_fix_turns_a_diagonal_at_the_edge_into_a_horizontal_step():
     enc = BinaryEncoding(Frame.of(empty_ws(4, 3)))  # 2 y bits, start row 3
-    X = bits("11" "1101" "11")  # start 3 up to row 0, then diagonal up: out of the grid
+    X = bits("11110111")  # start 3 up to row 0, then diagonal up: out of the grid
     Xf = enc.edge_fix(X, np.random.default_rng(0))
-    assert Xf[0].tolist() == [c == "1" for c in "11" "1000" "11"]
-    X = bits("11" "0001" "00")  # start 3 down from row 3: out; drawn back onto row 3
-    assert enc.edge_fix(X, np.random.default_rng(0))[0].tolist() == [c == "1" for c in "00" "0100" "00"]
+    assert Xf[0].tolist() == [c == "1" for c in "11100011"]
+    X = bits("11000100")  # start 3 down from row 3: out; drawn back onto row 3
+    assert enc.edge_fix(X, np.random.default_rng(0))[0].tolist() == [c == "1" for c in "00010000"]
 
 
 def test_edge_fix_is_reproducible_for_a_seed():

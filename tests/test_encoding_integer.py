@@ -24,9 +24,15 @@ def workspace_and_genes(draw):
     ws = _ws(h, w, start, goal)
     enc = IntegerEncoding(Frame.of(ws))
     n = draw(st.integers(1, 6))
-    X = np.array(draw(st.lists(st.lists(st.integers(-3 * max(h, w), 3 * max(h, w)),
-                                        min_size=enc.n_var, max_size=enc.n_var),
-                               min_size=n, max_size=n)))
+    X = np.array(
+        draw(
+            st.lists(
+                st.lists(st.integers(-3 * max(h, w), 3 * max(h, w)), min_size=enc.n_var, max_size=enc.n_var),
+                min_size=n,
+                max_size=n,
+            )
+        )
+    )
     return ws, enc, X
 
 

@@ -10,7 +10,8 @@ def test_quick_encoding_comparison_writes_its_table(tmp_path):
     result = encodings.run(ws, runs=2, pop_size=30, n_gen=5)
     rows = result["rows"]
     assert [(r["protocol"], r["encoding"]) for r in rows] == [
-        (p, e) for p in ("seeds", "seeded") for e in encodings.ENCODING_ORDER]
+        (p, e) for p in ("seeds", "seeded") for e in encodings.ENCODING_ORDER
+    ]
     for r in rows:
         F = result["fronts"][(r["protocol"], r["encoding"])]
         assr = hv_ratio(F, result["exact"])

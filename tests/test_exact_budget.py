@@ -55,7 +55,7 @@ def test_resumed_in_slices_equals_one_call(kind, objectives, monkeypatch):
     calls = []
     sliced = SOLVERS[kind](ws, objectives, progress=calls.append)
     _same(whole, sliced)
-    assert len(calls) > 3          # it did pause and resume
+    assert len(calls) > 3  # it did pause and resume
     assert calls[-1]["phase"] == kind
 
 
@@ -132,7 +132,7 @@ def test_keyboard_interrupt_propagates_and_leaves_no_state(kind, tiny_slices):
 
     with pytest.raises(KeyboardInterrupt):
         SOLVERS[kind](ws, LVS, progress=stop_at_third)
-    assert len(calls) == 3           # nothing ran after the interrupt
+    assert len(calls) == 3  # nothing ran after the interrupt
     # a second call works and gives the uninterrupted front
     again = SOLVERS[kind](ws, LVS)
     fresh = SOLVERS[kind](ws.replace(name="fresh"), LVS)
@@ -143,16 +143,19 @@ def test_keyboard_interrupt_propagates_and_leaves_no_state(kind, tiny_slices):
 # gapath exact --max-labels, progress and Ctrl-C
 # ---------------------------------------------------------------------------
 
+
 @pytest.fixture
 def text_map(tmp_path):
-    rows = ["...........",
-            "...#....#..",
-            "......#....",
-            "..#........",
-            ".....#..#..",
-            ".#.........",
-            "....#......",
-            "..........."]
+    rows = [
+        "...........",
+        "...#....#..",
+        "......#....",
+        "..#........",
+        ".....#..#..",
+        ".#.........",
+        "....#......",
+        "...........",
+    ]
     p = tmp_path / "small.txt"
     p.write_text("\n".join(rows) + "\n")
     return p
@@ -165,8 +168,23 @@ def test_cli_summary_has_search_stats(text_map, tmp_path, mode):
     from gapath.cli import main
 
     out = tmp_path / "ex"
-    assert main(["exact", str(text_map), "--mode", mode, "--out", str(out), "--quiet",
-                 "--no-plots", "--max-labels", "100000"]) == 0
+    assert (
+        main(
+            [
+                "exact",
+                str(text_map),
+                "--mode",
+                mode,
+                "--out",
+                str(out),
+                "--quiet",
+                "--no-plots",
+                "--max-labels",
+                "100000",
+            ]
+        )
+        == 0
+    )
     summary = json.loads((out / "summary.json").read_text())
     assert summary["settings"]["max_labels"] == 100000
     assert summary["search"]["labels"] > 0 and summary["search"]["peak_bytes"] > 0
@@ -177,9 +195,21 @@ def test_cli_budget_is_an_error_with_no_front(text_map, tmp_path, capsys, mode):
     from gapath.cli import main
 
     out = tmp_path / "ex"
-    code = main(["exact", str(text_map), "--mode", mode, "--objectives",
-                 "length,vulnerability,smoothness", "--out", str(out), "--quiet",
-                 "--max-labels", "20"])
+    code = main(
+        [
+            "exact",
+            str(text_map),
+            "--mode",
+            mode,
+            "--objectives",
+            "length,vulnerability,smoothness",
+            "--out",
+            str(out),
+            "--quiet",
+            "--max-labels",
+            "20",
+        ]
+    )
     err = capsys.readouterr().err
     assert code == 2
     assert err.startswith("gapath: error: ") and "--max-labels" in err and "labels" in err
@@ -205,9 +235,11 @@ def test_cli_ctrl_c_exits_130_and_writes_no_front(text_map, tmp_path, capsys, mo
 
     monkeypatch.setattr(exact, "_Slices", _TinySlices)
     real = exact.free_front
-    monkeypatch.setattr(exact, "free_front",
-                        lambda ws, objs, **kw: real(ws, objs, max_labels=kw["max_labels"],
-                                                    progress=interrupt))
+    monkeypatch.setattr(
+        exact,
+        "free_front",
+        lambda ws, objs, **kw: real(ws, objs, max_labels=kw["max_labels"], progress=interrupt),
+    )
     out = tmp_path / "ex"
     assert main(["exact", str(text_map), "--mode", "free", "--out", str(out)]) == 130
     err = capsys.readouterr().err
@@ -222,13 +254,12 @@ def test_progress_line_is_throttled_and_names_the_counts():
 
     line = _ProgressLine("free")
     line.stream, line.tty, line.every = io.StringIO(), False, 0.0
-    info = {"phase": "free", "expansions": 1234567, "labels": 20, "open": 3, "solutions": 2,
-            "seconds": 1.25}
+    info = {"phase": "free", "expansions": 1234567, "labels": 20, "open": 3, "solutions": 2, "seconds": 1.25}
     line(info)
     text = line.stream.getvalue()
     assert "1,234,567 expanded" in text and "2 solutions so far" in text
     line.every = 3600.0
-    line(info)                        # too soon: nothing more
+    line(info)  # too soon: nothing more
     assert line.stream.getvalue() == text
 
 

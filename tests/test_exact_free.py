@@ -40,6 +40,7 @@ MOVES = [(0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1), (1, 0), (1, 1)]
 # brute force
 # ---------------------------------------------------------------------------
 
+
 def _close(a, b):
     a, b = np.asarray(a, float), np.asarray(b, float)
     return np.abs(a - b) <= TOL * np.maximum(1.0, np.maximum(np.abs(a), np.abs(b)))
@@ -70,8 +71,7 @@ def all_simple_paths(ws: Workspace):
                 continue
             turn = 0 if head < 0 else min(abs(d - head), 8 - abs(d - head))
             path.append((r2, c2))
-            dfs(r2, c2, d, ns + (not diagonal), nd + diagonal, eighths + turn,
-                vul + pot[r2, c2])
+            dfs(r2, c2, d, ns + (not diagonal), nd + diagonal, eighths + turn, vul + pot[r2, c2])
             path.pop()
         seen[r, c] = False
 
@@ -128,6 +128,7 @@ def assert_same_front(A: np.ndarray, B: np.ndarray):
 # workspaces
 # ---------------------------------------------------------------------------
 
+
 def _random(shape, p, seed, **kw):
     rng = np.random.default_rng(seed)
     occ = rng.random(shape) < p
@@ -148,8 +149,7 @@ _WORKSPACES = {
     "4x4-p30-s24": lambda: _random((4, 4), 0.3, 24),
     "4x4-p40-s19": lambda: _random((4, 4), 0.4, 19),
     "4x4-inner": lambda: _random((4, 4), 0.2, 7, start=(2, 1), goal=(0, 3)),
-    "4x4-inner-nocut": lambda: _random((4, 4), 0.2, 8, start=(1, 2), goal=(3, 1),
-                                       corner_cutting=False),
+    "4x4-inner-nocut": lambda: _random((4, 4), 0.2, 8, start=(1, 2), goal=(3, 1), corner_cutting=False),
     "4x4-same-column": lambda: _random((4, 4), 0.2, 9, start=(3, 2), goal=(0, 2)),
     "4x4-backwards": lambda: _random((4, 4), 0.2, 4, start=(0, 3), goal=(2, 0)),
     "4x4-cell-size": lambda: _random((4, 4), 0.2, 11, cell_size=0.5),
@@ -159,7 +159,7 @@ _WORKSPACES = {
 }
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _brute_cached(key):
     return all_simple_paths(_WORKSPACES[key]())
 
@@ -182,6 +182,7 @@ def test_brute_force_cases_are_non_trivial():
 # the front equals the brute-force front
 # ---------------------------------------------------------------------------
 
+
 @pytest.mark.parametrize("objectives", OBJECTIVE_SETS, ids=lambda o: "+".join(o))
 def test_front_equals_brute_force(case, objectives):
     key, ws, all_F, _ = case
@@ -193,8 +194,7 @@ def test_front_equals_brute_force(case, objectives):
     check_front(ws, front)
 
 
-@pytest.mark.parametrize("objectives", [("length", "vulnerability"), ("vulnerability",),
-                                        ("length",)])
+@pytest.mark.parametrize("objectives", [("length", "vulnerability"), ("vulnerability",), ("length",)])
 def test_ties_prefer_smoothest_path(case, objectives):
     """Without smoothness among the objectives, each front point's path has
     the least total turn of all feasible paths with that objective vector."""
@@ -262,6 +262,7 @@ def check_front(ws: Workspace, front: ExactFront):
 # larger maps: an independent label-setting reference
 # ---------------------------------------------------------------------------
 
+
 def martins_front(ws: Workspace) -> np.ndarray:
     """The exact (length, vulnerability, smoothness) Pareto set of the
     feasible paths, by Martins' label-setting algorithm: no heuristic, exact
@@ -271,9 +272,9 @@ def martins_front(ws: Workspace) -> np.ndarray:
     occ, pot = ws.occ, ws.potential
     h, w = ws.shape
     goal = ws.goal
-    alive: dict = {}                     # state -> list of label ids
-    vec: list = []                       # label id -> (length, vul, eighths)
-    info: list = []                      # label id -> (cell, heading, ns, nd)
+    alive: dict = {}  # state -> list of label ids
+    vec: list = []  # label id -> (length, vul, eighths)
+    info: list = []  # label id -> (cell, heading, ns, nd)
     dead: set = set()
     heap: list = []
 
@@ -353,6 +354,7 @@ def test_front_equals_label_setting_reference(key):
 # larger maps: consistency and the monotone front
 # ---------------------------------------------------------------------------
 
+
 def _weakly_dominated_by(A: np.ndarray, B: np.ndarray) -> bool:
     """Every point of A is dominated by, or tolerance-equal to, a point of B."""
     for a in A:
@@ -378,9 +380,11 @@ def test_monotone_front_is_weakly_dominated(seed):
         assert _weakly_dominated_by(mono.F, free.F)
 
 
-@pytest.mark.parametrize("objectives", [("length", "vulnerability"),
-                                        ("length", "vulnerability", "smoothness")],
-                         ids=lambda o: "+".join(o))
+@pytest.mark.parametrize(
+    "objectives",
+    [("length", "vulnerability"), ("length", "vulnerability", "smoothness")],
+    ids=lambda o: "+".join(o),
+)
 def test_default_scenario_is_consistent(objectives):
     from gapath import default_workspace
 
@@ -403,7 +407,7 @@ def test_empty_grid_has_one_point():
     ws = Workspace(np.zeros((5, 7), bool))
     front = free_front(ws, ("length", "vulnerability", "smoothness"))
     assert front.F.shape == (1, 3)
-    np.testing.assert_array_equal(front.F[0], [(2 + 4 * 2 ** 0.5), 0.0, np.pi / 4])
+    np.testing.assert_array_equal(front.F[0], [(2 + 4 * 2**0.5), 0.0, np.pi / 4])
 
 
 def test_to_dict_is_json():
@@ -417,8 +421,11 @@ def test_to_dict_is_json():
 # errors
 # ---------------------------------------------------------------------------
 
-@pytest.mark.parametrize("objectives", [("length", "vulnerability"), ("length", "smoothness"),
-                                        ("length", "vulnerability", "smoothness")])
+
+@pytest.mark.parametrize(
+    "objectives",
+    [("length", "vulnerability"), ("length", "smoothness"), ("length", "vulnerability", "smoothness")],
+)
 def test_wall_raises_no_path_error(objectives):
     occ = np.zeros((5, 5), bool)
     occ[:, 2] = True
@@ -436,13 +443,16 @@ def test_enclosed_goal_raises_no_path_error():
 def test_backwards_pocket_is_found():
     """The only feasible path moves back a column: no monotone path, but a
     free one."""
-    occ = np.array([
-        [0, 0, 0, 0, 0],
-        [0, 1, 1, 0, 0],
-        [0, 1, 0, 0, 0],
-        [0, 1, 1, 0, 0],
-        [0, 0, 0, 0, 0],
-    ], bool)
+    occ = np.array(
+        [
+            [0, 0, 0, 0, 0],
+            [0, 1, 1, 0, 0],
+            [0, 1, 0, 0, 0],
+            [0, 1, 1, 0, 0],
+            [0, 0, 0, 0, 0],
+        ],
+        bool,
+    )
     ws = Workspace(occ, start=(2, 0), goal=(2, 2), name="pocket")
     with pytest.raises(NoPathError):
         monotone_front(ws)
@@ -453,11 +463,14 @@ def test_backwards_pocket_is_found():
 
 
 def test_corner_cutting_only_path():
-    occ = np.array([
-        [1, 0, 0],
-        [1, 0, 1],
-        [0, 1, 1],
-    ], bool)
+    occ = np.array(
+        [
+            [1, 0, 0],
+            [1, 0, 1],
+            [0, 1, 1],
+        ],
+        bool,
+    )
     ws = Workspace(occ, start=(2, 0), goal=(0, 2))
     front = free_front(ws)
     assert front.paths[0].tolist() == [[2, 0], [1, 1], [0, 2]]
@@ -465,8 +478,7 @@ def test_corner_cutting_only_path():
         free_front(ws.replace(corner_cutting=False))
 
 
-@pytest.mark.parametrize("objectives", [("length", "interfering"), ("length", "length"),
-                                        ("speed",), ()])
+@pytest.mark.parametrize("objectives", [("length", "interfering"), ("length", "length"), ("speed",), ()])
 def test_bad_objectives(objectives):
     with pytest.raises(ConfigError):
         free_front(_WORKSPACES["4x4-p15-s0"](), objectives)

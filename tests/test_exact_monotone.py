@@ -33,6 +33,7 @@ OBJECTIVE_SETS = [
 # brute force
 # ---------------------------------------------------------------------------
 
+
 def _close(a, b):
     a, b = np.asarray(a, float), np.asarray(b, float)
     return np.abs(a - b) <= TOL * np.maximum(1.0, np.maximum(np.abs(a), np.abs(b)))
@@ -68,7 +69,7 @@ def all_monotone_paths(ws: Workspace):
         yield np.array(cells)
 
 
-@functools.lru_cache(maxsize=None)
+@functools.cache
 def _brute_cached(key):
     ws = _WORKSPACES[key]()
     F = []
@@ -112,6 +113,7 @@ def assert_same_front(A: np.ndarray, B: np.ndarray):
 # workspaces
 # ---------------------------------------------------------------------------
 
+
 def _random(shape, p, seed, **kw):
     rng = np.random.default_rng(seed)
     occ = rng.random(shape) < p
@@ -141,8 +143,7 @@ _WORKSPACES = {
     "6x6-s23-cell": lambda: _random((6, 6), 0.2, 23, cell_size=0.5),
     "6x6-inner": lambda: _random((6, 6), 0.2, 6, start=(3, 1), goal=(1, 4)),
     "6x6-mirror": lambda: _random((6, 6), 0.2, 11, start=(4, 5), goal=(1, 0)),
-    "5x6-mirror-nocut": lambda: _random((5, 6), 0.2, 14, start=(0, 4), goal=(4, 1),
-                                       corner_cutting=False),
+    "5x6-mirror-nocut": lambda: _random((5, 6), 0.2, 14, start=(0, 4), goal=(4, 1), corner_cutting=False),
     "6x6-sparse": _sparse,
     "6x5-empty": lambda: Workspace(np.zeros((6, 5), bool)),
 }
@@ -164,6 +165,7 @@ def test_brute_force_cases_have_paths():
 # ---------------------------------------------------------------------------
 # the front equals the brute-force front
 # ---------------------------------------------------------------------------
+
 
 @pytest.mark.parametrize("objectives", OBJECTIVE_SETS, ids=lambda o: "+".join(o))
 def test_front_equals_brute_force(case, objectives):
@@ -222,8 +224,9 @@ def check_front(ws: Workspace, front: ExactFront):
     np.testing.assert_array_equal(entries, front.profiles[0])
     np.testing.assert_array_equal(exits, front.profiles[1])
     # the GA's profile evaluation gives the same values
-    G = evaluate_profiles(entries, exits, frame.col0, frame.occ, frame.potential,
-                          ws.cell_size, ws.corner_cutting)
+    G = evaluate_profiles(
+        entries, exits, frame.col0, frame.occ, frame.potential, ws.cell_size, ws.corner_cutting
+    )
     cols = [("length", "vulnerability", "smoothness").index(n) for n in front.objectives]
     np.testing.assert_allclose(G[:, cols], F, rtol=0, atol=1e-12)
     assert (G[:, 3] == 0).all()
@@ -234,9 +237,13 @@ def test_transposed_frame():
     front is the one of the transposed workspace."""
     base = _random((6, 5), 0.2, 11, start=(5, 2), goal=(0, 2))
     twin = Workspace(base.occ.T, start=(2, 5), goal=(2, 0), name="twin")
-    all_F = np.array([[evaluate_path(twin, p)[n] for n in NAMES]
-                      for p in all_monotone_paths(twin)
-                      if evaluate_path(twin, p)["interfering"] == 0])
+    all_F = np.array(
+        [
+            [evaluate_path(twin, p)[n] for n in NAMES]
+            for p in all_monotone_paths(twin)
+            if evaluate_path(twin, p)["interfering"] == 0
+        ]
+    )
     for objectives in OBJECTIVE_SETS:
         cols = [NAMES.index(n) for n in objectives]
         front = monotone_front(base, objectives)
@@ -248,8 +255,9 @@ def test_transposed_frame():
 def test_larger_map_is_consistent(objectives):
     ws = random_workspace((24, 24), int(0.17 * 24 * 24), seed=3)
     check_front(ws, monotone_front(ws, objectives))
-    check_front(ws.replace(corner_cutting=False), monotone_front(ws.replace(corner_cutting=False),
-                                                                  objectives))
+    check_front(
+        ws.replace(corner_cutting=False), monotone_front(ws.replace(corner_cutting=False), objectives)
+    )
 
 
 def test_objective_order_and_single_objective():
@@ -266,7 +274,7 @@ def test_objective_order_and_single_objective():
 def test_empty_grid_shortest_path_is_the_diagonal():
     ws = Workspace(np.zeros((4, 4), bool))
     front = monotone_front(ws, ("length", "vulnerability", "smoothness"))
-    assert front.F.tolist() == [[3 * 2 ** 0.5, 0.0, 0.0]]
+    assert front.F.tolist() == [[3 * 2**0.5, 0.0, 0.0]]
     assert front.paths[0].tolist() == [[3, 0], [2, 1], [1, 2], [0, 3]]
 
 
@@ -282,6 +290,7 @@ def test_to_dict_is_json():
 # errors
 # ---------------------------------------------------------------------------
 
+
 def test_wall_raises_no_path_error():
     occ = np.zeros((5, 5), bool)
     occ[:, 2] = True
@@ -292,13 +301,16 @@ def test_wall_raises_no_path_error():
 
 def test_pocket_opening_backwards_raises_no_path_error():
     """A feasible 8-connected path exists, but it must move back a column."""
-    occ = np.array([
-        [0, 0, 0, 0, 0],
-        [0, 1, 1, 0, 0],
-        [0, 1, 0, 0, 0],
-        [0, 1, 1, 0, 0],
-        [0, 0, 0, 0, 0],
-    ], bool)
+    occ = np.array(
+        [
+            [0, 0, 0, 0, 0],
+            [0, 1, 1, 0, 0],
+            [0, 1, 0, 0, 0],
+            [0, 1, 1, 0, 0],
+            [0, 0, 0, 0, 0],
+        ],
+        bool,
+    )
     ws = Workspace(occ, start=(2, 0), goal=(2, 2), name="pocket")
     assert not any(evaluate_path(ws, p)["interfering"] == 0 for p in all_monotone_paths(ws))
     free = [(2, 0), (1, 0), (0, 1), (0, 2), (1, 3), (2, 2)]
@@ -310,11 +322,14 @@ def test_pocket_opening_backwards_raises_no_path_error():
 def test_corner_cutting_only_path():
     """Every monotone path cuts a corner: feasible with corner cutting,
     NoPathError without."""
-    occ = np.array([
-        [1, 0, 0],
-        [1, 0, 1],
-        [0, 1, 1],
-    ], bool)
+    occ = np.array(
+        [
+            [1, 0, 0],
+            [1, 0, 1],
+            [0, 1, 1],
+        ],
+        bool,
+    )
     ws = Workspace(occ, start=(2, 0), goal=(0, 2))
     front = monotone_front(ws)
     assert front.paths[0].tolist() == [[2, 0], [1, 1], [0, 2]]
@@ -322,8 +337,7 @@ def test_corner_cutting_only_path():
         monotone_front(ws.replace(corner_cutting=False))
 
 
-@pytest.mark.parametrize("objectives", [("length", "interfering"), ("length", "length"),
-                                        ("speed",), ()])
+@pytest.mark.parametrize("objectives", [("length", "interfering"), ("length", "length"), ("speed",), ()])
 def test_bad_objectives(objectives):
     with pytest.raises(ConfigError):
         monotone_front(_WORKSPACES["5x5-s19"](), objectives)

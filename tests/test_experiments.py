@@ -11,7 +11,6 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-
 from experiment_cases import small_spec, stored
 
 from gapath import ConfigError
@@ -20,8 +19,7 @@ from gapath.experiments import merge_fronts
 from gapath.experiments import runner as runner_mod
 from gapath.experiments.report import report
 from gapath.experiments.runner import FirstFeasible, front_from_dict, run_experiment, run_one
-from gapath.experiments.spec import (ExperimentSpec, canonical_json, config_key, load_spec,
-                                     run_key)
+from gapath.experiments.spec import ExperimentSpec, canonical_json, config_key, load_spec, run_key
 from gapath.experiments.store import ResultStore
 
 YAML_SPEC = """\
@@ -71,6 +69,7 @@ def aggregate_files(out) -> dict:
 # specs
 # ---------------------------------------------------------------------------
 
+
 def test_yaml_and_toml_specs_expand_to_the_same_runs(tmp_path):
     (tmp_path / "e.yaml").write_text(YAML_SPEC)
     (tmp_path / "e.toml").write_text(TOML_SPEC)
@@ -86,31 +85,67 @@ def test_yaml_and_toml_specs_expand_to_the_same_runs(tmp_path):
     assert [run_key(x) for x in c.runs()] == [run_key(x) for x in a.runs()]
 
 
-@pytest.mark.parametrize("text, suffix, match", [
-    ("maps: [default]\nsettings: {pop_sise: 3}\n", ".yaml", r"e\.yaml: settings\.pop_sise: unknown setting"),
-    ("maps: [{dense: {n: 8, p0: 1.5}}]\n", ".yaml", r"e\.yaml: maps\[0\]\.dense\.p0: expected a number in \[0\.0, 1\.0\]"),
-    ("maps: [{maze: {n: 8}}]\n", ".yaml", r"maps\[0\]\.maze: unknown map kind"),
-    ("maps: [nothere.map]\n", ".yaml", r"maps\[0\]\.file\.path: cannot read map file"),
-    ("grid: {pop_size: 20}\n", ".yaml", r"grid\.pop_size: expected a non-empty list"),
-    ("grid: {n_gen: [5, x]}\n", ".yaml", r"grid\.n_gen\[1\]: expected an integer"),
-    ("settings: {objectives: [length, speed]}\n", ".yaml", r"settings\.objectives: unknown objective 'speed'"),
-    ("engines: [turbo]\n", ".yaml", r"engines\[0\]: unknown engine 'turbo'"),
-    ("seeds: {start: 1, cnt: 3}\n", ".yaml", r"seeds\.cnt: unknown key"),
-    ("options: {stop_at_first_feasible: yes please}\n", ".yaml", r"options\.stop_at_first_feasible: expected true or false"),
-    ("runs: 3\n", ".yaml", r"e\.yaml: runs: unknown key"),
-    ("maps: [default\nseeds: 2\n", ".yaml", r"e\.yaml, line \d+, column \d+: invalid YAML"),
-    ("maps = [\"default\"\nseeds = 2\n", ".toml", r"e\.toml: invalid TOML: .*line"),
-    ("[settings]\npop_size = \"big\"\n", ".toml", r"e\.toml: settings\.pop_size: expected an integer, got 'big'"),
-    ("", ".yaml", r"e\.yaml: the experiment spec is empty"),
-    ("a = 1", ".ini", r"unknown spec format"),
-    ("maps: [{default: {start: [31, 40]}}]\n", ".yaml",
-     r"e\.yaml: maps\[0\]\.default: start \(31, 40\) is outside the 32x32 grid"),
-    ("maps: [{default: {goal: [0, 0]}}]\n", ".yaml", r"maps\[0\]\.default: goal \(0, 0\) is on an obstacle"),
-    ("maps: [{random: {shape: [8, 8], obstacles: 5, seed: run, goal: [0, 8]}}]\n", ".yaml",
-     r"maps\[0\]\.random: goal \(0, 8\) is outside the 8x8 grid"),
-    ("maps: [{dense: {n: 8, p0: 0.2, start: [3, 3], goal: [3, 3]}}]\n", ".yaml",
-     r"maps\[0\]\.dense: start and goal share a column"),
-])
+@pytest.mark.parametrize(
+    "text, suffix, match",
+    [
+        (
+            "maps: [default]\nsettings: {pop_sise: 3}\n",
+            ".yaml",
+            r"e\.yaml: settings\.pop_sise: unknown setting",
+        ),
+        (
+            "maps: [{dense: {n: 8, p0: 1.5}}]\n",
+            ".yaml",
+            r"e\.yaml: maps\[0\]\.dense\.p0: expected a number in \[0\.0, 1\.0\]",
+        ),
+        ("maps: [{maze: {n: 8}}]\n", ".yaml", r"maps\[0\]\.maze: unknown map kind"),
+        ("maps: [nothere.map]\n", ".yaml", r"maps\[0\]\.file\.path: cannot read map file"),
+        ("grid: {pop_size: 20}\n", ".yaml", r"grid\.pop_size: expected a non-empty list"),
+        ("grid: {n_gen: [5, x]}\n", ".yaml", r"grid\.n_gen\[1\]: expected an integer"),
+        (
+            "settings: {objectives: [length, speed]}\n",
+            ".yaml",
+            r"settings\.objectives: unknown objective 'speed'",
+        ),
+        ("engines: [turbo]\n", ".yaml", r"engines\[0\]: unknown engine 'turbo'"),
+        ("seeds: {start: 1, cnt: 3}\n", ".yaml", r"seeds\.cnt: unknown key"),
+        (
+            "options: {stop_at_first_feasible: yes please}\n",
+            ".yaml",
+            r"options\.stop_at_first_feasible: expected true or false",
+        ),
+        ("runs: 3\n", ".yaml", r"e\.yaml: runs: unknown key"),
+        ("maps: [default\nseeds: 2\n", ".yaml", r"e\.yaml, line \d+, column \d+: invalid YAML"),
+        ('maps = ["default"\nseeds = 2\n', ".toml", r"e\.toml: invalid TOML: .*line"),
+        (
+            '[settings]\npop_size = "big"\n',
+            ".toml",
+            r"e\.toml: settings\.pop_size: expected an integer, got 'big'",
+        ),
+        ("", ".yaml", r"e\.yaml: the experiment spec is empty"),
+        ("a = 1", ".ini", r"unknown spec format"),
+        (
+            "maps: [{default: {start: [31, 40]}}]\n",
+            ".yaml",
+            r"e\.yaml: maps\[0\]\.default: start \(31, 40\) is outside the 32x32 grid",
+        ),
+        (
+            "maps: [{default: {goal: [0, 0]}}]\n",
+            ".yaml",
+            r"maps\[0\]\.default: goal \(0, 0\) is on an obstacle",
+        ),
+        (
+            "maps: [{random: {shape: [8, 8], obstacles: 5, seed: run, goal: [0, 8]}}]\n",
+            ".yaml",
+            r"maps\[0\]\.random: goal \(0, 8\) is outside the 8x8 grid",
+        ),
+        (
+            "maps: [{dense: {n: 8, p0: 0.2, start: [3, 3], goal: [3, 3]}}]\n",
+            ".yaml",
+            r"maps\[0\]\.dense: start and goal share a column",
+        ),
+    ],
+)
 def test_spec_errors_name_the_file_and_the_key(tmp_path, text, suffix, match):
     path = tmp_path / f"e{suffix}"
     path.write_text(text)
@@ -120,8 +155,10 @@ def test_spec_errors_name_the_file_and_the_key(tmp_path, text, suffix, match):
 
 def test_map_file_start_and_goal_checked_when_the_spec_is_read(tmp_path):
     (tmp_path / "m.txt").write_text("....\n.#..\n....\n")
-    for entry, match in [("{file: {path: m.txt, start: [1, 1]}}", r"maps\[0\]\.file: .*start \(1, 1\) is on an obstacle"),
-                         ("{file: {path: m.txt, goal: [3, 0]}}", r"maps\[0\]\.file: .*goal \(3, 0\) is outside the 3x4 grid")]:
+    for entry, match in [
+        ("{file: {path: m.txt, start: [1, 1]}}", r"maps\[0\]\.file: .*start \(1, 1\) is on an obstacle"),
+        ("{file: {path: m.txt, goal: [3, 0]}}", r"maps\[0\]\.file: .*goal \(3, 0\) is outside the 3x4 grid"),
+    ]:
         (tmp_path / "e.yaml").write_text(f"maps: [{entry}]\n")
         with pytest.raises(ConfigError, match=match):
             load_spec(tmp_path / "e.yaml")
@@ -155,8 +192,12 @@ def test_map_files_relative_to_the_spec_and_identified_by_content(tmp_path):
 
 
 def test_run_keys_are_stable_canonical_hashes():
-    spec = ExperimentSpec(maps=[{"dense": {"n": 8, "p0": 0.3, "seed": "run"}}], engines=["paper"],
-                          settings={"pop_size": 20, "n_gen": 5, "seed_from": "none"}, seeds=[3])
+    spec = ExperimentSpec(
+        maps=[{"dense": {"n": 8, "p0": 0.3, "seed": "run"}}],
+        engines=["paper"],
+        settings={"pop_size": 20, "n_gen": 5, "seed_from": "none"},
+        seeds=[3],
+    )
     run = spec.runs()[0]
     # pinned: a change here silently invalidates every stored result
     assert canonical_json(run) == (
@@ -164,15 +205,24 @@ def test_run_keys_are_stable_canonical_hashes():
         '"options":{"record_first_feasible":false,"reference":null,"stop_at_first_feasible":false},'
         '"seed":3,"settings":{"constraints":"penalty","n_gen":5,"objectives":["length",'
         '"vulnerability"],"penalty":1000.0,"pop_size":20,"sbx_eta":10.0,"seed_from":"none",'
-        '"tiebreak":"smoothness"}}')
+        '"tiebreak":"smoothness"}}'
+    )
     assert run_key(run) == "5052aae65717b722049b90a7e70c417a02f05d2b35d1c1ccd7ed27ffadce0347"
     # key order, tuples, string vs list objectives, [n, n] vs n do not matter
     shuffled = json.loads(json.dumps(run))
     shuffled["settings"] = dict(reversed(list(shuffled["settings"].items())))
     assert run_key(shuffled) == run_key(run)
-    other = ExperimentSpec(maps=[{"dense": {"seed": "run", "p0": 0.3, "n": [8, 8]}}], engines=("paper",),
-                           settings={"seed_from": "none", "n_gen": 5.0, "pop_size": 20,
-                                     "objectives": ["length", "vulnerability"]}, seeds=[3])
+    other = ExperimentSpec(
+        maps=[{"dense": {"seed": "run", "p0": 0.3, "n": [8, 8]}}],
+        engines=("paper",),
+        settings={
+            "seed_from": "none",
+            "n_gen": 5.0,
+            "pop_size": 20,
+            "objectives": ["length", "vulnerability"],
+        },
+        seeds=[3],
+    )
     assert run_key(other.runs()[0]) == run_key(run)
     assert config_key(run) == config_key(dict(run, seed=4)) and run_key(dict(run, seed=4)) != run_key(run)
 
@@ -180,6 +230,7 @@ def test_run_keys_are_stable_canonical_hashes():
 # ---------------------------------------------------------------------------
 # one run
 # ---------------------------------------------------------------------------
+
 
 def test_first_feasible_stops_the_run_and_records_the_generation():
     from gapath.solver import solve
@@ -191,10 +242,15 @@ def test_first_feasible_stops_the_run_and_records_the_generation():
     full = solve(ws, pop_size=40, n_gen=30, seed=1, seed_from="none", callback=watch)
     assert 1 < stop.generation == r.n_gen < 30 and len(r.front) >= 1
     assert watch.generation == stop.generation and full.n_gen == 30
-    res = run_one(table_run := ExperimentSpec(
-        maps=[{"dense": {"n": 16, "p0": 0.3, "seed": 3}}], engines=["paper"],
-        settings={"pop_size": 40, "n_gen": 60, "seed_from": "none"}, seeds=[1],
-        options={"stop_at_first_feasible": True}).runs()[0])
+    res = run_one(
+        table_run := ExperimentSpec(
+            maps=[{"dense": {"n": 16, "p0": 0.3, "seed": 3}}],
+            engines=["paper"],
+            settings={"pop_size": 40, "n_gen": 60, "seed_from": "none"},
+            seeds=[1],
+            options={"stop_at_first_feasible": True},
+        ).runs()[0]
+    )
     assert res["status"] == "ok" and res["n_gen"] == stop.generation
     ind = res["indicators"]
     assert ind["first_feasible_gen"] == stop.generation and ind["feasible"]
@@ -202,12 +258,15 @@ def test_first_feasible_stops_the_run_and_records_the_generation():
     assert ind["n_obstacles"] == ws.n_obstacles and res["seed"] == 1
     assert res["key"] == run_key(table_run) and res["versions"]["gapath"]
     f = front_from_dict(json.loads(json.dumps(res["front"])))
-    assert np.array_equal(f.F, r.front.F) and all(np.array_equal(a, b) for a, b in zip(f.paths, r.front.paths))
+    assert np.array_equal(f.F, r.front.F) and all(
+        np.array_equal(a, b) for a, b in zip(f.paths, r.front.paths)
+    )
 
 
 # ---------------------------------------------------------------------------
 # the store
 # ---------------------------------------------------------------------------
+
 
 def test_store_writes_atomically_and_reruns_skip_finished_runs(tmp_path, monkeypatch):
     spec = small_spec()
@@ -268,14 +327,21 @@ def test_failed_runs_are_recorded_and_retried(tmp_path, monkeypatch):
 # executors: the local pool and a Dask cluster give the same results
 # ---------------------------------------------------------------------------
 
+
 def test_local_pool_and_dask_cluster_store_identical_results(tmp_path, monkeypatch):
     distributed = pytest.importorskip("distributed")
     spec = small_spec()
     run_experiment(spec, tmp_path / "inline", workers=0, progress=False)
     run_experiment(spec, tmp_path / "pool", workers=2, progress=False)
     run_experiment(small_spec(seeds=3), tmp_path / "inline3", workers=0, progress=False)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
-                                  protocol="tcp", host="127.0.0.1", dashboard_address=None) as cluster:
+    with distributed.LocalCluster(
+        n_workers=2,
+        threads_per_worker=1,
+        processes=False,
+        protocol="tcp",
+        host="127.0.0.1",
+        dashboard_address=None,
+    ) as cluster:
         assert cluster.scheduler_address.startswith("tcp://127.0.0.1:")
         r = run_experiment(spec, tmp_path / "dask", scheduler=cluster.scheduler_address, progress=False)
         assert r.executor.startswith("Dask scheduler") and r.ran == 8
@@ -284,8 +350,7 @@ def test_local_pool_and_dask_cluster_store_identical_results(tmp_path, monkeypat
         r = run_experiment(small_spec(seeds=3), tmp_path / "dask", progress=False)
         assert r.executor.startswith("Dask scheduler") and (r.ran, r.skipped) == (4, 8)
         # runs batched into fewer Dask tasks: the same results
-        r = run_experiment(small_spec(seeds=3), tmp_path / "dask-batched", progress=False,
-                           batch_seconds=60)
+        r = run_experiment(small_spec(seeds=3), tmp_path / "dask-batched", progress=False, batch_seconds=60)
         assert r.ran == 12 and r.complete
     assert stored(tmp_path / "dask-batched") == stored(tmp_path / "inline3") == stored(tmp_path / "dask")
     reference = stored(tmp_path / "inline")
@@ -332,7 +397,7 @@ def test_batched_tasks_store_the_same_results_as_single_runs(tmp_path):
     # then batches, shorter towards the end, the last ones single
     assert sum(batched) == 32 and batched[:4] == [1, 1, 1, 1] and max(batched) > 1
     assert batched[-1] == 1 and batched == sorted(batched[:4]) + sorted(batched[4:], reverse=True)
-    assert pool.sizes[len(batched):] == [1] * 32
+    assert pool.sizes[len(batched) :] == [1] * 32
     assert stored(tmp_path / "batched") == reference == stored(tmp_path / "single")
     report(tmp_path / "inline", plots=False)
     report(tmp_path / "batched", plots=False)
@@ -340,8 +405,7 @@ def test_batched_tasks_store_the_same_results_as_single_runs(tmp_path):
 
 
 def test_batch_sizes_follow_run_times_and_shrink_towards_the_end():
-    b = runner_mod._Batcher([(str(i), {}) for i in range(100)], slots=1, target_seconds=0.25,
-                            max_batch=32)
+    b = runner_mod._Batcher([(str(i), {}) for i in range(100)], slots=1, target_seconds=0.25, max_batch=32)
     assert b.size() == 1  # nothing known yet
     for _ in range(4):
         b.observe({"status": "ok", "runtime": {"wall_seconds": 0.01}})
@@ -410,8 +474,9 @@ print(tuned, again, resource.getrusage(resource.RUSAGE_SELF).ru_minflt - f0)
 
     def faults(**env):
         e = {k: v for k, v in os.environ.items() if k not in ("MALLOC_TRIM_THRESHOLD_", "GAPATH_KEEP_MALLOC")}
-        out = subprocess.run([sys.executable, "-c", code], env={**e, **env}, capture_output=True,
-                             text=True, check=True).stdout.split()
+        out = subprocess.run(
+            [sys.executable, "-c", code], env={**e, **env}, capture_output=True, text=True, check=True
+        ).stdout.split()
         return out[0] == "True", out[1] == "True", int(out[2])
 
     nanny = {"MALLOC_TRIM_THRESHOLD_": "65536"}  # what Dask's nanny sets
@@ -440,10 +505,20 @@ def test_sigkill_loses_only_runs_in_flight_and_resume_matches(tmp_path):
     spec_path = tmp_path / "kill.yaml"
     spec_path.write_text(KILL_SPEC)
     out = tmp_path / "killed"
-    cmd = [sys.executable, "-m", "gapath.cli", "experiment", "run", str(spec_path), "--out", str(out),
-           "--workers", "1", "--quiet"]
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE,
-                            start_new_session=True)
+    cmd = [
+        sys.executable,
+        "-m",
+        "gapath.cli",
+        "experiment",
+        "run",
+        str(spec_path),
+        "--out",
+        str(out),
+        "--workers",
+        "1",
+        "--quiet",
+    ]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, start_new_session=True)
     try:
         deadline = time.monotonic() + 120
         while len(ResultStore(out).done_keys()) < 2:
@@ -492,6 +567,7 @@ def _group_alive(pgid: int) -> bool:
 # reports
 # ---------------------------------------------------------------------------
 
+
 def test_report_tables_and_merged_fronts(tmp_path):
     spec = small_spec()
     run_experiment(spec, tmp_path, workers=0, progress=False)
@@ -515,8 +591,14 @@ def test_report_tables_and_merged_fronts(tmp_path):
             assert row["merged_front_size"] is None  # a new map per seed: nothing to merge
     header = rep.csv.splitlines()[0].split(",")
     assert header[:5] == ["config", "map", "encoding", "engine", "pop_size"]
-    assert {"success_pct", "n_gen_median", "n_gen_q1", "n_gen_q3", "first_feasible_gen_median",
-            "min_length_mean"} <= set(header)
+    assert {
+        "success_pct",
+        "n_gen_median",
+        "n_gen_q1",
+        "n_gen_q3",
+        "first_feasible_gen_median",
+        "min_length_mean",
+    } <= set(header)
     assert "| config | map | encoding | engine | pop_size |" in rep.markdown
     for name in ("summary.csv", "summary.md", "timing.csv", "indicators.png"):
         assert (tmp_path / name).is_file()
@@ -527,12 +609,15 @@ def test_report_tables_and_merged_fronts(tmp_path):
 # CLI
 # ---------------------------------------------------------------------------
 
+
 def test_cli_run_status_report(tmp_path, capsys):
     spec = tmp_path / "e.toml"
     spec.write_text(TOML_SPEC)
     out = tmp_path / "store"
-    assert main(["experiment", "run", str(spec), "--out", str(out), "--workers", "0", "--quiet",
-                 "--no-plots"]) == 0
+    assert (
+        main(["experiment", "run", str(spec), "--out", str(out), "--workers", "0", "--quiet", "--no-plots"])
+        == 0
+    )
     assert (out / "summary.md").is_file() and (out / "spec.toml").read_text() == TOML_SPEC
     capsys.readouterr()
     assert main(["experiment", "status", str(out)]) == 0
@@ -562,7 +647,9 @@ def test_experiment_group_is_extensible(monkeypatch, tmp_path, capsys):
 
     mod.register_experiment = register_experiment
     monkeypatch.setitem(sys.modules, "gapath_test_hello", mod)
-    monkeypatch.setattr(experiment, "EXPERIMENT_MODULES", [*experiment.EXPERIMENT_MODULES, "gapath_test_hello"])
+    monkeypatch.setattr(
+        experiment, "EXPERIMENT_MODULES", [*experiment.EXPERIMENT_MODULES, "gapath_test_hello"]
+    )
     assert main(["experiment", "hello"]) == 0
     assert "hello from a plug-in" in capsys.readouterr().out
 
@@ -570,8 +657,7 @@ def test_experiment_group_is_extensible(monkeypatch, tmp_path, capsys):
 def test_dense_quick(tmp_path):
     from gapath.experiments import dense
 
-    assert main(["experiment", "dense", "--quick", "--out", str(tmp_path), "--workers", "0",
-                 "--quiet"]) == 0
+    assert main(["experiment", "dense", "--quick", "--out", str(tmp_path), "--workers", "0", "--quiet"]) == 0
     md = (tmp_path / "dense.md").read_text()
     assert "| 8x8 | 0.3 |" in md and "| 16x16 | 0.7 |" in md and "| 64x64 | 0.2 |" in md
     assert (tmp_path / "dense.png").stat().st_size > 1000
@@ -594,10 +680,14 @@ def test_engines_auto_is_saved_resolved_and_fast_matches_paper():
     auto = ExperimentSpec(engines=["auto"]).to_dict()["engines"]
     assert auto == [resolve_engine("auto")] == ["fast" if fast_engine_available() else "paper"]
     assert ExperimentSpec(engines=["pymoo"]).to_dict()["engines"] == ["paper"]
-    assert fast_engine_available()          # FastNSGA2 and solve(engine=...) exist
-    spec = ExperimentSpec(maps=[{"dense": {"n": 16, "p0": 0.5, "seed": "run"}}], engines=["paper", "fast"],
-                          settings={"pop_size": 30, "n_gen": 20, "seed_from": "none"}, seeds=2,
-                          options={"stop_at_first_feasible": True})
+    assert fast_engine_available()  # FastNSGA2 and solve(engine=...) exist
+    spec = ExperimentSpec(
+        maps=[{"dense": {"n": 16, "p0": 0.5, "seed": "run"}}],
+        engines=["paper", "fast"],
+        settings={"pop_size": 30, "n_gen": 20, "seed_from": "none"},
+        seeds=2,
+        options={"stop_at_first_feasible": True},
+    )
     paper, fast = [run_one(r) for r in spec.runs()[:2]], [run_one(r) for r in spec.runs()[2:]]
     for p, f in zip(paper, fast):
         assert p["status"] == f["status"] == "ok" and p["key"] != f["key"]
@@ -613,20 +703,24 @@ def test_spec_paths_setting_runs_free_paths_and_keeps_old_keys(tmp_path):
     from gapath.experiments.runner import run_one
     from gapath.experiments.spec import ExperimentSpec, run_key
 
-    base = dict(name="p", maps=[{"file": {"path": str(tmp_path / "back.txt"), "start": [0, 0],
-                                          "goal": [0, 4]}}],
-                settings={"pop_size": 8, "n_gen": 2}, seeds=[1])
+    base = dict(
+        name="p",
+        maps=[{"file": {"path": str(tmp_path / "back.txt"), "start": [0, 0], "goal": [0, 4]}}],
+        settings={"pop_size": 8, "n_gen": 2},
+        seeds=[1],
+    )
     (tmp_path / "back.txt").write_text("...#.\n##.#.\n...#.\n.###.\n.....\n")  # steps back a column
     plain = ExperimentSpec.from_dict(base).runs()[0]
     assert "paths" not in plain["settings"]
     assert run_key(plain) == run_key(ExperimentSpec.from_dict(dict(base)).runs()[0])
-    free = ExperimentSpec.from_dict({**base, "encodings": ["field"],
-                                     "settings": {**base["settings"], "paths": "free"}}).runs()[0]
+    free = ExperimentSpec.from_dict(
+        {**base, "encodings": ["field"], "settings": {**base["settings"], "paths": "free"}}
+    ).runs()[0]
     assert free["settings"]["paths"] == "free" and run_key(free) != run_key(plain)
     res = run_one(free)
     assert res["status"] == "ok", res
     assert res["indicators"]["feasible"] and res["indicators"]["front_size"] >= 1
-    mono = run_one(plain)                    # no column-monotone path on this map
+    mono = run_one(plain)  # no column-monotone path on this map
     assert mono["status"] == "ok" and not mono["indicators"]["feasible"]
     with pytest.raises(ConfigError, match="describes monotone paths"):
         ExperimentSpec.from_dict({**base, "settings": {**base["settings"], "paths": "free"}})

@@ -49,8 +49,9 @@ def problem(ws):
 
 
 def _nondominated(F):
-    return not any((b <= a).all() and (b < a).any()
-                   for i, a in enumerate(F) for j, b in enumerate(F) if i != j)
+    return not any(
+        (b <= a).all() and (b < a).any() for i, a in enumerate(F) for j, b in enumerate(F) if i != j
+    )
 
 
 def _paths(problem, X):
@@ -60,6 +61,7 @@ def _paths(problem, X):
 
 # -- through pymoo's minimize -------------------------------------------------
 
+
 def test_minimize_returns_result_with_valid_front(ws, problem):
     res = minimize(problem, FastNSGA2(60), ("n_gen", 40), seed=3)
     assert isinstance(res, Result) and isinstance(res.algorithm, FastNSGA2)
@@ -68,7 +70,7 @@ def test_minimize_returns_result_with_valid_front(ws, problem):
     assert _nondominated(res.F)
     assert (res.CV <= 0).all()
     # every returned path is feasible and its objectives recompute exactly
-    for x, f, path in zip(res.X, res.F, problem.decode(res.X)):
+    for f, path in zip(res.F, problem.decode(res.X)):
         assert ws.is_valid_path(path)
         m = evaluate_path(ws, path)
         assert m["interfering"] == 0
@@ -108,13 +110,16 @@ def test_population_stays_distinct_and_full_and_callback_sees_it(problem):
     np.testing.assert_array_equal(watch.F[-1], res.pop.get("F"))
 
 
-@pytest.mark.parametrize("settings", [
-    dict(constraints="constraint"),
-    dict(objectives="length,vulnerability,smoothness", tiebreak=None),
-    dict(objectives="length,vulnerability,smoothness", constraints="constraint", tiebreak=None),
-    dict(tiebreak=None),
-    dict(objectives="length"),
-])
+@pytest.mark.parametrize(
+    "settings",
+    [
+        dict(constraints="constraint"),
+        dict(objectives="length,vulnerability,smoothness", tiebreak=None),
+        dict(objectives="length,vulnerability,smoothness", constraints="constraint", tiebreak=None),
+        dict(tiebreak=None),
+        dict(objectives="length"),
+    ],
+)
 def test_modes_are_pymoos_nsga2_bit_for_bit(ws, settings):
     """Same seed, same operators: FastNSGA2 returns paper_nsga2's population."""
     settings = dict(settings)
@@ -155,6 +160,7 @@ def test_single_objective(ws):
 
 # -- terminations, history, output ----------------------------------------------
 
+
 def test_n_eval_and_time_terminations(problem):
     res = minimize(problem, FastNSGA2(40), ("n_eval", 500), seed=1)
     n_eval = res.algorithm.evaluator.n_eval
@@ -191,18 +197,19 @@ def test_ask_and_tell_matches_minimize(problem):
 
 
 def test_initial_sampling_array_and_population(problem):
-    X0 = np.zeros((5, problem.n_var), int)        # five copies of one path
+    X0 = np.zeros((5, problem.n_var), int)  # five copies of one path
     res = minimize(problem, FastNSGA2(20, sampling=X0), ("n_gen", 1), seed=1)
-    assert len(res.pop) == 1                       # pymoo collapses duplicate seeds too
+    assert len(res.pop) == 1  # pymoo collapses duplicate seeds too
     res = minimize(problem, FastNSGA2(20, sampling=X0), ("n_gen", 3), seed=1)
     assert len(res.pop) == 20
     seeded = minimize(problem, FastNSGA2(20), ("n_gen", 2), seed=2).pop
     res = minimize(problem, FastNSGA2(20, sampling=seeded), ("n_gen", 2), seed=3)
     assert len(res.pop) == 20
-    assert res.algorithm.evaluator.n_eval == 20    # the seeds were evaluated already
+    assert res.algorithm.evaluator.n_eval == 20  # the seeds were evaluated already
 
 
 # -- errors ------------------------------------------------------------------------
+
 
 class _Sphere(Problem):
     def __init__(self):
@@ -217,10 +224,15 @@ def test_non_gapath_problem_is_a_config_error():
         minimize(_Sphere(), FastNSGA2(10), ("n_gen", 2), seed=1)
 
 
-@pytest.mark.parametrize("kwargs,match", [
-    (dict(pop_size=1), "pop_size"), (dict(pop_size="x"), "pop_size"),
-    (dict(tiebreak="length"), "tiebreak"), (dict(n_offsprings=0), "n_offsprings"),
-])
+@pytest.mark.parametrize(
+    "kwargs,match",
+    [
+        (dict(pop_size=1), "pop_size"),
+        (dict(pop_size="x"), "pop_size"),
+        (dict(tiebreak="length"), "tiebreak"),
+        (dict(n_offsprings=0), "n_offsprings"),
+    ],
+)
 def test_bad_settings(kwargs, match):
     with pytest.raises(ConfigError, match=match):
         FastNSGA2(**kwargs)
@@ -228,11 +240,12 @@ def test_bad_settings(kwargs, match):
 
 # -- array kernels against the code they replace ---------------------------------
 
+
 def test_survival_order_kernel_matches_survival_order():
     rng = np.random.default_rng(0)
     for trial in range(30):
         n, m = rng.integers(2, 80), rng.integers(1, 4)
-        F = rng.integers(0, 6, size=(n, m)).astype(float)        # many ties and duplicates
+        F = rng.integers(0, 6, size=(n, m)).astype(float)  # many ties and duplicates
         smooth = rng.integers(0, 3, size=n).astype(float) if trial % 2 else None
         CV = np.where(rng.random(n) < 0.3, rng.integers(0, 3, n), 0.0)[:, None] if trial % 3 else None
         k = int(rng.integers(1, n + 1))
@@ -263,15 +276,15 @@ def test_tournament_kernel_matches_compare_function():
     rng = np.random.default_rng(2)
     n = 50
     cv, rank = rng.integers(0, 2, n) * 1.0, rng.integers(0, 3, n) * 1.0
-    smooth, crowd = rng.integers(0, 2, n) * 1.0, np.where(rng.random(n) < .2, np.inf, rng.integers(0, 2, n))
+    smooth, crowd = rng.integers(0, 2, n) * 1.0, np.where(rng.random(n) < 0.2, np.inf, rng.integers(0, 2, n))
     P = rng.integers(0, n, size=(200, 2))
     for tiebreak in (True, False):
         keys = [(cv, 1), (rank, 1)] + ([(smooth, 1)] if tiebreak else []) + [(crowd, -1)]
-        expected = compare_rank_smoothness_crowding(None, P, random_state=np.random.default_rng(9),
-                                                    keys=keys)[:, 0]
+        expected = compare_rank_smoothness_crowding(
+            None, P, random_state=np.random.default_rng(9), keys=keys
+        )[:, 0]
         coin = np.random.default_rng(9).random(len(P))
-        np.testing.assert_array_equal(binary_tournament(P, cv, rank, smooth, crowd, tiebreak, coin),
-                                      expected)
+        np.testing.assert_array_equal(binary_tournament(P, cv, rank, smooth, crowd, tiebreak, coin), expected)
 
 
 @pytest.mark.parametrize("op", [DiscreteSBX(), DiscreteSBX(prob=0.5, eta=2), SBX(eta=15, prob=1.0)])
@@ -279,13 +292,17 @@ def test_sbx_twin_is_bit_identical(problem, op):
     assert sbx_supported(op)
     rng = np.random.default_rng(3)
     X = rng.integers(problem.xl, problem.xu + 1, size=(2, 37, problem.n_var)).astype(float)
-    X[1, :5] = X[0, :5]                                   # identical parents
+    X[1, :5] = X[0, :5]  # identical parents
     a, b = np.random.default_rng(7), np.random.default_rng(7)
-    off = op.do(problem, Population.new("X", X.reshape(-1, problem.n_var)),
-                parents=np.arange(74).reshape(2, 37).T, random_state=a)
+    off = op.do(
+        problem,
+        Population.new("X", X.reshape(-1, problem.n_var)),
+        parents=np.arange(74).reshape(2, 37).T,
+        random_state=a,
+    )
     twin = sbx_crossover(op, problem, X, b)
     np.testing.assert_array_equal(twin, off.get("X"))
-    assert a.random() == b.random()                       # same number of draws
+    assert a.random() == b.random()  # same number of draws
 
 
 @pytest.mark.parametrize("op", [DiscretePM(), DiscretePM(eta=5, prob_var=0.3), PM(eta=20, prob=0.7)])
@@ -311,12 +328,15 @@ def test_twins_are_bit_identical_on_real_valued_parents(problem, seed):
     half = (hi - lo) / 2 * (1.3 if seed % 2 else 1.0)
     X = (lo + hi) / 2 + (2 * rng.random((2, n, problem.n_var)) - 1) * half
     eta = float(rng.uniform(1.5, 30))
-    for op in (SBX(eta=eta, prob=0.9, prob_var=0.7), SBX(eta=2.5, prob=1.0),
-               SBX(eta=1.0, prob=1.0)):
+    for op in (SBX(eta=eta, prob=0.9, prob_var=0.7), SBX(eta=2.5, prob=1.0), SBX(eta=1.0, prob=1.0)):
         a, b = np.random.default_rng(seed + 10), np.random.default_rng(seed + 10)
         with np.errstate(all="ignore"):
-            off = op.do(problem, Population.new("X", X.reshape(-1, problem.n_var)),
-                        parents=np.arange(2 * n).reshape(2, n).T, random_state=a).get("X")
+            off = op.do(
+                problem,
+                Population.new("X", X.reshape(-1, problem.n_var)),
+                parents=np.arange(2 * n).reshape(2, n).T,
+                random_state=a,
+            ).get("X")
             twin = sbx_crossover(op, problem, X, b)
         np.testing.assert_array_equal(twin, off)
         assert a.random() == b.random()
@@ -345,6 +365,7 @@ def test_fused_discrete_variation_is_bit_identical(problem):
 
 # -- quality -------------------------------------------------------------------------
 
+
 def test_hv_ratio_not_worse_than_paper_nsga2_over_seeds(ws):
     """Over 5 seeds on a small map, FastNSGA2's median HV ratio (vs the exact
     monotone front) is within 0.01 of paper_nsga2's (here: equal, as the
@@ -361,6 +382,7 @@ def test_hv_ratio_not_worse_than_paper_nsga2_over_seeds(ws):
 
 
 # -- encodings -------------------------------------------------------------------------
+
 
 def _encodings():
     from gapath.encodings import ENCODINGS

@@ -31,6 +31,7 @@ TOL = 1e-9
 # helpers
 # ---------------------------------------------------------------------------
 
+
 def check_path(ws, path):
     """Assert ``path`` is a simple feasible 8-connected path start -> goal
     obeying the corner rule."""
@@ -126,18 +127,18 @@ def room(h=12, w=14, seed=0, density=0.25, corner_cutting=False):
 # decoding
 # ---------------------------------------------------------------------------
 
+
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
 @given(data=st.data())
 def test_any_genome_decodes_to_a_simple_feasible_path(data):
     ws = data.draw(workspaces())
     enc = random_encoding(data.draw, ws)
     n = data.draw(st.integers(1, 6))
-    genes = data.draw(st.lists(st.floats(-0.5, 1.5), min_size=n * enc.n_var,
-                               max_size=n * enc.n_var))
+    genes = data.draw(st.lists(st.floats(-0.5, 1.5), min_size=n * enc.n_var, max_size=n * enc.n_var))
     X = np.array(genes).reshape(n, enc.n_var)
     P, L = enc.decode(X)
     for i in range(n):
-        check_path(ws, P[i, :L[i]])
+        check_path(ws, P[i, : L[i]])
 
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
@@ -145,10 +146,12 @@ def test_any_genome_decodes_to_a_simple_feasible_path(data):
 def test_objectives_match_evaluate_paths(data):
     ws = data.draw(workspaces())
     enc_name = data.draw(st.sampled_from(["via", "field"]))
-    objectives = data.draw(st.sampled_from([("length", "vulnerability"),
-                                            ("vulnerability", "smoothness", "length")]))
-    p = FreePathProblem(ws, objectives, encoding=enc_name,
-                        constraints=data.draw(st.sampled_from(["penalty", "constraint"])))
+    objectives = data.draw(
+        st.sampled_from([("length", "vulnerability"), ("vulnerability", "smoothness", "length")])
+    )
+    p = FreePathProblem(
+        ws, objectives, encoding=enc_name, constraints=data.draw(st.sampled_from(["penalty", "constraint"]))
+    )
     X = np.random.default_rng(data.draw(st.integers(0, 99))).random((8, p.n_var))
     out = p.evaluate(X, return_as_dictionary=True)
     P, L = pad_paths(p.decode(X))
@@ -171,7 +174,7 @@ def test_cached_and_fresh_decodes_agree():
         fresh = make_free_encoding(name, ws).decode(mixed)
         np.testing.assert_array_equal(got[1], fresh[1])
         for i in range(len(mixed)):
-            np.testing.assert_array_equal(got[0][i, :got[1][i]], fresh[0][i, :fresh[1][i]])
+            np.testing.assert_array_equal(got[0][i, : got[1][i]], fresh[0][i, : fresh[1][i]])
         np.testing.assert_array_equal(enc.path_keys(A), make_free_encoding(name, ws).path_keys(A))
         assert first[0].shape[0] == 20
 
@@ -181,7 +184,7 @@ def test_path_keys_identify_paths():
     enc = ViaPointEncoding(ws)
     X = np.random.default_rng(0).random((200, enc.n_var))
     keys = enc.path_keys(X)
-    paths = [p.tobytes() for p in (lambda P, L: [P[i, :L[i]] for i in range(len(L))])(*enc.decode(X))]
+    paths = [p.tobytes() for p in (lambda P, L: [P[i, : L[i]] for i in range(len(L))])(*enc.decode(X))]
     same_key = {}
     for k, p in zip(map(tuple, keys), paths):
         same_key.setdefault(k, set()).add(p)
@@ -193,14 +196,15 @@ def test_via_genome_reaches_its_via_cell():
     occ = np.zeros((6, 6), bool)
     ws = Workspace(occ)
     enc = ViaPointEncoding(ws, n_via=1)
-    P, L = enc.decode(np.array([[0.0, 0.99, 0.5, 0.5]]))      # via the top-right... corner (0, 5)
-    cells = {tuple(c) for c in P[0, :L[0]]}
+    P, L = enc.decode(np.array([[0.0, 0.99, 0.5, 0.5]]))  # via the top-right... corner (0, 5)
+    cells = {tuple(c) for c in P[0, : L[0]]}
     assert (0, 5) in cells
 
 
 # ---------------------------------------------------------------------------
 # seeding
 # ---------------------------------------------------------------------------
+
 
 def weighted_cost(enc, path, gene):
     lo, hi = enc.lam_range
@@ -220,13 +224,14 @@ def test_weighted_seeds_decode_to_optimal_paths(seed):
     field = FieldEncoding(ws)
     paths = field.weighted_paths(genes)
     for p, q in zip(paths, field.decode(field.encode(paths, weights=genes))[0]):
-        np.testing.assert_array_equal(p, q[:len(p)])
+        np.testing.assert_array_equal(p, q[: len(p)])
     via = ViaPointEncoding(ws)
     P, L = via.decode(via.encode(paths, weights=genes))
     for i, g in enumerate(genes):
-        check_path(ws, P[i, :L[i]])
-        assert weighted_cost(via, P[i, :L[i]], g) == pytest.approx(weighted_cost(via, paths[i], g),
-                                                                   rel=1e-9, abs=1e-12)
+        check_path(ws, P[i, : L[i]])
+        assert weighted_cost(via, P[i, : L[i]], g) == pytest.approx(
+            weighted_cost(via, paths[i], g), rel=1e-9, abs=1e-12
+        )
 
 
 def test_exact_seeds_reproduce_most_exact_paths():
@@ -235,8 +240,9 @@ def test_exact_seeds_reproduce_most_exact_paths():
     ref = free_front(ws)
     X = p.encode(ref.paths)
     F = p.evaluate(X, return_as_dictionary=True)["F"]
-    matched = sum(any(all(abs(a - b) <= TOL * max(1, abs(a), abs(b)) for a, b in zip(f, r))
-                      for f in F) for r in ref.F)
+    matched = sum(
+        any(all(abs(a - b) <= TOL * max(1, abs(a), abs(b)) for a, b in zip(f, r)) for f in F) for r in ref.F
+    )
     assert matched >= 0.8 * len(ref.F)
 
 
@@ -255,6 +261,7 @@ def test_free_sampling_distinct_paths_and_seeds_first(encoding):
 # ---------------------------------------------------------------------------
 # the GA against the exact front
 # ---------------------------------------------------------------------------
+
 
 def run_fast(problem, seed, pop=30, gen=15, sampling=None):
     alg = FastNSGA2(pop, sampling=sampling or FreeSampling())
@@ -282,7 +289,7 @@ def test_brute_force_agrees_with_exact_free_front(seed):
     rng = np.random.default_rng(seed)
     h, w = (3, 4) if seed % 2 else (4, 3)
     paths = []
-    while not paths:                        # a map with at least one path
+    while not paths:  # a map with at least one path
         occ = rng.random((h, w)) < 0.25
         occ[h - 1, 0] = occ[0, w - 1] = False
         ws = Workspace(occ, corner_cutting=bool(seed // 2))
@@ -290,14 +297,16 @@ def test_brute_force_agrees_with_exact_free_front(seed):
     assert len(paths) > 1 or occ.sum() > 0
     P, L = pad_paths(paths)
     M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
-    for cols, names in (([0, 1], ("length", "vulnerability")),
-                        ([0, 1, 2], ("length", "vulnerability", "smoothness"))):
+    for cols, names in (
+        ([0, 1], ("length", "vulnerability")),
+        ([0, 1, 2], ("length", "vulnerability", "smoothness")),
+    ):
         F = M[:, cols]
         nd = F[nondominated(F, tol=TOL)]
         ref = free_front(ws, names).F
-        for r in ref:                       # every exact point is a brute-force optimum
+        for r in ref:  # every exact point is a brute-force optimum
             assert any(np.allclose(r, q, rtol=TOL, atol=0) for q in nd)
-        for q in nd:                        # and every brute-force optimum is matched
+        for q in nd:  # and every brute-force optimum is matched
             assert any(np.allclose(q, r, rtol=TOL, atol=0) for r in ref)
 
 
@@ -327,8 +336,7 @@ def test_determinism_for_a_seed():
 def test_stock_pymoo_nsga2_runs_free_problem():
     ws = room(seed=6)
     p = FreePathProblem(ws)
-    alg = NSGA2(pop_size=20, sampling=FreeSampling(),
-                eliminate_duplicates=PathDuplicateElimination().bind(p))
+    alg = NSGA2(pop_size=20, sampling=FreeSampling(), eliminate_duplicates=PathDuplicateElimination().bind(p))
     res = minimize(p, alg, ("n_gen", 4), seed=1)
     keys = p.path_keys(res.pop.get("X"))
     assert len({tuple(k) for k in keys}) == len(keys)
@@ -353,6 +361,7 @@ def test_layer_objectives():
 # bad input
 # ---------------------------------------------------------------------------
 
+
 def test_unreachable_goal_is_a_no_path_error():
     occ = np.zeros((5, 5), bool)
     occ[:, 2] = True
@@ -361,26 +370,29 @@ def test_unreachable_goal_is_a_no_path_error():
         FreePathProblem(ws)
     with pytest.raises(NoPathError):
         FieldEncoding(ws)
-    occ = np.array([[1, 0], [0, 1]], bool)       # start and goal meet only diagonally
+    occ = np.array([[1, 0], [0, 1]], bool)  # start and goal meet only diagonally
     with pytest.raises(NoPathError, match="corner cutting not allowed"):
         FreePathProblem(Workspace(occ, start=(1, 0), goal=(0, 1), corner_cutting=False))
     p = FreePathProblem(Workspace(occ, start=(1, 0), goal=(0, 1), corner_cutting=True))
     assert [q.tolist() for q in p.decode(np.full((1, p.n_var), 0.3))] == [[[1, 0], [0, 1]]]
 
 
-@pytest.mark.parametrize("kwargs, match", [
-    (dict(encoding="via", n_via=-1), "n_via"),
-    (dict(encoding="via", n_via=1.5), "n_via"),
-    (dict(encoding="field", field_shape=(1, 3)), "field_shape"),
-    (dict(encoding="field", field_shape=(40, 3)), "finer than"),
-    (dict(encoding="field", beta=0), "beta"),
-    (dict(encoding="field", n_via=3), "does not apply"),
-    (dict(encoding="nope"), "unknown encoding 'nope' for free paths"),
-    (dict(objectives=("length", "height")), "unknown objective"),
-    (dict(constraints="soft"), "constraint handling"),
-    (dict(penalty=-1), "penalty"),
-    (dict(lam_range=(2, 1)), "lam_range"),
-])
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(encoding="via", n_via=-1), "n_via"),
+        (dict(encoding="via", n_via=1.5), "n_via"),
+        (dict(encoding="field", field_shape=(1, 3)), "field_shape"),
+        (dict(encoding="field", field_shape=(40, 3)), "finer than"),
+        (dict(encoding="field", beta=0), "beta"),
+        (dict(encoding="field", n_via=3), "does not apply"),
+        (dict(encoding="nope"), "unknown encoding 'nope' for free paths"),
+        (dict(objectives=("length", "height")), "unknown objective"),
+        (dict(constraints="soft"), "constraint handling"),
+        (dict(penalty=-1), "penalty"),
+        (dict(lam_range=(2, 1)), "lam_range"),
+    ],
+)
 def test_bad_settings_are_config_errors(kwargs, match):
     ws = room()
     with pytest.raises(ConfigError, match=match):

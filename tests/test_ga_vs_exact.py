@@ -14,16 +14,26 @@ def _dominates(a, b, tol=1e-9):
     return bool((a <= b + scale).all() and (a < b - scale).any())
 
 
-@pytest.mark.parametrize("seed,objectives,encoding", [
-    (1, ("length", "vulnerability"), "integer"),
-    (2, ("length", "vulnerability"), "binary"),
-    (3, ("length", "vulnerability", "smoothness"), "mixed"),
-    (4, ("length", "smoothness"), "absolute"),
-])
+@pytest.mark.parametrize(
+    "seed,objectives,encoding",
+    [
+        (1, ("length", "vulnerability"), "integer"),
+        (2, ("length", "vulnerability"), "binary"),
+        (3, ("length", "vulnerability", "smoothness"), "mixed"),
+        (4, ("length", "smoothness"), "absolute"),
+    ],
+)
 def test_no_ga_point_dominates_an_exact_point(seed, objectives, encoding):
     ws = random_workspace((14, 14), 35, seed=seed)
-    r = solve(ws, objectives=objectives, encoding=encoding, pop_size=40, n_gen=15, seed=seed,
-              tiebreak=None if len(objectives) == 3 else "smoothness")
+    r = solve(
+        ws,
+        objectives=objectives,
+        encoding=encoding,
+        pop_size=40,
+        n_gen=15,
+        seed=seed,
+        tiebreak=None if len(objectives) == 3 else "smoothness",
+    )
     # an empty GA front would pass every check below: it must hold feasible paths
     assert len(r.front.F) > 0, f"the GA found no feasible path on map seed {seed}"
     assert np.isfinite(r.front.F).all() and r.front.F.shape[1] == len(objectives)

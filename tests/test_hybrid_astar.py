@@ -28,7 +28,7 @@ from gapath.scenarios import complex_maze
 @pytest.fixture(scope="module")
 def wall_ws():
     occ = np.zeros((14, 24), bool)
-    occ[4:14, 11] = True            # a wall from the bottom, open at the top
+    occ[4:14, 11] = True  # a wall from the bottom, open at the top
     occ[0:2, 17] = True
     return Workspace(occ, (11, 3), (11, 20))
 
@@ -42,8 +42,10 @@ def swept_free(ws, poses, radius):
     """The disc of ``radius`` swept along every segment (fine samples)."""
     occ = ws.occ
     cs = ws.cell_size
-    return all(segment_free(occ, a[0] / cs, a[1] / cs, b[0] / cs, b[1] / cs, radius / cs, 0.01)
-               for a, b in zip(poses[:-1], poses[1:]))
+    return all(
+        segment_free(occ, a[0] / cs, a[1] / cs, b[0] / cs, b[1] / cs, radius / cs, 0.01)
+        for a, b in zip(poses[:-1], poses[1:])
+    )
 
 
 def max_curvature(poses):
@@ -73,8 +75,7 @@ def test_paths_are_collision_free_drivable_and_reach_the_goal(which, wall_ws, ma
     assert res.length >= math.hypot(P[0, 0] - gx, P[0, 1] - gy) - 1e-9
     assert res.clearance >= planner.car.radius
     assert res.turning >= 0
-    assert res.objectives == {"length": res.length, "turning": res.turning,
-                              "clearance": res.clearance}
+    assert res.objectives == {"length": res.length, "turning": res.turning, "clearance": res.clearance}
 
 
 def test_goal_pose_is_reached_with_its_heading(wall_ws):
@@ -94,7 +95,8 @@ def test_world_frame_and_helpers():
     car = CarModel(wheelbase=1.0, max_steer=math.pi / 4)
     assert car.min_turning_radius == pytest.approx(1.0)
     assert car.steering_angles().tolist() == pytest.approx(
-        [math.pi / 4, math.pi / 8, 0.0, -math.pi / 8, -math.pi / 4])
+        [math.pi / 4, math.pi / 8, 0.0, -math.pi / 8, -math.pi / 4]
+    )
 
 
 def test_determinism(maze_ws):
@@ -160,11 +162,20 @@ def test_unreachable_goal_raises_no_path():
         hybrid_astar(Workspace(occ, (5, 1), (5, 10)), car=CarModel(radius=0.45))
 
 
-@pytest.mark.parametrize("kwargs", [
-    dict(wheelbase=0), dict(wheelbase=-1), dict(speed=0), dict(speed=-2),
-    dict(max_steer=math.pi / 2), dict(max_steer=math.radians(95)), dict(max_steer=0),
-    dict(max_steer=float("nan")), dict(radius=-0.1),
-])
+@pytest.mark.parametrize(
+    "kwargs",
+    [
+        dict(wheelbase=0),
+        dict(wheelbase=-1),
+        dict(speed=0),
+        dict(speed=-2),
+        dict(max_steer=math.pi / 2),
+        dict(max_steer=math.radians(95)),
+        dict(max_steer=0),
+        dict(max_steer=float("nan")),
+        dict(radius=-0.1),
+    ],
+)
 def test_bad_car_raises_config_error(kwargs):
     with pytest.raises(ConfigError):
         CarModel(**kwargs)
@@ -183,11 +194,11 @@ def test_bad_settings_raise_config_error(wall_ws):
         HybridAStar(wall_ws, car="car")
     planner = HybridAStar(wall_ws)
     with pytest.raises(ConfigError, match="start cell ROW,COL 8,11 heading 0 deg is in collision"):
-        planner.plan((11.0, 8.0, 0.0))              # inside the wall
+        planner.plan((11.0, 8.0, 0.0))  # inside the wall
     with pytest.raises(ConfigError, match="goal"):
         planner.plan(None, (11.0, 8.0))
     with pytest.raises(ConfigError):
-        planner.plan((1.0, 2.0))                     # not a pose
+        planner.plan((1.0, 2.0))  # not a pose
     with pytest.raises(ConfigError):
         planner.plan(cost=-np.ones(wall_ws.shape))
     with pytest.raises(ConfigError):
@@ -199,6 +210,7 @@ def test_bad_settings_raise_config_error(wall_ws):
 # ---------------------------------------------------------------------------
 # analytic shots
 # ---------------------------------------------------------------------------
+
 
 def _end(x, y, th, kk, ll):
     for k, length in zip(kk, ll):
@@ -253,10 +265,10 @@ def test_sample_arcs_spacing_and_disc_check():
     occ = np.zeros((5, 5), bool)
     occ[2, 2] = True
     assert not disc_free(occ, 2.0, 2.0, 0.0)
-    assert disc_free(occ, 1.0, 1.0, 0.7)           # corner of the square at distance 0.707
+    assert disc_free(occ, 1.0, 1.0, 0.7)  # corner of the square at distance 0.707
     assert not disc_free(occ, 1.0, 1.0, 0.71)
     assert disc_free(occ, 1.0, 2.0, 0.49) and not disc_free(occ, 1.0, 2.0, 0.5)
-    assert not disc_free(occ, -0.4, 0.0, 0.2)       # leaves the map
+    assert not disc_free(occ, -0.4, 0.0, 0.2)  # leaves the map
 
 
 def test_path_objectives_of_a_polyline():
@@ -264,4 +276,4 @@ def test_path_objectives_of_a_polyline():
     obj = path_objectives(np.array([[0, 0], [2, 0], [2, 2]], float), occ)
     assert obj["length"] == pytest.approx(4.0)
     assert obj["turning"] == pytest.approx(math.pi / 2)
-    assert obj["clearance"] == pytest.approx(0.5)   # the map edge
+    assert obj["clearance"] == pytest.approx(0.5)  # the map edge

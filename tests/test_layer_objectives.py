@@ -22,7 +22,7 @@ def plain_python(cm, path, name):
         th0, rate = cm.solar_angle0, cm.solar_rate
         for k, (a, b) in enumerate(zip(path, path[1:])):
             dr, dc = b[0] - a[0], b[1] - a[1]
-            x, y = dc / math.hypot(dr, dc), -dr / math.hypot(dr, dc)   # east, north
+            x, y = dc / math.hypot(dr, dc), -dr / math.hypot(dr, dc)  # east, north
             sx, sy = math.cos(th0 + rate * k), math.sin(th0 + rate * k)
             total += 0.5 * (1.0 + x * sx + y * sy)
         return total
@@ -33,16 +33,25 @@ def plain_python(cm, path, name):
 def make_costmap(ws, seed):
     h, w = ws.shape
     rng = np.random.default_rng(seed)
-    return Costmap(ws, elevation=fractal_terrain((h, w), seed), risk=(h // 2, w // 3),
-                   solar_rate=0.37, solar_angle0=0.2, layers={"slope": rng.random((h, w))})
+    return Costmap(
+        ws,
+        elevation=fractal_terrain((h, w), seed),
+        risk=(h // 2, w // 3),
+        solar_rate=0.37,
+        solar_angle0=0.2,
+        layers={"slope": rng.random((h, w))},
+    )
 
 
-@pytest.mark.parametrize("start, goal", [
-    (None, None),                 # bottom-left -> top-right (plain frame)
-    ((0, 8), (6, 1)),             # goal left of the start: mirrored frame
-    ((7, 4), (0, 4)),             # same column: transposed frame
-    ((1, 6), (7, 6)),             # same column, downwards
-])
+@pytest.mark.parametrize(
+    "start, goal",
+    [
+        (None, None),  # bottom-left -> top-right (plain frame)
+        ((0, 8), (6, 1)),  # goal left of the start: mirrored frame
+        ((7, 4), (0, 4)),  # same column: transposed frame
+        ((1, 6), (7, 6)),  # same column, downwards
+    ],
+)
 def test_kernel_matches_plain_python(start, goal):
     rng = np.random.default_rng(3)
     occ = rng.random((8, 9)) < 0.2
@@ -90,7 +99,7 @@ def test_layer_objective_errors():
     ws = Workspace(np.zeros((5, 5), bool))
     with pytest.raises(ConfigError, match="unknown objective 'elevation'"):
         GridPathProblem(ws, objectives=("length", "elevation"))
-    cm = Costmap(ws)                       # no elevation set
+    cm = Costmap(ws)  # no elevation set
     with pytest.raises(ConfigError, match="unknown objective 'elevation'"):
         GridPathProblem(ws, objectives=("length", "elevation"), costmap=cm)
     with pytest.raises(ConfigError, match="given twice"):

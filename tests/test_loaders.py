@@ -200,7 +200,7 @@ def test_ros_maps(data, name):
 
 def test_turtlebot3_occupied_pixels_in_both_unknown_modes(data):
     path = data / "ros/turtlebot3_world/map.yaml"
-    assert int(load_occupancy(path, unknown="free").sum()) == 870              # value 0
+    assert int(load_occupancy(path, unknown="free").sum()) == 870  # value 0
     assert int(load_occupancy(path, unknown="blocked").sum()) == 870 + 138683  # + value 205
     start, goal = free_corners(load_occupancy(path))
     assert load_ros(path, start, goal, unknown="free").n_obstacles == 870
@@ -257,6 +257,7 @@ def test_default_workspace():
 # round trips and small synthetic maps
 # ---------------------------------------------------------------------------
 
+
 @pytest.fixture
 def ws() -> Workspace:
     return random_workspace((7, 9), 20, seed=3)
@@ -269,7 +270,7 @@ def test_save_movingai_round_trip(tmp_path, ws):
     assert text.startswith("type octile\nheight 7\nwidth 9\nmap\n")
     assert text.count("@") == 20 and "\r" not in text
     again = load_movingai(path, ws.start, ws.goal)
-    assert again.corner_cutting is False            # MovingAI's rule, whatever was saved
+    assert again.corner_cutting is False  # MovingAI's rule, whatever was saved
     assert again == ws.replace(corner_cutting=False)
     assert load_movingai(path, ws.start, ws.goal, corner_cutting=True) == ws
     save_movingai(ws.occ.astype(int), tmp_path / "array.map")
@@ -277,7 +278,7 @@ def test_save_movingai_round_trip(tmp_path, ws):
 
 
 def test_save_movingai_round_trip_real_map(tmp_path, data):
-    source = data / "movingai/mapf/random-32-32-20.map"   # has a 'T'
+    source = data / "movingai/mapf/random-32-32-20.map"  # has a 'T'
     ws = load_map(source, (0, 0), (31, 31))
     save_movingai(ws, tmp_path / "copy.map")
     assert load_map(tmp_path / "copy.map", (0, 0), (31, 31)) == ws
@@ -290,8 +291,7 @@ def test_save_movingai_unwritable(tmp_path, ws):
 
 
 def test_movingai_accepts_all_symbols_and_crlf(tmp_path):
-    path = write(tmp_path, "sym.map", "type octile\r\nheight 2\r\nwidth 4\r\nmap\r\n"
-                                      ".GS@\r\nOTW.\r\n")
+    path = write(tmp_path, "sym.map", "type octile\r\nheight 2\r\nwidth 4\r\nmap\r\n.GS@\r\nOTW.\r\n")
     ws = load_movingai(path, (1, 3), (0, 0))
     assert ws.occ.tolist() == [[False, False, False, True], [True, True, True, False]]
 
@@ -308,49 +308,59 @@ def test_text_marks_symbols_crlf_and_trailing_line(tmp_path):
     ws = load_text(path)
     assert ws.occ.tolist() == [[False, False, False], [True, True, False], [False, False, False]]
     assert (ws.start, ws.goal) == ((2, 0), (0, 2))
-    assert load_text(path, start=(1, 2)).start == (1, 2)     # explicit wins
+    assert load_text(path, start=(1, 2)).start == (1, 2)  # explicit wins
     plain = write(tmp_path, "p.txt", "...\n.#.\n...\n")
     assert (load_text(plain).start, load_text(plain).goal) == ((2, 0), (0, 2))
 
 
-@pytest.mark.parametrize("array", [
-    np.array([[0, 1, 0], [0, 0, 0]], dtype=bool),
-    np.array([[0, 1, 0], [0, 0, 0]], dtype=np.int8),
-    np.array([[0, 1, 0], [0, 0, 0]], dtype=np.uint64),
-    np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 0.0]]),
-])
+@pytest.mark.parametrize(
+    "array",
+    [
+        np.array([[0, 1, 0], [0, 0, 0]], dtype=bool),
+        np.array([[0, 1, 0], [0, 0, 0]], dtype=np.int8),
+        np.array([[0, 1, 0], [0, 0, 0]], dtype=np.uint64),
+        np.array([[0.0, 1.0, 0.0], [0.0, 0.0, 0.0]]),
+    ],
+)
 def test_npy_round_trip(tmp_path, array):
     path = tmp_path / "grid.npy"
     np.save(path, array)
     ws = load_npy(path)
     assert ws.occ.tolist() == [[False, True, False], [False, False, False]]
     assert load_map(path, corner_cutting=False, cell_size=0.5, name="g") == ws.replace(
-        corner_cutting=False, cell_size=0.5)
+        corner_cutting=False, cell_size=0.5
+    )
     assert from_array(array) == ws
 
 
 def test_image_orientation_negate_and_png(tmp_path):
     pixels = np.full((3, 4), 254, np.uint8)
-    pixels[0, 0] = 0        # top-left black: occupied, grid row 0
-    pixels[2, 3] = 205      # unknown
+    pixels[0, 0] = 0  # top-left black: occupied, grid row 0
+    pixels[2, 3] = 205  # unknown
     Image.fromarray(pixels).save(tmp_path / "m.png")
     occ = load_occupancy(tmp_path / "m.png")
     assert occ[0, 0] and occ[2, 3] and occ.sum() == 2
     assert load_occupancy(tmp_path / "m.png", unknown="free").sum() == 1
-    write(tmp_path, "m.yaml", "image: m.png\nresolution: 0.5\norigin: [0, 0, 0]\n"
-                              "negate: 1\noccupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    write(
+        tmp_path,
+        "m.yaml",
+        "image: m.png\nresolution: 0.5\norigin: [0, 0, 0]\n"
+        "negate: 1\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    )
     negated = load_occupancy(tmp_path / "m.yaml")
-    assert not negated[0, 0] and negated[2, 3] and negated.sum() == 11   # white is occupied
+    assert not negated[0, 0] and negated[2, 3] and negated.sum() == 11  # white is occupied
 
 
 def test_ros_scale_mode_transparent_pixels_are_unknown(tmp_path):
     rgba = np.zeros((2, 2, 4), np.uint8)
     rgba[..., :3] = 255
     rgba[..., 3] = 255
-    rgba[0, 1, 3] = 0            # transparent white
+    rgba[0, 1, 3] = 0  # transparent white
     Image.fromarray(rgba, "RGBA").save(tmp_path / "s.png")
-    body = "image: s.png\nresolution: 1\norigin: [0, 0, 0]\nnegate: 0\n" \
-           "occupied_thresh: 0.65\nfree_thresh: 0.196\n"
+    body = (
+        "image: s.png\nresolution: 1\norigin: [0, 0, 0]\nnegate: 0\n"
+        "occupied_thresh: 0.65\nfree_thresh: 0.196\n"
+    )
     write(tmp_path, "t.yaml", body + "mode: trinary\n")
     write(tmp_path, "s.yaml", body + "mode: scale\n")
     assert load_occupancy(tmp_path / "t.yaml").sum() == 0
@@ -362,8 +372,12 @@ def test_absolute_image_path(tmp_path):
     Image.fromarray(np.full((2, 3), 254, np.uint8)).save(tmp_path / "a.pgm")
     sub = tmp_path / "sub"
     sub.mkdir()
-    write(sub, "a.yaml", f"image: {tmp_path / 'a.pgm'}\nresolution: 0.25\norigin: [1, 2, 0]\n"
-                         "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    write(
+        sub,
+        "a.yaml",
+        f"image: {tmp_path / 'a.pgm'}\nresolution: 0.25\norigin: [1, 2, 0]\n"
+        "negate: 0\noccupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    )
     ws = load_ros(sub / "a.yaml")
     assert ws.shape == (2, 3) and ws.cell_size == 0.25
 
@@ -376,6 +390,7 @@ def test_workspace_load_goes_through_load_map(tmp_path, ws):
 # ---------------------------------------------------------------------------
 # errors: dispatch and arguments
 # ---------------------------------------------------------------------------
+
 
 def test_unknown_extension(tmp_path):
     path = write(tmp_path, "grid.csv", "0,1\n")
@@ -439,29 +454,31 @@ def test_workspace_errors_name_the_file(tmp_path):
 GOOD_MAP = "type octile\nheight 3\nwidth 3\nmap\n...\n.@.\n...\n"
 
 
-@pytest.mark.parametrize("content, fragments", [
-    ("", ["line 1", "'type <value>'", "end of the file"]),
-    ("height 3\nwidth 3\nmap\n...\n", ["line 1", "'type <value>'", "'height 3'"]),
-    ("type hex\nheight 3\nwidth 3\nmap\n...\n", ["line 1", "'hex'", "'octile'"]),
-    ("type octile\nheight three\nwidth 3\nmap\n...\n", ["line 2", "height", "'three'",
-                                                        "positive integer"]),
-    ("type octile\nheight 0\nwidth 3\nmap\n", ["line 2", "'0'"]),
-    ("type octile\nheight 3\nwidth -3\nmap\n", ["line 3", "width", "'-3'"]),
-    ("type octile\nheight 3\nwidth 2.5\nmap\n", ["line 3", "'2.5'"]),
-    ("type octile\nheight 3\nmap\n...\n", ["line 3", "'width <value>'", "'map'"]),
-    ("type octile\nheight 3\nwidth 3\n...\n...\n...\n", ["line 4", "'map'", "'...'"]),
-    ("type octile\nheight 3\nwidth 3\n", ["line 4", "'map'", "end of the file"]),
-    ("type octile\nheight 3\nwidth 3\nmap\n...\n...\n", ["line 7", "found 2 rows",
-                                                         "expected 3"]),
-    ("type octile\nheight 3\nwidth 3\nmap\n", ["line 5", "found 0 rows"]),
-    (GOOD_MAP + "...\n", ["line 8", "found 4 rows", "expected 3"]),
-    ("type octile\nheight 3\nwidth 3\nmap\n...\n....\n...\n", ["line 6", "4 characters",
-                                                               "expected 3"]),
-    ("type octile\nheight 3\nwidth 3\nmap\n...\n\n...\n", ["line 6", "0 characters"]),
-    ("type octile\nheight 3\nwidth 3\nmap\n...\n.x.\n...\n", ["line 6, column 2", "'x'",
-                                                              "'@'"]),
-    ("type octile\nheight 3\nwidth 3\nmap\n...\n...\n..#\n", ["line 7, column 3", "'#'"]),
-])
+@pytest.mark.parametrize(
+    "content, fragments",
+    [
+        ("", ["line 1", "'type <value>'", "end of the file"]),
+        ("height 3\nwidth 3\nmap\n...\n", ["line 1", "'type <value>'", "'height 3'"]),
+        ("type hex\nheight 3\nwidth 3\nmap\n...\n", ["line 1", "'hex'", "'octile'"]),
+        (
+            "type octile\nheight three\nwidth 3\nmap\n...\n",
+            ["line 2", "height", "'three'", "positive integer"],
+        ),
+        ("type octile\nheight 0\nwidth 3\nmap\n", ["line 2", "'0'"]),
+        ("type octile\nheight 3\nwidth -3\nmap\n", ["line 3", "width", "'-3'"]),
+        ("type octile\nheight 3\nwidth 2.5\nmap\n", ["line 3", "'2.5'"]),
+        ("type octile\nheight 3\nmap\n...\n", ["line 3", "'width <value>'", "'map'"]),
+        ("type octile\nheight 3\nwidth 3\n...\n...\n...\n", ["line 4", "'map'", "'...'"]),
+        ("type octile\nheight 3\nwidth 3\n", ["line 4", "'map'", "end of the file"]),
+        ("type octile\nheight 3\nwidth 3\nmap\n...\n...\n", ["line 7", "found 2 rows", "expected 3"]),
+        ("type octile\nheight 3\nwidth 3\nmap\n", ["line 5", "found 0 rows"]),
+        (GOOD_MAP + "...\n", ["line 8", "found 4 rows", "expected 3"]),
+        ("type octile\nheight 3\nwidth 3\nmap\n...\n....\n...\n", ["line 6", "4 characters", "expected 3"]),
+        ("type octile\nheight 3\nwidth 3\nmap\n...\n\n...\n", ["line 6", "0 characters"]),
+        ("type octile\nheight 3\nwidth 3\nmap\n...\n.x.\n...\n", ["line 6, column 2", "'x'", "'@'"]),
+        ("type octile\nheight 3\nwidth 3\nmap\n...\n...\n..#\n", ["line 7, column 3", "'#'"]),
+    ],
+)
 def test_movingai_errors(tmp_path, content, fragments):
     path = write(tmp_path, "bad.map", content)
     with pytest.raises(MapError) as exc_info:
@@ -489,8 +506,7 @@ SCEN_LINE = "0\tt.map\t3\t2\t0\t1\t2\t0\t2.82842712"
 
 
 def test_scenario_parsing(tmp_path):
-    path = write(tmp_path, "t.scen", f"version 1\r\n{SCEN_LINE}\r\n\r\n"
-                                     "1 sub/dir/t.map 3 2 2 0 0 1 2.8\n")
+    path = write(tmp_path, "t.scen", f"version 1\r\n{SCEN_LINE}\r\n\r\n1 sub/dir/t.map 3 2 2 0 0 1 2.8\n")
     first, second = load_scenarios(path)
     assert first == Scenario(0, "t.map", 3, 2, (1, 0), (0, 2), 2.82842712)
     assert second.map == "t.map" and second.line == 4 and second.start == (0, 2)
@@ -502,22 +518,29 @@ def test_scenario_parsing(tmp_path):
     assert Scenario(0, "t.map", 3, 2, (1, 0), (0, 2), 1.0).resolve_map(tmp_path).is_file()
 
 
-@pytest.mark.parametrize("content, fragments", [
-    ("", ["line 1", "'version 1'", "empty file"]),
-    (SCEN_LINE + "\n", ["line 1", "'version 1'"]),
-    ("version 2\n", ["line 1", "'version 2'"]),
-    ("version 1\n0\tt.map\t3\t2\t0\t1\t2\t0\n", ["line 2", "9 tab-separated", "found 8"]),
-    ("version 1\n" + SCEN_LINE + "\n" + SCEN_LINE.replace("\t0\t1\t", "\tzero\t1\t", 1) + "\n",
-     ["line 3", "column 5 (start x)", "'zero'"]),
-    ("version 1\n" + SCEN_LINE.replace("\t3\t2\t", "\t0\t2\t") + "\n",
-     ["line 2", "column 3 (map width)", "'0'"]),
-    ("version 1\n0\tt.map\t3\t2\t0\t1\t2\t-1\t2.8\n", ["line 2", "column 8 (goal y)", "'-1'"]),
-    ("version 1\n0\tt.map\t3\t2\t3\t1\t2\t0\t2.8\n", ["line 2", "start (x=3, y=1)", "3x2"]),
-    ("version 1\n0\tt.map\t3\t2\t0\t1\t2\t2\t2.8\n", ["line 2", "goal (x=2, y=2)"]),
-    ("version 1\n0\tt.map\t3\t2\t0\t1\t2\t0\tfar\n", ["line 2", "column 9", "'far'"]),
-    ("version 1\n0\tt.map\t3\t2\t0\t1\t2\t0\tnan\n", ["line 2", "column 9", "'nan'"]),
-    ("version 1\n0\tdir/\t3\t2\t0\t1\t2\t0\t2.8\n", ["line 2", "column 2 (map)", "'dir/'"]),
-])
+@pytest.mark.parametrize(
+    "content, fragments",
+    [
+        ("", ["line 1", "'version 1'", "empty file"]),
+        (SCEN_LINE + "\n", ["line 1", "'version 1'"]),
+        ("version 2\n", ["line 1", "'version 2'"]),
+        ("version 1\n0\tt.map\t3\t2\t0\t1\t2\t0\n", ["line 2", "9 tab-separated", "found 8"]),
+        (
+            "version 1\n" + SCEN_LINE + "\n" + SCEN_LINE.replace("\t0\t1\t", "\tzero\t1\t", 1) + "\n",
+            ["line 3", "column 5 (start x)", "'zero'"],
+        ),
+        (
+            "version 1\n" + SCEN_LINE.replace("\t3\t2\t", "\t0\t2\t") + "\n",
+            ["line 2", "column 3 (map width)", "'0'"],
+        ),
+        ("version 1\n0\tt.map\t3\t2\t0\t1\t2\t-1\t2.8\n", ["line 2", "column 8 (goal y)", "'-1'"]),
+        ("version 1\n0\tt.map\t3\t2\t3\t1\t2\t0\t2.8\n", ["line 2", "start (x=3, y=1)", "3x2"]),
+        ("version 1\n0\tt.map\t3\t2\t0\t1\t2\t2\t2.8\n", ["line 2", "goal (x=2, y=2)"]),
+        ("version 1\n0\tt.map\t3\t2\t0\t1\t2\t0\tfar\n", ["line 2", "column 9", "'far'"]),
+        ("version 1\n0\tt.map\t3\t2\t0\t1\t2\t0\tnan\n", ["line 2", "column 9", "'nan'"]),
+        ("version 1\n0\tdir/\t3\t2\t0\t1\t2\t0\t2.8\n", ["line 2", "column 2 (map)", "'dir/'"]),
+    ],
+)
 def test_scenario_errors(tmp_path, content, fragments):
     path = write(tmp_path, "bad.scen", content)
     with pytest.raises(MapError) as exc_info:
@@ -529,8 +552,14 @@ def test_scenario_errors(tmp_path, content, fragments):
 # errors: ROS yaml + image
 # ---------------------------------------------------------------------------
 
-ROS_KEYS = {"image": "m.pgm", "resolution": 0.05, "origin": "[0.0, 0.0, 0.0]", "negate": 0,
-            "occupied_thresh": 0.65, "free_thresh": 0.196}
+ROS_KEYS = {
+    "image": "m.pgm",
+    "resolution": 0.05,
+    "origin": "[0.0, 0.0, 0.0]",
+    "negate": 0,
+    "occupied_thresh": 0.65,
+    "free_thresh": 0.196,
+}
 
 
 def ros_yaml(tmp_path, **changes) -> Path:
@@ -552,31 +581,37 @@ def test_ros_missing_key(tmp_path, key):
     assert_error(exc_info, "m.yaml", f"missing key '{key}'")
 
 
-@pytest.mark.parametrize("changes, fragments", [
-    ({"resolution": 0}, ["'resolution'", "positive number", "got 0"]),
-    ({"resolution": "fine"}, ["'resolution'", "'fine'"]),
-    ({"resolution": "true"}, ["'resolution'", "True"]),
-    ({"occupied_thresh": 1.5}, ["'occupied_thresh'", "[0, 1]", "1.5"]),
-    ({"free_thresh": "low"}, ["'free_thresh'", "'low'"]),
-    ({"free_thresh": 0.7}, ["'free_thresh'", "0.7", "above occupied_thresh 0.65"]),
-    ({"negate": 2}, ["'negate'", "0 or 1", "got 2"]),
-    ({"origin": "[0, 0]"}, ["'origin'", "[x, y, yaw]", "[0, 0]"]),
-    ({"image": '""'}, ["'image'", "''"]),
-    ({"image": "nothere.pgm"}, ["key 'image'", "nothere.pgm", "not found"]),
-    ({"mode": "raw"}, ["'mode'", "'raw'", "not supported"]),
-    ({"mode": "fancy"}, ["'mode'", "'fancy'", "'trinary' or 'scale'"]),
-])
+@pytest.mark.parametrize(
+    "changes, fragments",
+    [
+        ({"resolution": 0}, ["'resolution'", "positive number", "got 0"]),
+        ({"resolution": "fine"}, ["'resolution'", "'fine'"]),
+        ({"resolution": "true"}, ["'resolution'", "True"]),
+        ({"occupied_thresh": 1.5}, ["'occupied_thresh'", "[0, 1]", "1.5"]),
+        ({"free_thresh": "low"}, ["'free_thresh'", "'low'"]),
+        ({"free_thresh": 0.7}, ["'free_thresh'", "0.7", "above occupied_thresh 0.65"]),
+        ({"negate": 2}, ["'negate'", "0 or 1", "got 2"]),
+        ({"origin": "[0, 0]"}, ["'origin'", "[x, y, yaw]", "[0, 0]"]),
+        ({"image": '""'}, ["'image'", "''"]),
+        ({"image": "nothere.pgm"}, ["key 'image'", "nothere.pgm", "not found"]),
+        ({"mode": "raw"}, ["'mode'", "'raw'", "not supported"]),
+        ({"mode": "fancy"}, ["'mode'", "'fancy'", "'trinary' or 'scale'"]),
+    ],
+)
 def test_ros_bad_values(tmp_path, changes, fragments):
     with pytest.raises(MapError) as exc_info:
         load_ros(ros_yaml(tmp_path, **changes))
     assert_error(exc_info, "m.yaml", *fragments)
 
 
-@pytest.mark.parametrize("content, fragments", [
-    ("image: [unclosed\n", ["invalid YAML", "line"]),
-    ("- just\n- a list\n", ["expected a mapping", "['just', 'a list']"]),
-    ("", ["expected a mapping", "None"]),
-])
+@pytest.mark.parametrize(
+    "content, fragments",
+    [
+        ("image: [unclosed\n", ["invalid YAML", "line"]),
+        ("- just\n- a list\n", ["expected a mapping", "['just', 'a list']"]),
+        ("", ["expected a mapping", "None"]),
+    ],
+)
 def test_ros_bad_yaml(tmp_path, content, fragments):
     with pytest.raises(MapError) as exc_info:
         load_ros(write(tmp_path, "m.yaml", content))
@@ -585,7 +620,7 @@ def test_ros_bad_yaml(tmp_path, content, fragments):
 
 def test_ros_image_not_an_image(tmp_path):
     path = ros_yaml(tmp_path)
-    (tmp_path / "m.pgm").write_bytes(b"P5\n4 5\n255\n\x00\x01")   # truncated pixel data
+    (tmp_path / "m.pgm").write_bytes(b"P5\n4 5\n255\n\x00\x01")  # truncated pixel data
     with pytest.raises(MapError) as exc_info:
         load_ros(path)
     assert_error(exc_info, "m.yaml", "key 'image'", "m.pgm", "cannot read the image")
@@ -606,15 +641,19 @@ def test_16_bit_image_is_rejected(tmp_path):
 # errors: text, npy, arrays
 # ---------------------------------------------------------------------------
 
-@pytest.mark.parametrize("content, fragments", [
-    ("", ["empty map"]),
-    ("\n\n", ["empty map"]),
-    ("...\n..\n...\n", ["line 2", "2 characters", "expected 3"]),
-    ("\n...\n", ["line 1", "0 characters"]),
-    ("...\n.o.\n", ["line 2, column 2", "'o'", "'#'"]),
-    ("S..\n..S\n", ["line 2, column 3", "second 'S'", "row 0, col 0"]),
-    ("G.G\n...\n", ["line 1, column 3", "second 'G'"]),
-])
+
+@pytest.mark.parametrize(
+    "content, fragments",
+    [
+        ("", ["empty map"]),
+        ("\n\n", ["empty map"]),
+        ("...\n..\n...\n", ["line 2", "2 characters", "expected 3"]),
+        ("\n...\n", ["line 1", "0 characters"]),
+        ("...\n.o.\n", ["line 2, column 2", "'o'", "'#'"]),
+        ("S..\n..S\n", ["line 2, column 3", "second 'S'", "row 0, col 0"]),
+        ("G.G\n...\n", ["line 1, column 3", "second 'G'"]),
+    ],
+)
 def test_text_errors(tmp_path, content, fragments):
     path = write(tmp_path, "bad.txt", content)
     with pytest.raises(MapError) as exc_info:
@@ -622,14 +661,17 @@ def test_text_errors(tmp_path, content, fragments):
     assert_error(exc_info, "bad.txt", *fragments)
 
 
-@pytest.mark.parametrize("array, fragments", [
-    (np.zeros((2, 2, 2), bool), ["2-D", "(2, 2, 2)"]),
-    (np.zeros((0, 3), bool), ["non-empty", "(0, 3)"]),
-    (np.array([[0, 2], [0, 0]]), ["value 2", "(row 0, col 1)"]),
-    (np.array([[0.0, 0.0], [0.5, 0.0]]), ["value 0.5", "(row 1, col 0)"]),
-    (np.array([[0.0, np.nan]]), ["value nan", "(row 0, col 1)"]),
-    (np.array([["a", "b"]]), ["dtype <U1"]),
-])
+@pytest.mark.parametrize(
+    "array, fragments",
+    [
+        (np.zeros((2, 2, 2), bool), ["2-D", "(2, 2, 2)"]),
+        (np.zeros((0, 3), bool), ["non-empty", "(0, 3)"]),
+        (np.array([[0, 2], [0, 0]]), ["value 2", "(row 0, col 1)"]),
+        (np.array([[0.0, 0.0], [0.5, 0.0]]), ["value 0.5", "(row 1, col 0)"]),
+        (np.array([[0.0, np.nan]]), ["value nan", "(row 0, col 1)"]),
+        (np.array([["a", "b"]]), ["dtype <U1"]),
+    ],
+)
 def test_npy_errors(tmp_path, array, fragments):
     path = tmp_path / "bad.npy"
     np.save(path, array)
@@ -674,6 +716,7 @@ def test_from_array_lists_and_errors():
 # the corner rule of each source, and the world frame of ROS maps
 # ---------------------------------------------------------------------------
 
+
 def test_corner_rule_follows_the_source(tmp_path, data):
     from gapath.loaders import CORNER_RULES, corner_rule
 
@@ -682,8 +725,12 @@ def test_corner_rule_follows_the_source(tmp_path, data):
     save_movingai(grid, tmp_path / "g.map")
     write(tmp_path, "g.txt", "....\n....\n....\n")
     Image.fromarray(np.full((3, 4), 254, np.uint8)).save(tmp_path / "g.png")
-    write(tmp_path, "g.yaml", "image: g.png\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n"
-                              "occupied_thresh: 0.65\nfree_thresh: 0.196\n")
+    write(
+        tmp_path,
+        "g.yaml",
+        "image: g.png\nresolution: 0.1\norigin: [0, 0, 0]\nnegate: 0\n"
+        "occupied_thresh: 0.65\nfree_thresh: 0.196\n",
+    )
     expected = {"g.map": False, "g.yaml": False, "g.png": False, "g.txt": True, "g.npy": True}
     for name, rule in expected.items():
         path = tmp_path / name
@@ -697,7 +744,7 @@ def test_corner_rule_follows_the_source(tmp_path, data):
     assert load_text(tmp_path / "g.txt").corner_cutting is True
     assert load_npy(tmp_path / "g.npy").corner_cutting is True
     assert from_array(grid).corner_cutting is True
-    assert default_workspace().corner_cutting is True       # stored as a .map, SPEC's rule
+    assert default_workspace().corner_cutting is True  # stored as a .map, SPEC's rule
     assert CORNER_RULES["movingai"] is False and CORNER_RULES["text"] is True
     real = data / "movingai/mapf/random-32-32-20.map"
     start, goal = free_corners(load_occupancy(real))

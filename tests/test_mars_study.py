@@ -40,15 +40,14 @@ def test_quick_study(tmp_path, capsys):
     finally:
         sys.path.pop(0)
     jsonl = tmp_path / "mars.jsonl"
-    assert mars_study.main(["--quick", "--size", "40", "--out", str(tmp_path),
-                            "--jsonl", str(jsonl)]) == 0
+    assert mars_study.main(["--quick", "--size", "40", "--out", str(tmp_path), "--jsonl", str(jsonl)]) == 0
     lines = [json.loads(x) for x in capsys.readouterr().out.splitlines() if x.startswith("{")]
     assert [x["kind"] for x in lines].count("mars_workspace") == mars.QUICK["n_workspaces"]
     assert len(jsonl.read_text().splitlines()) == len(lines)
     rows = [x for x in lines if x["kind"] == "mars_table"]
     assert [r["algorithm"] for r in rows][:3] == ["A*", "D*", "D*-PO"]
     md = (tmp_path / "mars.md").read_text()
-    assert "| D*-PO |" in md and "154.75" in md            # beside the paper's Table I
+    assert "| D*-PO |" in md and "154.75" in md  # beside the paper's Table I
     csv = (tmp_path / "mars.csv").read_text().splitlines()
     assert csv[0].startswith("algorithm,n,F1_length")
     for rec in (x for x in lines if x["kind"] == "mars_workspace"):

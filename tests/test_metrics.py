@@ -6,8 +6,16 @@ import numpy as np
 import pytest
 
 from gapath import ConfigError, Workspace
-from gapath.metrics import (close, coverage, dedupe, hv_ratio, hypervolume, igd_plus,
-                            nondominated, normalisation_bounds)
+from gapath.metrics import (
+    close,
+    coverage,
+    dedupe,
+    hv_ratio,
+    hypervolume,
+    igd_plus,
+    nondominated,
+    normalisation_bounds,
+)
 
 REF = np.array([[1.0, 10.0], [2.0, 5.0], [3.0, 2.0], [5.0, 1.0]])
 
@@ -15,6 +23,7 @@ REF = np.array([[1.0, 10.0], [2.0, 5.0], [3.0, 2.0], [5.0, 1.0]])
 # ---------------------------------------------------------------------------
 # hypervolume
 # ---------------------------------------------------------------------------
+
 
 def test_hv_ratio_of_reference_is_one():
     assert hv_ratio(REF, REF) == 1.0
@@ -47,7 +56,7 @@ def test_hv_ratio_can_exceed_one_for_a_better_front():
 
 def test_points_beyond_reference_point_count_zero():
     ideal, nadir = REF.min(axis=0), REF.max(axis=0)
-    beyond = nadir + 1.2 * (nadir - ideal)           # > 1.1 normalised on both axes
+    beyond = nadir + 1.2 * (nadir - ideal)  # > 1.1 normalised on both axes
     assert hv_ratio([beyond], REF) == 0.0
     assert hv_ratio([[ideal[0], beyond[1]]], REF) == 0.0  # beyond on one axis only
     # penalised GA points (f + 1000 * interfering) are beyond as well
@@ -71,7 +80,7 @@ def test_one_point_reference_uses_unit_range():
     assert ideal.tolist() == [3.0, 4.0] and nadir.tolist() == [4.0, 5.0]
     assert hv_ratio(ref, ref) == 1.0
     # 0.5 worse on each axis: (1.1 - 0.5)^2 / 1.1^2
-    assert hv_ratio([[3.5, 4.5]], ref) == pytest.approx(0.6 ** 2 / 1.1 ** 2, rel=1e-12)
+    assert hv_ratio([[3.5, 4.5]], ref) == pytest.approx(0.6**2 / 1.1**2, rel=1e-12)
     # a degenerate axis in a larger front (all lengths equal)
     ref2 = np.array([[2.0, 1.0], [2.0, 3.0]])
     ideal, nadir = normalisation_bounds(ref2)
@@ -94,6 +103,7 @@ def test_dimension_mismatch():
 # ---------------------------------------------------------------------------
 # IGD+, coverage
 # ---------------------------------------------------------------------------
+
 
 def test_igd_plus():
     assert igd_plus(REF, REF) == 0.0
@@ -126,6 +136,7 @@ def test_close():
 # nondominated, dedupe
 # ---------------------------------------------------------------------------
 
+
 def test_nondominated_exact():
     F = np.array([[1, 5], [2, 2], [3, 3], [5, 1], [2, 2], [1, 6], [6, 6]], float)
     assert nondominated(F).tolist() == [0, 1, 3, 4]
@@ -136,25 +147,29 @@ def test_nondominated_exact():
 
 
 def test_nondominated_with_tolerance():
-    F = np.array([
-        [1.0, 2.0],
-        [1.5, 2.0 - 1e-12],   # better in vulnerability only by rounding-level noise
-        [1.0, 2.0 + 1e-12],   # tolerance-equal to row 0
-        [2.0, 1.0],
-    ])
+    F = np.array(
+        [
+            [1.0, 2.0],
+            [1.5, 2.0 - 1e-12],  # better in vulnerability only by rounding-level noise
+            [1.0, 2.0 + 1e-12],  # tolerance-equal to row 0
+            [2.0, 1.0],
+        ]
+    )
     assert nondominated(F).tolist() == [0, 1, 3]
     assert nondominated(F, tol=1e-9).tolist() == [0, 2, 3]
 
 
 def test_dedupe():
-    F = np.array([
-        [1.0, 2.0],
-        [3.0, 1.0],
-        [1.0, 2.0 + 1e-12],
-        [1.0, 2.0],
-        [3.0 + 1e-11, 1.0],
-        [2.0, 2.0],
-    ])
+    F = np.array(
+        [
+            [1.0, 2.0],
+            [3.0, 1.0],
+            [1.0, 2.0 + 1e-12],
+            [1.0, 2.0],
+            [3.0 + 1e-11, 1.0],
+            [2.0, 2.0],
+        ]
+    )
     assert dedupe(F).tolist() == [0, 1, 5]
     assert dedupe(F, prefer=[3, 2, 1, 0, 2, 9]).tolist() == [1, 3, 5]
     assert dedupe(F, prefer=[3, 5, 1, 0, 2, 9]).tolist() == [3, 4, 5]

@@ -27,8 +27,12 @@ def test_multirun_merges_runs_into_one_nondominated_front(ws):
             assert ((F <= f + 1e-9).all(axis=1)).any()
     # merged points come from the runs, with the smoothest path per vector
     for f, met in zip(F, m.front.metrics):
-        cands = [rm[2] for r in m.runs for rf, rm in zip(r.front.F, r.front.metrics)
-                 if np.allclose(rf, f, rtol=1e-9)]
+        cands = [
+            rm[2]
+            for r in m.runs
+            for rf, rm in zip(r.front.F, r.front.metrics)
+            if np.allclose(rf, f, rtol=1e-9)
+        ]
         assert cands and met[2] == min(cands)
 
 
@@ -57,8 +61,9 @@ def test_single_objective_mode_finds_a_feasible_shortest_path(ws):
 
 
 def test_three_objective_mode(ws):
-    r = solve(ws, objectives=("length", "vulnerability", "smoothness"), tiebreak=None,
-              pop_size=40, n_gen=8, seed=1)
+    r = solve(
+        ws, objectives=("length", "vulnerability", "smoothness"), tiebreak=None, pop_size=40, n_gen=8, seed=1
+    )
     assert r.front.F.shape[1] == 3 and len(r.front) >= 1
 
 
@@ -70,8 +75,26 @@ def test_cli_runs_writes_each_run_and_is_reproducible(ws, tmp_path):
     outs = []
     for d in ("a", "b"):
         out = tmp_path / d
-        assert main(["solve", str(mp), "--runs", "3", "--seed", "4", "--pop", "20", "--gen", "5",
-                     "--out", str(out), "--quiet"]) == 0
+        assert (
+            main(
+                [
+                    "solve",
+                    str(mp),
+                    "--runs",
+                    "3",
+                    "--seed",
+                    "4",
+                    "--pop",
+                    "20",
+                    "--gen",
+                    "5",
+                    "--out",
+                    str(out),
+                    "--quiet",
+                ]
+            )
+            == 0
+        )
         outs.append(out)
     for out in outs:
         assert sorted(p.name for p in (out / "runs").iterdir()) == ["4", "5", "6"]

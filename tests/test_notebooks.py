@@ -11,17 +11,28 @@ pytest.importorskip("ipykernel")
 NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
 
 
-@pytest.mark.parametrize("name", ["01_quickstart.ipynb", "02_encodings.ipynb", "03_dense.ipynb",
-                                  "04_exact_vs_ga.ipynb", "05_mars.ipynb", "06_dynamic.ipynb",
-                                  "07_free_paths.ipynb"])
+@pytest.mark.parametrize(
+    "name",
+    [
+        "01_quickstart.ipynb",
+        "02_encodings.ipynb",
+        "03_dense.ipynb",
+        "04_exact_vs_ga.ipynb",
+        "05_mars.ipynb",
+        "06_dynamic.ipynb",
+        "07_free_paths.ipynb",
+    ],
+)
 def test_notebook_runs_in_quick_mode(name, monkeypatch):
     path = NOTEBOOKS / name
     nb = nbformat.read(path, as_version=4)
-    assert all(not c.get("outputs") for c in nb.cells if c.cell_type == "code"), \
+    assert all(not c.get("outputs") for c in nb.cells if c.cell_type == "code"), (
         f"{name}: commit notebooks without outputs"
+    )
     monkeypatch.setenv("GAPATH_QUICK", "1")
-    client = nbclient.NotebookClient(nb, timeout=120, kernel_name="python3",
-                                     resources={"metadata": {"path": str(NOTEBOOKS)}})
+    client = nbclient.NotebookClient(
+        nb, timeout=120, kernel_name="python3", resources={"metadata": {"path": str(NOTEBOOKS)}}
+    )
     client.execute()  # raises CellExecutionError with the cell and traceback on failure
     errors = [o for c in nb.cells for o in c.get("outputs", []) if o.get("output_type") == "error"]
     assert not errors

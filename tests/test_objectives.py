@@ -4,13 +4,13 @@ import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
+from reference import metrics as ref_metrics
+from reference import potential as ref_potential
 
 from gapath import ConfigError, Workspace
 from gapath.encodings import Frame, IntegerEncoding, expand_profiles
 from gapath.objectives import evaluate_path, evaluate_paths, objective_index, pad_paths
 from gapath.workspace import potential_field
-from reference import metrics as ref_metrics
-from reference import potential as ref_potential
 
 
 def test_potential_matches_full_sum():

@@ -18,12 +18,16 @@ from gapath.problems import GridPathProblem
 
 def test_survival_order_on_hand_built_population():
     # front 0: a, b, c, d ; front 1: e, f
-    F = np.array([[1.0, 5.0],   # a  extreme
-                  [2.0, 3.0],   # b
-                  [3.0, 2.0],   # c
-                  [5.0, 1.0],   # d  extreme
-                  [3.0, 5.0],   # e  (dominated by b)
-                  [6.0, 2.0]])  # f  (dominated by c)
+    F = np.array(
+        [
+            [1.0, 5.0],  # a  extreme
+            [2.0, 3.0],  # b
+            [3.0, 2.0],  # c
+            [5.0, 1.0],  # d  extreme
+            [3.0, 5.0],  # e  (dominated by b)
+            [6.0, 2.0],
+        ]
+    )  # f  (dominated by c)
     smooth = np.array([2.0, 0.5, 0.5, 3.0, 0.0, 1.0])
     order, rank, crowding = survival_order(F, smooth)
     # rank first; inside rank 0 smoothness (b, c tie at 0.5 -> crowding), then a (2.0), d (3.0)
@@ -61,15 +65,20 @@ def _pop(**cols):
 
 
 def test_tournament_order_of_criteria():
-    pop = _pop(CV=np.array([[0.0], [1.0], [0.0], [0.0], [0.0], [0.0]]),
-               rank=np.array([0, 0, 1, 0, 0, 0]),
-               smoothness=np.array([1.0, 0.0, 0.0, 2.0, 1.0, 1.0]),
-               crowding=np.array([1.0, 9.0, 9.0, 9.0, 2.0, 1.0]))
-    P = np.array([[0, 1],   # feasible beats infeasible
-                  [2, 0],   # rank 0 beats rank 1
-                  [3, 0],   # equal rank: smoother wins
-                  [4, 0],   # equal rank and smoothness: more crowding wins
-                  ])
+    pop = _pop(
+        CV=np.array([[0.0], [1.0], [0.0], [0.0], [0.0], [0.0]]),
+        rank=np.array([0, 0, 1, 0, 0, 0]),
+        smoothness=np.array([1.0, 0.0, 0.0, 2.0, 1.0, 1.0]),
+        crowding=np.array([1.0, 9.0, 9.0, 9.0, 2.0, 1.0]),
+    )
+    P = np.array(
+        [
+            [0, 1],  # feasible beats infeasible
+            [2, 0],  # rank 0 beats rank 1
+            [3, 0],  # equal rank: smoother wins
+            [4, 0],  # equal rank and smoothness: more crowding wins
+        ]
+    )
     rng = np.random.default_rng(0)
     won = compare_rank_smoothness_crowding(pop, P, random_state=rng)[:, 0]
     assert won.tolist() == [0, 0, 0, 4]

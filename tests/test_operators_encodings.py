@@ -34,9 +34,12 @@ def ws():
 
 
 def _population(p, rng, n=40):
-    X = p.encoding.edge_fix(BinaryRandomSampling()._do(p, n, random_state=rng)
-                            if p.encoding.vtype is bool
-                            else rng.integers(p.xl, p.xu + 1, size=(n, p.n_var)), rng)
+    X = p.encoding.edge_fix(
+        BinaryRandomSampling()._do(p, n, random_state=rng)
+        if p.encoding.vtype is bool
+        else rng.integers(p.xl, p.xu + 1, size=(n, p.n_var)),
+        rng,
+    )
     return Population.new("X", X)
 
 
@@ -45,6 +48,7 @@ def _fake_algorithm(n_gen, termination):
 
 
 # -- defaults -------------------------------------------------------------
+
 
 def test_default_operators_per_encoding():
     ops = default_operators("integer")
@@ -77,15 +81,16 @@ def test_paper_nsga2_takes_the_encodings_operators(ws):
 
 def test_paper_nsga2_refuses_another_encoding(ws):
     p = GridPathProblem(ws, encoding="integer")
-    with pytest.raises(ConfigError, match="paper_nsga2 was configured for the 'binary' encoding "
-                                          "but the problem uses 'integer'"):
+    with pytest.raises(
+        ConfigError,
+        match="paper_nsga2 was configured for the 'binary' encoding but the problem uses 'integer'",
+    ):
         minimize(p, paper_nsga2(10, encoding="binary"), ("n_gen", 2), seed=1)
 
 
 def test_paper_nsga2_sampling_override_still_works(ws):
     p = GridPathProblem(ws, encoding="binary")
-    X = p.encoding.edge_fix(np.random.default_rng(0).random((12, p.n_var)) < 0.5,
-                            np.random.default_rng(1))
+    X = p.encoding.edge_fix(np.random.default_rng(0).random((12, p.n_var)) < 0.5, np.random.default_rng(1))
     res = minimize(p, paper_nsga2(12, encoding="binary", sampling=X), ("n_gen", 1), seed=1)
     got = res.pop.get("X")
     assert got.dtype == bool
@@ -93,6 +98,7 @@ def test_paper_nsga2_sampling_override_still_works(ws):
 
 
 # -- binary operators ----------------------------------------------------
+
 
 def test_two_point_crossover_keeps_booleans(ws):
     p = GridPathProblem(ws, encoding="binary")
@@ -111,7 +117,7 @@ def test_two_point_crossover_keeps_booleans(ws):
         assert np.array_equal(c2, np.where(swapped, X[a], X[b]))
         idx = np.flatnonzero(swapped)
         if len(idx):  # one contiguous swapped segment
-            assert swapped[idx[0]:idx[-1] + 1][differ[idx[0]:idx[-1] + 1]].all()
+            assert swapped[idx[0] : idx[-1] + 1][differ[idx[0] : idx[-1] + 1]].all()
 
 
 @pytest.mark.parametrize("dtype", [bool, np.int64])
@@ -121,8 +127,9 @@ def test_decaying_bitflip_keeps_booleans(ws, dtype):
     Y = DecayingBitflipMutation(prob_var=0.2)._do(p, X, random_state=np.random.default_rng(1))
     assert Y.dtype == bool and Y.shape == X.shape
     assert 0 < (Y != X.astype(bool)).mean() < 0.3
-    pop = DecayingBitflipMutation()(p, Population.new("X", X.astype(bool)),
-                                    random_state=np.random.default_rng(2))
+    pop = DecayingBitflipMutation()(
+        p, Population.new("X", X.astype(bool)), random_state=np.random.default_rng(2)
+    )
     assert pop.get("X").dtype == bool
 
 
@@ -148,8 +155,7 @@ def test_final_generation_of_pymoo_terminations():
 
     assert final_generation(get_termination("n_gen", 40)) == 40
     assert final_generation(DefaultMultiObjectiveTermination(n_max_gen=300)) == 300
-    assert final_generation(TerminateIfAny(get_termination("n_gen", 70),
-                                           get_termination("n_gen", 50))) == 50
+    assert final_generation(TerminateIfAny(get_termination("n_gen", 70), get_termination("n_gen", 50))) == 50
     assert final_generation(get_termination("n_eval", 1000)) is None
     assert final_generation(MaximumGenerationTermination()) is None  # infinite
 
@@ -191,6 +197,7 @@ def test_decaying_rate_in_a_run(ws):
 
 # -- mixed operators -----------------------------------------------------
 
+
 def test_mixed_crossover_keeps_integers_and_bounds(ws):
     p = GridPathProblem(ws, encoding="mixed")
     rng = np.random.default_rng(0)
@@ -206,7 +213,7 @@ def test_mixed_crossover_keeps_integers_and_bounds(ws):
         c1, c2 = Xo[k, :m], Xo[20 + k, :m]
         # single point: a prefix of one parent then the rest of the other
         cut = [j for j in range(1, m) if np.array_equal(c1, np.r_[X[a, :j], X[b, j:m]])]
-        assert cut and np.array_equal(c2, np.r_[X[b, :cut[0]], X[a, cut[0]:m]])
+        assert cut and np.array_equal(c2, np.r_[X[b, : cut[0]], X[a, cut[0] : m]])
     # same seed, same children
     again = MixedCrossover(prob=1.0)(p, pop, parents, random_state=np.random.default_rng(0))
     first = MixedCrossover(prob=1.0)(p, pop, parents, random_state=np.random.default_rng(0))
@@ -240,6 +247,7 @@ def test_mixed_mutation_keeps_integers_and_bounds(ws):
 
 
 # -- end to end ------------------------------------------------------------
+
 
 def _nondominated(F):
     return not any((b <= a).all() and (b < a).any() for a in F for b in F)

@@ -66,8 +66,10 @@ def search_costs(cm, path, objectives, origin):
     out = []
     for o in objectives:
         if o == "length":
-            out.append(sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(path, path[1:]))
-                       * cm.workspace.cell_size)
+            out.append(
+                sum(math.hypot(b[0] - a[0], b[1] - a[1]) for a, b in zip(path, path[1:]))
+                * cm.workspace.cell_size
+            )
         elif o == "solar":
             total = 0.0
             for a, b in zip(path, path[1:]):
@@ -96,18 +98,20 @@ def tiny_cases(n, seed):
         occ = rng.random((h, w)) < 0.2
         occ[h - 1, 0] = occ[0, w - 1] = False
         ws = Workspace(occ, corner_cutting=bool(rng.integers(2)))
-        cm = Costmap(ws, elevation=rng.random((h, w)),
-                     risk=(int(rng.integers(h)), int(rng.integers(w))),
-                     solar_rate=float(rng.choice([0.0, 0.4, 1.0])),
-                     layers={"slope": rng.random((h, w))})
+        cm = Costmap(
+            ws,
+            elevation=rng.random((h, w)),
+            risk=(int(rng.integers(h)), int(rng.integers(w))),
+            solar_rate=float(rng.choice([0.0, 0.4, 1.0])),
+            layers={"slope": rng.random((h, w))},
+        )
         try:
             paths = simple_paths(ws)
         except RuntimeError:
             continue
         if paths:
             k = int(rng.integers(1, 5))
-            objs = tuple(rng.choice(["length", "elevation", "solar", "risk", "slope"], k,
-                                    replace=False))
+            objs = tuple(rng.choice(["length", "elevation", "solar", "risk", "slope"], k, replace=False))
             cases.append((cm, objs, paths))
     return cases
 
@@ -141,8 +145,7 @@ def test_not_dominated_by_any_simple_path(seed):
         if cm.solar_rate == 0.0:
             # a fixed sun: the search's costs are the path objectives as sums
             n = len(res.path)
-            true = np.array([v * (n if o not in ("length", "solar") else 1)
-                             for o, v in zip(objs, res.F)])
+            true = np.array([v * (n if o not in ("length", "solar") else 1) for o, v in zip(objs, res.F)])
             np.testing.assert_allclose(true, res.search_cost, rtol=1e-12, atol=1e-12)
 
 
@@ -152,12 +155,15 @@ def test_weighted_sum_planners_minimise_their_sum():
         ws = cm.workspace
         costs = np.array([search_costs(cm, p, objs, ws.start) for p in paths])
         # normalisers: the mean cost of a step (search_cost's length is in cell_size units)
-        scale = np.array([ws.cell_size if o == "length" else
-                          (0.5 if o == "solar" else cm.layer(o).mean()) for o in objs])
+        scale = np.array(
+            [ws.cell_size if o == "length" else (0.5 if o == "solar" else cm.layer(o).mean()) for o in objs]
+        )
         weights = rng.random(len(objs)) + 0.05
         total = (costs / scale) @ weights
-        for res in (weighted_sum_astar(cm, objs, weights=weights),
-                    WeightedSumDStar(cm, objs, weights=weights).plan()):
+        for res in (
+            weighted_sum_astar(cm, objs, weights=weights),
+            WeightedSumDStar(cm, objs, weights=weights).plan(),
+        ):
             check_path(ws, res.path)
             assert (res.search_cost / scale) @ weights == pytest.approx(total.min(), rel=1e-12)
 
@@ -234,8 +240,7 @@ def test_replan_equals_fresh_plan(cls):
             assert (got is None) == (want is None)
             if got is not None:
                 check_path(planner.workspace, got.path)
-                np.testing.assert_allclose(got.search_cost, want.search_cost, rtol=1e-12,
-                                           atol=1e-12)
+                np.testing.assert_allclose(got.search_cost, want.search_cost, rtol=1e-12, atol=1e-12)
                 np.testing.assert_allclose(got.F, want.F, rtol=1e-9, atol=1e-12)
                 n_checked += 1
     assert n_checked >= 10
@@ -243,7 +248,7 @@ def test_replan_equals_fresh_plan(cls):
 
 def test_bad_input():
     occ = np.zeros((5, 5), bool)
-    occ[2, :] = True                              # a wall: goal unreachable
+    occ[2, :] = True  # a wall: goal unreachable
     ws = Workspace(occ)
     cm = Costmap(ws, risk=(0, 0))
     for name in PLANNERS:
@@ -295,13 +300,33 @@ def test_cli_plan(tmp_path, data_dir):
     from gapath.cli import main
 
     out = tmp_path / "plan"
-    rc = main(["plan", "default", "--planner", "dstar-po", "--layers", "elevation,solar,risk",
-               "--dem",
-               str(data_dir / "dem" / "mars_dtm.npy"), "--dem-method", "reflect",
-               "--risk", "10,12", "--out", str(out), "--quiet"])
+    rc = main(
+        [
+            "plan",
+            "default",
+            "--planner",
+            "dstar-po",
+            "--layers",
+            "elevation,solar,risk",
+            "--dem",
+            str(data_dir / "dem" / "mars_dtm.npy"),
+            "--dem-method",
+            "reflect",
+            "--risk",
+            "10,12",
+            "--out",
+            str(out),
+            "--quiet",
+        ]
+    )
     assert rc == 0
     assert sorted(p.name for p in out.iterdir()) == [
-        "front.csv", "front.png", "paths.json", "paths.png", "summary.json"]
+        "front.csv",
+        "front.png",
+        "paths.json",
+        "paths.png",
+        "summary.json",
+    ]
     assert (out / "front.csv").read_text().splitlines()[0] == "length,elevation,solar,risk"
     summary = json.loads((out / "summary.json").read_text())
     assert summary["settings"]["planner"] == "dstar-po"
@@ -310,10 +335,24 @@ def test_cli_plan(tmp_path, data_dir):
     assert len(rec) == 1 and rec[0]["path"][0] == [31, 0] and rec[0]["path"][-1] == [0, 31]
     assert set(rec[0]["objectives"]) == {"length", "elevation", "solar", "risk"}
     # length only, no plots
-    assert main(["plan", "default", "--planner", "astar", "--layers", "", "--no-plots",
-                 "--out", str(tmp_path / "l"), "--quiet"]) == 0
+    assert (
+        main(
+            [
+                "plan",
+                "default",
+                "--planner",
+                "astar",
+                "--layers",
+                "",
+                "--no-plots",
+                "--out",
+                str(tmp_path / "l"),
+                "--quiet",
+            ]
+        )
+        == 0
+    )
     assert (tmp_path / "l" / "front.csv").read_text().splitlines()[0] == "length"
     # bad input: one message, exit status 2
     assert main(["plan", "default", "--layers", "height", "--out", str(tmp_path / "x")]) == 2
-    assert main(["plan", "default", "--layers", "risk", "--risk", "99,99",
-                 "--out", str(tmp_path / "x")]) == 2
+    assert main(["plan", "default", "--layers", "risk", "--risk", "99,99", "--out", str(tmp_path / "x")]) == 2

@@ -43,14 +43,17 @@ def test_constraint_mode(ws):
     np.testing.assert_array_equal(out["G"][:, 0], M[:, 3])
 
 
-@pytest.mark.parametrize("kwargs,match", [
-    (dict(objectives=("length", "speed")), "unknown objective 'speed'"),
-    (dict(objectives=("interfering",)), "unknown objective 'interfering'"),
-    (dict(encoding="gray"), "unknown encoding"),
-    (dict(constraints="soft"), "unknown constraint handling 'soft'"),
-    (dict(penalty=-1), "penalty must be a number >= 0"),
-    (dict(penalty="lots"), "penalty must be a number >= 0"),
-])
+@pytest.mark.parametrize(
+    "kwargs,match",
+    [
+        (dict(objectives=("length", "speed")), "unknown objective 'speed'"),
+        (dict(objectives=("interfering",)), "unknown objective 'interfering'"),
+        (dict(encoding="gray"), "unknown encoding"),
+        (dict(constraints="soft"), "unknown constraint handling 'soft'"),
+        (dict(penalty=-1), "penalty must be a number >= 0"),
+        (dict(penalty="lots"), "penalty must be a number >= 0"),
+    ],
+)
 def test_bad_problem_settings(ws, kwargs, match):
     with pytest.raises(ConfigError, match=match):
         GridPathProblem(ws, **kwargs)
@@ -62,7 +65,7 @@ def test_minimize_end_to_end(ws):
     front = path_front(p, res.pop.get("X"))
     assert len(front) >= 2
     assert _nondominated(front.F)
-    for f, m, path, x in zip(front.F, front.metrics, front.paths, front.X):
+    for f, path in zip(front.F, front.paths):
         assert ws.is_valid_path(path)
         recomputed = evaluate_path(ws, path)
         assert recomputed["interfering"] == 0
@@ -109,13 +112,20 @@ def test_runs_with_stock_pymoo_algorithms(ws, name):
 
     from gapath.operators import DiscretePM, DiscreteSBX, EdgeFixingRepair
 
-    ops = dict(sampling=IntegerRandomSampling(), crossover=DiscreteSBX(), mutation=DiscretePM(),
-               repair=EdgeFixingRepair())
-    algo = {"NSGA2": lambda: NSGA2(pop_size=30, **ops),
-            "NSGA3": lambda: NSGA3(ref_dirs=get_reference_directions("das-dennis", 2, n_partitions=12),
-                                   pop_size=30, **ops),
-            "SMSEMOA": lambda: SMSEMOA(pop_size=20, **ops),
-            "AGEMOEA": lambda: AGEMOEA(pop_size=30, **ops)}[name]()
+    ops = dict(
+        sampling=IntegerRandomSampling(),
+        crossover=DiscreteSBX(),
+        mutation=DiscretePM(),
+        repair=EdgeFixingRepair(),
+    )
+    algo = {
+        "NSGA2": lambda: NSGA2(pop_size=30, **ops),
+        "NSGA3": lambda: NSGA3(
+            ref_dirs=get_reference_directions("das-dennis", 2, n_partitions=12), pop_size=30, **ops
+        ),
+        "SMSEMOA": lambda: SMSEMOA(pop_size=20, **ops),
+        "AGEMOEA": lambda: AGEMOEA(pop_size=30, **ops),
+    }[name]()
     p = GridPathProblem(ws)
     res = minimize(p, algo, ("n_gen", 8), seed=1)
     assert res.F is not None and res.F.shape[1] == 2

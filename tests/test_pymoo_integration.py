@@ -54,6 +54,7 @@ def roundtrip(obj):
 # pickling
 # ---------------------------------------------------------------------------
 
+
 def test_tournament_comparison_pickles_without_its_cache():
     sel = SmoothnessTournament(tiebreak=False)
     again = roundtrip(sel)
@@ -65,14 +66,14 @@ def test_tournament_comparison_pickles_without_its_cache():
 def test_algorithm_and_result_pickle_before_and_after_minimize(engine):
     make = ENGINES[engine]
     problem = GridPathProblem(default_workspace())
-    fresh = roundtrip(make(pop_size=20))                          # before minimize
+    fresh = roundtrip(make(pop_size=20))  # before minimize
     res = minimize(problem, make(pop_size=20), ("n_gen", 6), seed=3)
     res_unpickled = minimize(problem, fresh, ("n_gen", 6), seed=3)
     assert np.array_equal(res.pop.get("X"), res_unpickled.pop.get("X"))
-    again = roundtrip(res)                                        # pymoo's Result
+    again = roundtrip(res)  # pymoo's Result
     assert np.array_equal(again.F, res.F) and np.array_equal(again.X, res.X)
     assert np.array_equal(again.pop.get("X"), res.pop.get("X"))
-    assert type(again.algorithm) is type(res.algorithm)           # after minimize
+    assert type(again.algorithm) is type(res.algorithm)  # after minimize
     assert np.array_equal(roundtrip(res.algorithm).pop.get("F"), res.pop.get("F"))
 
 
@@ -97,17 +98,22 @@ def test_pickled_checkpoint_resumes_like_an_uninterrupted_run(engine):
 # pareto_front
 # ---------------------------------------------------------------------------
 
-@pytest.mark.parametrize("objectives", [("length", "vulnerability"),
-                                        ("vulnerability", "length"),
-                                        ("length", "smoothness"),
-                                        ("length", "vulnerability", "smoothness")])
+
+@pytest.mark.parametrize(
+    "objectives",
+    [
+        ("length", "vulnerability"),
+        ("vulnerability", "length"),
+        ("length", "smoothness"),
+        ("length", "vulnerability", "smoothness"),
+    ],
+)
 @pytest.mark.parametrize("constraints", ["penalty", "constraint"])
 def test_pareto_front_is_the_exact_monotone_front(objectives, constraints):
     ws = random_workspace((12, 14), 30, seed=4)
     exact_front = exact.monotone_front(ws, objectives)
-    for encoding in ENCODINGS:                       # binary: corner cutting is on here
-        problem = GridPathProblem(ws, objectives=objectives, encoding=encoding,
-                                  constraints=constraints)
+    for encoding in ENCODINGS:  # binary: corner cutting is on here
+        problem = GridPathProblem(ws, objectives=objectives, encoding=encoding, constraints=constraints)
         pf = problem.pareto_front()
         assert np.array_equal(pf, exact_front.F)
         assert pf.shape == (len(exact_front), len(objectives))
@@ -125,11 +131,11 @@ def test_pareto_front_is_cached_and_copied(monkeypatch):
     real = exact.monotone_front
     monkeypatch.setattr(exact, "monotone_front", lambda *a, **k: calls.append(1) or real(*a, **k))
     pf = problem.pareto_front()
-    pf[:] = -1.0                                     # the caller's copy
+    pf[:] = -1.0  # the caller's copy
     again = problem.pareto_front()
     assert len(calls) == 1 and (again >= 0).all()
     assert np.array_equal(roundtrip(problem).pareto_front(), again)
-    assert len(calls) == 1                           # the cache is pickled with the problem
+    assert len(calls) == 1  # the cache is pickled with the problem
     assert np.array_equal(problem.nadir_point(), again.max(axis=0))
     assert np.array_equal(problem.ideal_point(), again.min(axis=0))
 
@@ -166,13 +172,13 @@ def test_large_map_is_not_solved_unasked(monkeypatch, capsys):
     monkeypatch.setattr(exact, "monotone_front", forbidden)
     minimize(problem, paper_nsga2(10), ("n_gen", 2), seed=1, verbose=True)
     header = capsys.readouterr().out.splitlines()[1]
-    assert "igd" not in header and "eps" in header       # pymoo's front-free columns
+    assert "igd" not in header and "eps" in header  # pymoo's front-free columns
     with pytest.raises(ConfigError, match=r"40x40 workspace.*pareto_front\(force=True\)"):
         problem.pareto_front()
     monkeypatch.setattr(exact, "monotone_front", real)
     pf = problem.pareto_front(force=True)
     assert np.array_equal(pf, real(ws).F)
-    assert np.array_equal(problem.pareto_front(), pf)      # cached: no force needed now
+    assert np.array_equal(problem.pareto_front(), pf)  # cached: no force needed now
 
 
 def test_no_front_for_layer_objectives_or_binary_without_corner_cutting():
@@ -184,13 +190,12 @@ def test_no_front_for_layer_objectives_or_binary_without_corner_cutting():
     with pytest.raises(ConfigError, match="binary encoding without corner cutting"):
         binary.pareto_front()
     integer = GridPathProblem(ws.replace(corner_cutting=False))
-    assert np.array_equal(integer.pareto_front(),
-                          exact.monotone_front(ws.replace(corner_cutting=False)).F)
+    assert np.array_equal(integer.pareto_front(), exact.monotone_front(ws.replace(corner_cutting=False)).F)
 
 
 def test_no_monotone_path_raises_each_time():
     occ = np.zeros((4, 5), bool)
-    occ[:, 2] = True                                     # a wall: no path at all
+    occ[:, 2] = True  # a wall: no path at all
     problem = GridPathProblem(Workspace(occ))
     for _ in range(2):
         with pytest.raises(NoPathError, match="no feasible column-monotone path"):
@@ -204,8 +209,7 @@ def test_binary_genomes_never_beat_the_front_with_corner_cutting():
     rng = np.random.default_rng(11)
     for seed in range(3):
         ws = random_workspace((9, 10), 12, seed=seed)
-        problem = GridPathProblem(ws, objectives=("length", "vulnerability", "smoothness"),
-                                  encoding="binary")
+        problem = GridPathProblem(ws, objectives=("length", "vulnerability", "smoothness"), encoding="binary")
         pf = problem.pareto_front()
         base = problem.encode(exact.monotone_front(ws, problem.objectives).paths)
         mutants = np.repeat(base, 200, axis=0) ^ (rng.random((len(base) * 200, problem.n_var)) < 0.05)
@@ -222,6 +226,7 @@ def test_binary_genomes_never_beat_the_front_with_corner_cutting():
 # non-integral genes
 # ---------------------------------------------------------------------------
 
+
 def _genome_warnings(record):
     return [w for w in record if issubclass(w.category, GenomeWarning)]
 
@@ -237,10 +242,9 @@ def test_stock_float_operators_warn_once_per_problem(encoding):
     with warnings.catch_warnings(record=True) as again:
         warnings.simplefilter("always")
         minimize(problem, NSGA2(pop_size=20), ("n_gen", 2), seed=2)
-    assert not _genome_warnings(again)                  # once per problem instance
-    with pytest.warns(GenomeWarning):                   # a new problem warns again
-        GridPathProblem(default_workspace(), encoding=encoding).evaluate(
-            np.full((1, problem.n_var), 0.5))
+    assert not _genome_warnings(again)  # once per problem instance
+    with pytest.warns(GenomeWarning):  # a new problem warns again
+        GridPathProblem(default_workspace(), encoding=encoding).evaluate(np.full((1, problem.n_var), 0.5))
 
 
 @pytest.mark.filterwarnings("ignore:invalid value encountered in cast:RuntimeWarning")
@@ -265,8 +269,9 @@ def test_gapath_operators_never_warn(encoding, engine, seeded):
     kwargs = {"sampling": PlannerSampling()} if seeded else {}
     with warnings.catch_warnings():
         warnings.simplefilter("error", GenomeWarning)
-        res = minimize(problem, ENGINES[engine](pop_size=20, encoding=encoding, **kwargs),
-                       ("n_gen", 8), seed=1)
+        res = minimize(
+            problem, ENGINES[engine](pop_size=20, encoding=encoding, **kwargs), ("n_gen", 8), seed=1
+        )
     assert res.pop is not None and len(res.pop) == 20
 
 
@@ -278,8 +283,13 @@ def test_stock_nsga2_with_gapath_operators_does_not_warn(encoding):
     from gapath.operators import DiscretePM, DiscreteSBX, EdgeFixingRepair
 
     problem = GridPathProblem(random_workspace((16, 16), 40, seed=3), encoding=encoding)
-    algorithm = NSGA2(pop_size=20, sampling=IntegerRandomSampling(), crossover=DiscreteSBX(),
-                      mutation=DiscretePM(), repair=EdgeFixingRepair())
+    algorithm = NSGA2(
+        pop_size=20,
+        sampling=IntegerRandomSampling(),
+        crossover=DiscreteSBX(),
+        mutation=DiscretePM(),
+        repair=EdgeFixingRepair(),
+    )
     with warnings.catch_warnings():
         warnings.simplefilter("error", GenomeWarning)
         minimize(problem, algorithm, ("n_gen", 8), seed=1)
@@ -288,6 +298,7 @@ def test_stock_nsga2_with_gapath_operators_does_not_warn(encoding):
 # ---------------------------------------------------------------------------
 # the README's pymoo example
 # ---------------------------------------------------------------------------
+
 
 def readme_pymoo_code() -> str:
     text = README.read_text()
@@ -303,13 +314,13 @@ def test_readme_pymoo_example_runs(capsys):
     for old, new in (("pop_size=500", "pop_size=40"), ('("n_gen", 500)', '("n_gen", 10)')):
         assert old in code, f"the README example no longer contains {old!r}"
         small = small.replace(old, new)
-    assert "PlannerSampling" in code                       # the seeded form is shown
+    assert "PlannerSampling" in code  # the seeded form is shown
     namespace: dict = {}
     exec(compile(small, str(README), "exec"), namespace)
     printed = capsys.readouterr().out
     assert printed.strip()
     front, problem = namespace["front"], namespace["problem"]
     ws = problem.workspace
-    assert len(front) > 0 and not front.metrics[:, 3].any()          # feasible paths
+    assert len(front) > 0 and not front.metrics[:, 3].any()  # feasible paths
     assert all(ws.is_valid_path(p) for p in front.paths)
     assert tuple(front.paths[0][0]) == ws.start and tuple(front.paths[0][-1]) == ws.goal

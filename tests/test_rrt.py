@@ -1,7 +1,5 @@
 """RRT and RRT* baselines: collision-free, seeded, RRT* no worse than RRT."""
 
-import math
-
 import numpy as np
 import pytest
 
@@ -21,8 +19,7 @@ def ws():
 
 
 def swept_free(ws, pts, radius):
-    return all(segment_free(ws.occ, a[0], a[1], b[0], b[1], radius, 0.01)
-               for a, b in zip(pts[:-1], pts[1:]))
+    return all(segment_free(ws.occ, a[0], a[1], b[0], b[1], radius, 0.01) for a, b in zip(pts[:-1], pts[1:]))
 
 
 @pytest.mark.parametrize("star", [False, True])

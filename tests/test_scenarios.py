@@ -28,7 +28,7 @@ def test_maze_distance_detour_and_determinism(seed):
     assert ws.cell_size == 1.0
     assert np.array_equal(ws.occ, complex_maze(seed).occ)
     assert not ws.occ[ws.start] and not ws.occ[ws.goal]
-    assert ws.occ.mean() > 0.1                      # walls are left
+    assert ws.occ.mean() > 0.1  # walls are left
 
 
 def test_mazes_differ_by_seed():
@@ -52,14 +52,13 @@ def test_dynamic_obstacles_are_seeded_and_keep_the_goal_reachable():
     st, mv, ref = dynamic_obstacles(ws, 5)
     st2, mv2, _ = dynamic_obstacles(ws, 5)
     assert len(st) == 3 and len(mv) == 4
-    assert all(np.array_equal(a.cells, b.cells) and a.appear_at == b.appear_at
-               for a, b in zip(st, st2))
+    assert all(np.array_equal(a.cells, b.cells) and a.appear_at == b.appear_at for a, b in zip(st, st2))
     assert all(np.array_equal(a.position, b.position) for a, b in zip(mv, mv2))
     occ = ws.occ.copy()
     for o in st:
         assert not occ[o.cells[:, 0], o.cells[:, 1]].any()
         occ[o.cells[:, 0], o.cells[:, 1]] = True
-    astar(Workspace(occ, ws.start, ws.goal, corner_cutting=False))     # still connected
+    astar(Workspace(occ, ws.start, ws.goal, corner_cutting=False))  # still connected
     assert tuple(ref[0]) == (ws.start[1], ws.start[0])
     for o in mv:
         assert 0.3 <= o.speed <= 0.7 and o.mode == "bounce"
@@ -71,8 +70,7 @@ def test_make_scenario_from_a_map_file(tmp_path):
     p.write_text("\n".join(rows) + "\n")
     ws = load_scenario_map(p, start=(18, 1), goal=(1, 28))
     assert ws.shape == (20, 30)
-    sc = make_scenario(str(p), 2, start=(18, 1), goal=(1, 28), n_stationary=1, n_crossers=1,
-                       n_wanderers=1)
+    sc = make_scenario(str(p), 2, start=(18, 1), goal=(1, 28), n_stationary=1, n_crossers=1, n_wanderers=1)
     assert sc.workspace.start == (18, 1)
     assert sc.direct_distance == pytest.approx(math.hypot(17, 27))
     assert len(sc.moving) == 2

@@ -16,8 +16,13 @@ def _grids():
     for seed in range(6):
         rng = np.random.default_rng(seed)
         h, w = rng.integers(5, 12, size=2)
-        ws = random_workspace((h, w), int(0.2 * h * w), seed=seed,
-                              start=(int(rng.integers(h)), 0), goal=(int(rng.integers(h)), w - 1))
+        ws = random_workspace(
+            (h, w),
+            int(0.2 * h * w),
+            seed=seed,
+            start=(int(rng.integers(h)), 0),
+            goal=(int(rng.integers(h)), w - 1),
+        )
         yield ws.replace(corner_cutting=bool(seed % 2))
 
 
@@ -43,7 +48,7 @@ def test_weighted_sum_paths_include_both_extremes():
     exact = monotone_front(ws)
     paths = weighted_sum_paths(ws, 5)
     F = np.array([[evaluate_path(ws, p)[k] for k in ("length", "vulnerability")] for p in paths])
-    np.testing.assert_allclose(F[0], exact.F[0], rtol=1e-9)   # shortest
+    np.testing.assert_allclose(F[0], exact.F[0], rtol=1e-9)  # shortest
     np.testing.assert_allclose(F[1], exact.F[-1], rtol=1e-9)  # safest
     assert len({p.tobytes() for p in paths}) == len(paths)
 

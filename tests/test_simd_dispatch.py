@@ -42,7 +42,7 @@ EQUIVALENCE = [
 def _cpu():
     try:
         from numpy._core import _multiarray_umath as umath
-    except ImportError:                                   # NumPy 1.x
+    except ImportError:  # NumPy 1.x
         from numpy.core import _multiarray_umath as umath
     return umath.__cpu_baseline__, umath.__cpu_dispatch__, umath.__cpu_features__
 
@@ -93,13 +93,11 @@ def test_numpy_power_of_an_element_ignores_its_array(exponent):
     whole = np.power(base, np.full(len(base), exponent))
     for n in range(1, 41):
         for start in range(0, 60, 7):
-            part = base[start:start + n].copy()
-            np.testing.assert_array_equal(np.power(part, np.full(n, exponent)),
-                                          whole[start:start + n])
+            part = base[start : start + n].copy()
+            np.testing.assert_array_equal(np.power(part, np.full(n, exponent)), whole[start : start + n])
     for step in (2, 3, 8):
         view = base[::step]
-        np.testing.assert_array_equal(np.power(view, np.full(len(view), exponent)),
-                                      whole[::step])
+        np.testing.assert_array_equal(np.power(view, np.full(len(view), exponent)), whole[::step])
 
 
 def _variant():
@@ -124,9 +122,24 @@ def test_equivalence_tests_pass_on_the_other_dispatch_path(disable, tmp_path):
     env["PYTHONPATH"] = os.pathsep.join(p for p in (str(ROOT / "src"), env.get("PYTHONPATH")) if p)
     report = tmp_path / "report.xml"
     proc = subprocess.run(
-        [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-o", "addopts=",
-         f"--junitxml={report}", *EQUIVALENCE],
-        cwd=ROOT, env=env, capture_output=True, text=True, timeout=600)
+        [
+            sys.executable,
+            "-m",
+            "pytest",
+            "-q",
+            "-p",
+            "no:cacheprovider",
+            "-o",
+            "addopts=",
+            f"--junitxml={report}",
+            *EQUIVALENCE,
+        ],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
     assert proc.returncode == 0, proc.stdout[-4000:] + proc.stderr[-2000:]
     suite = ET.parse(report).getroot()
     suite = suite if suite.tag == "testsuite" else suite.find("testsuite")

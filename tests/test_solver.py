@@ -39,10 +39,15 @@ def test_unseeded_protocol_and_determinism():
     assert a.settings["seed_from"] == "none"
 
 
-@pytest.mark.parametrize("kw,match", [
-    (dict(pop_size=0), "pop_size"), (dict(n_gen=2.5), "n_gen"), (dict(seed_from="magic"), "seed source"),
-    (dict(tiebreak="turns"), "tiebreak"),
-])
+@pytest.mark.parametrize(
+    "kw,match",
+    [
+        (dict(pop_size=0), "pop_size"),
+        (dict(n_gen=2.5), "n_gen"),
+        (dict(seed_from="magic"), "seed source"),
+        (dict(tiebreak="turns"), "tiebreak"),
+    ],
+)
 def test_bad_settings(kw, match):
     with pytest.raises(ConfigError, match=match):
         solve(random_workspace((8, 8), 5, seed=0), **{"pop_size": 10, "n_gen": 2, **kw})

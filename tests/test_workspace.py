@@ -2,7 +2,6 @@ import numpy as np
 import pytest
 
 from gapath import ConfigError, MapError, Workspace, default_workspace, dense_workspace, random_workspace
-from gapath.encodings import Frame, IntegerEncoding, profiles_of_paths
 
 
 @pytest.mark.parametrize("value", ["no", "False", 0, 1, None, 0.0])
@@ -17,13 +16,17 @@ def test_corner_cutting_must_be_a_bool(value):
 def test_problem_of_an_array_names_workspace_and_from_array():
     from gapath.problems import GridPathProblem
 
-    with pytest.raises(ConfigError, match=r"expects a gapath\.Workspace, got ndarray; .*"
-                                          r"gapath\.loaders\.from_array"):
+    with pytest.raises(
+        ConfigError,
+        match=r"expects a gapath\.Workspace, got ndarray; .*"
+        r"gapath\.loaders\.from_array",
+    ):
         GridPathProblem(np.zeros((4, 4), bool))
 
 
-@pytest.mark.parametrize("make", [lambda **kw: dense_workspace(8, 0.3, 1, **kw),
-                                  lambda **kw: random_workspace((8, 8), 5, 1, **kw)])
+@pytest.mark.parametrize(
+    "make", [lambda **kw: dense_workspace(8, 0.3, 1, **kw), lambda **kw: random_workspace((8, 8), 5, 1, **kw)]
+)
 def test_generators_check_start_and_goal(make):
     with pytest.raises(ConfigError, match=r"start \(9, 0\) is outside the 8x8 grid"):
         make(start=(9, 0))
@@ -38,26 +41,32 @@ def test_defaults_and_repr():
     assert not ws.occ.flags.writeable
 
 
-@pytest.mark.parametrize("occ,match", [
-    (np.zeros((0, 3), bool), "non-empty 2-D"),
-    (np.zeros(5, bool), "non-empty 2-D"),
-    (np.array([[0, 2], [0, 0]]), "got 2 at \\(row 0, col 1\\)"),
-    (np.array([["a", "b"]]), "must be boolean"),
-])
+@pytest.mark.parametrize(
+    "occ,match",
+    [
+        (np.zeros((0, 3), bool), "non-empty 2-D"),
+        (np.zeros(5, bool), "non-empty 2-D"),
+        (np.array([[0, 2], [0, 0]]), "got 2 at \\(row 0, col 1\\)"),
+        (np.array([["a", "b"]]), "must be boolean"),
+    ],
+)
 def test_bad_occupancy(occ, match):
     with pytest.raises(MapError, match=match):
         Workspace(occ)
 
 
-@pytest.mark.parametrize("kw,match", [
-    (dict(start=(5, 0)), r"start \(5, 0\) is outside the 4x4 grid"),
-    (dict(goal=(0, -1)), r"goal \(0, -1\) is outside"),
-    (dict(start=(1, 1)), r"start \(1, 1\) is on an obstacle"),
-    (dict(start=(0, 3)), "start and goal are the same cell"),
-    (dict(cell_size=0), "cell_size must be a positive number"),
-    (dict(cell_size=-2.0), "cell_size must be a positive number"),
-    (dict(start="a"), "start must be a \\(row, col\\) pair"),
-])
+@pytest.mark.parametrize(
+    "kw,match",
+    [
+        (dict(start=(5, 0)), r"start \(5, 0\) is outside the 4x4 grid"),
+        (dict(goal=(0, -1)), r"goal \(0, -1\) is outside"),
+        (dict(start=(1, 1)), r"start \(1, 1\) is on an obstacle"),
+        (dict(start=(0, 3)), "start and goal are the same cell"),
+        (dict(cell_size=0), "cell_size must be a positive number"),
+        (dict(cell_size=-2.0), "cell_size must be a positive number"),
+        (dict(start="a"), "start must be a \\(row, col\\) pair"),
+    ],
+)
 def test_bad_workspace_settings(kw, match):
     occ = np.zeros((4, 4), bool)
     occ[1, 1] = True
@@ -77,11 +86,14 @@ def test_default_scenario():
     assert np.array_equal(random_workspace((32, 32), 173, seed=2013).occ, ws.occ)
 
 
-@pytest.mark.parametrize("make", [
-    lambda seed: dense_workspace(16, 1.0, seed=seed),
-    lambda seed: dense_workspace(24, 0.7, seed=seed),
-    lambda seed: random_workspace((20, 20), 300, seed=seed),
-])
+@pytest.mark.parametrize(
+    "make",
+    [
+        lambda seed: dense_workspace(16, 1.0, seed=seed),
+        lambda seed: dense_workspace(24, 0.7, seed=seed),
+        lambda seed: random_workspace((20, 20), 300, seed=seed),
+    ],
+)
 def test_generators_keep_a_feasible_monotone_path(make):
     from gapath.planners.exact import monotone_front
 

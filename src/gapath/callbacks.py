@@ -24,8 +24,8 @@ from tqdm import tqdm  # the text bar (tqdm.auto warns in kernels without ipywid
 from gapath.algorithms.fast_nsga2 import PathArrays
 from gapath.operators._columns import column
 
-__all__ = ["Callbacks", "PopulationArrays", "ProgressBar", "population_arrays",
-           "population_status"]
+__all__ = ["Callbacks", "PopulationArrays", "ProgressBar", "population_arrays", "population_status"]
+
 
 class PopulationArrays:
     """Columns of an algorithm's current population as NumPy arrays, one
@@ -88,6 +88,7 @@ def _engine_reader(A: PathArrays):
         if name == "rank":
             return A.rank
         return A.data.get(name)
+
     return read
 
 
@@ -101,6 +102,7 @@ def _population_reader(pop):
         if name in ("F", "G"):
             return np.asarray(values, dtype=float).reshape(len(pop), -1)
         return values
+
     return read
 
 
@@ -201,9 +203,8 @@ def _redraw_due(bar, n: int) -> bool:
     own test in ``tqdm.update``: ``miniters`` steps and ``mininterval``
     seconds since the last drawing)."""
     try:
-        return (n - bar.last_print_n >= bar.miniters
-                and bar._time() - bar.last_print_t >= bar.mininterval)
-    except AttributeError:          # another tqdm: read the status every time
+        return n - bar.last_print_n >= bar.miniters and bar._time() - bar.last_print_t >= bar.mininterval
+    except AttributeError:  # another tqdm: read the status every time
         return True
 
 
@@ -252,11 +253,12 @@ class ProgressBar(Callback):
 
     def _show(self, algorithm) -> None:
         s = self.status = population_status(algorithm)
-        s["gen"] = self.last_gen       # pymoo counts on after the last notification
+        s["gen"] = self.last_gen  # pymoo counts on after the last notification
         self.bar.set_postfix_str(
             f"feasible={s['feasible']} front={s['front']}"
             + "".join(f" {k}={v:.4g}" for k, v in s.items() if k not in ("gen", "feasible", "front")),
-            refresh=False)
+            refresh=False,
+        )
 
     def notify(self, algorithm):
         self.last_gen = int(algorithm.n_gen)
@@ -274,8 +276,7 @@ class ProgressBar(Callback):
     def close(self):
         """Show the last generation's status and close the bar."""
         if self.bar is not None:
-            if self._algorithm is not None and (self.status is None
-                                                or self.status["gen"] != self.last_gen):
+            if self._algorithm is not None and (self.status is None or self.status["gen"] != self.last_gen):
                 self._show(self._algorithm)
             self.bar.close()
             self.bar = None

@@ -47,8 +47,15 @@ def _load(map_arg, start=None, goal=None, corner_cutting=None):
 
     if isinstance(map_arg, argparse.Namespace):
         return load_workspace(map_arg).workspace
-    args = argparse.Namespace(map=map_arg, start=start, goal=goal, corner_cutting=corner_cutting,
-                              start_xy=None, goal_xy=None, scen=None)
+    args = argparse.Namespace(
+        map=map_arg,
+        start=start,
+        goal=goal,
+        corner_cutting=corner_cutting,
+        start_xy=None,
+        goal_xy=None,
+        scen=None,
+    )
     return load_workspace(args).workspace
 
 
@@ -69,39 +76,72 @@ def _solve(args) -> int:
 
 
 def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str | None) -> None:
-    p.add_argument("--objectives", default="length,vulnerability",
-                   help="comma-separated objectives among length, vulnerability, smoothness "
-                        "(default: %(default)s)")
-    p.add_argument("--encoding", default=None,
-                   help="genome encoding: integer, binary, mixed or absolute for monotone paths "
-                        "(default integer); field or via for free paths (default field)")
-    p.add_argument("--constraints", choices=("penalty", "constraint"), default=None,
-                   help="obstacle handling (default: penalty; constraint for one objective)")
-    p.add_argument("--sbx-eta", type=float, default=None,
-                   help="SBX distribution index (default: 10; 2 for one objective)")
-    p.add_argument("--penalty", type=float, default=1000.0,
-                   help="penalty per interfering cell (default: %(default)s)")
-    p.add_argument("--tiebreak", choices=("smoothness", "none"), default="smoothness",
-                   help="tie-break inside a non-dominated rank (default: %(default)s)")
-    p.add_argument("--seed-from", choices=("weighted", "exact", "astar", "none"), default="weighted",
-                   help="initial population: shortest, safest and weighted-sum monotone paths "
-                        "plus random ones (weighted), the exact monotone front (exact), A* "
-                        "paths projected onto monotone paths (astar), or all random as in "
-                        "Ahmed & Deb's protocol (none) (default: %(default)s)")
-    p.add_argument("--engine", choices=("fast", "pymoo"), default="fast",
-                   help="NSGA-II engine: FastNSGA2 on arrays (fast) or stock pymoo NSGA2 (pymoo); "
-                        "same results for the same seed (default: %(default)s)")
+    p.add_argument(
+        "--objectives",
+        default="length,vulnerability",
+        help="comma-separated objectives among length, vulnerability, smoothness (default: %(default)s)",
+    )
+    p.add_argument(
+        "--encoding",
+        default=None,
+        help="genome encoding: integer, binary, mixed or absolute for monotone paths "
+        "(default integer); field or via for free paths (default field)",
+    )
+    p.add_argument(
+        "--constraints",
+        choices=("penalty", "constraint"),
+        default=None,
+        help="obstacle handling (default: penalty; constraint for one objective)",
+    )
+    p.add_argument(
+        "--sbx-eta",
+        type=float,
+        default=None,
+        help="SBX distribution index (default: 10; 2 for one objective)",
+    )
+    p.add_argument(
+        "--penalty", type=float, default=1000.0, help="penalty per interfering cell (default: %(default)s)"
+    )
+    p.add_argument(
+        "--tiebreak",
+        choices=("smoothness", "none"),
+        default="smoothness",
+        help="tie-break inside a non-dominated rank (default: %(default)s)",
+    )
+    p.add_argument(
+        "--seed-from",
+        choices=("weighted", "exact", "astar", "none"),
+        default="weighted",
+        help="initial population: shortest, safest and weighted-sum monotone paths "
+        "plus random ones (weighted), the exact monotone front (exact), A* "
+        "paths projected onto monotone paths (astar), or all random as in "
+        "Ahmed & Deb's protocol (none) (default: %(default)s)",
+    )
+    p.add_argument(
+        "--engine",
+        choices=("fast", "pymoo"),
+        default="fast",
+        help="NSGA-II engine: FastNSGA2 on arrays (fast) or stock pymoo NSGA2 (pymoo); "
+        "same results for the same seed (default: %(default)s)",
+    )
     p.add_argument("--pop", type=int, default=pop, help="population size (default: %(default)s)")
     p.add_argument("--gen", type=int, default=gen, help="generations (default: %(default)s)")
     p.add_argument("--seed", type=int, default=1, help="random seed (default: %(default)s)")
-    p.add_argument("--runs", type=int, default=1,
-                   help="independent runs with seeds SEED..SEED+RUNS-1, each written to "
-                        "OUT/runs/<seed>/, their merged front to OUT (default: %(default)s)")
+    p.add_argument(
+        "--runs",
+        type=int,
+        default=1,
+        help="independent runs with seeds SEED..SEED+RUNS-1, each written to "
+        "OUT/runs/<seed>/, their merged front to OUT (default: %(default)s)",
+    )
     p.add_argument("--out", default=out, help="output directory (default: %(default)s)")
-    p.add_argument("--reference", metavar="monotone|free|FILE",
-                   help="judge the front against the exact monotone front, the exact free front "
-                        "or a front.csv: adds hypervolume ratio, IGD+ and the share of reference "
-                        "points found to summary.json")
+    p.add_argument(
+        "--reference",
+        metavar="monotone|free|FILE",
+        help="judge the front against the exact monotone front, the exact free front "
+        "or a front.csv: adds hypervolume ratio, IGD+ and the share of reference "
+        "points found to summary.json",
+    )
     p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
     p.add_argument("--quiet", action="store_true", help="no progress bar or report")
 
@@ -111,7 +151,7 @@ def _version() -> str:
 
     try:
         return metadata.version("gapath")
-    except metadata.PackageNotFoundError:          # a source tree on PYTHONPATH
+    except metadata.PackageNotFoundError:  # a source tree on PYTHONPATH
         from gapath import __version__
 
         return __version__
@@ -119,9 +159,11 @@ def _version() -> str:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
-        prog="gapath", description="Multi-objective grid path planning with pymoo.",
+        prog="gapath",
+        description="Multi-objective grid path planning with pymoo.",
         epilog="exit status: 0 a result was found, 1 the search found nothing feasible "
-               "(the reason is printed), 2 bad input, 3 internal error, 130 interrupted")
+        "(the reason is printed), 2 bad input, 3 internal error, 130 interrupted",
+    )
     parser.add_argument("--version", action="version", version=f"gapath {_version()}")
     sub = parser.add_subparsers(dest="command", required=True)
 
@@ -130,9 +172,13 @@ def build_parser() -> argparse.ArgumentParser:
 
     add_map_arguments(p)
     _add_run_options(p, pop=500, gen=500, out="gapath-out")
-    p.add_argument("--paths", choices=("free", "monotone"), default="free",
-                   help="path set: any simple 8-connected path (free) or Ahmed & Deb's "
-                        "column-monotone paths (monotone) (default: %(default)s)")
+    p.add_argument(
+        "--paths",
+        choices=("free", "monotone"),
+        default="free",
+        help="path set: any simple 8-connected path (free) or Ahmed & Deb's "
+        "column-monotone paths (monotone) (default: %(default)s)",
+    )
     p.set_defaults(func=_solve)
 
     d = sub.add_parser("demo", help="the bundled scenario with Ahmed & Deb's settings")
@@ -148,19 +194,25 @@ def _report(result, out_dir: Path) -> None:
     front = result.front
     print(f"{result.workspace!r}")
     status = "interrupted after" if result.interrupted else "finished"
-    print(f"{status} {result.n_gen} generations, {result.n_eval} evaluations, "
-          f"{result.seconds:.1f} s; {len(front)} non-dominated feasible paths")
+    print(
+        f"{status} {result.n_gen} generations, {result.n_eval} evaluations, "
+        f"{result.seconds:.1f} s; {len(front)} non-dominated feasible paths"
+    )
     asked = result.settings.get("n_gen")
     if not result.interrupted and isinstance(asked, int) and result.n_gen < asked:
-        print(f"  stopped before generation {asked}: mating found no path not yet in the "
-              f"population (the map has few distinct paths)")
+        print(
+            f"  stopped before generation {asked}: mating found no path not yet in the "
+            f"population (the map has few distinct paths)"
+        )
     from gapath.plotting import marked_paths
 
     for label, i in marked_paths(front).items():
         values = ", ".join(f"{n}={v:.4f}" for n, v in zip(front.objectives, front.F[i]))
         print(f"  {label:9s} {values}")
-    print(f"wrote {out_dir}/front.csv, paths.json, summary.json"
-          + ("" if result.settings.get("plots") is False else ", front.png, paths.png"))
+    print(
+        f"wrote {out_dir}/front.csv, paths.json, summary.json"
+        + ("" if result.settings.get("plots") is False else ", front.png, paths.png")
+    )
 
 
 def _reference(args, workspace):
@@ -190,21 +242,32 @@ def _quality(args, reference, F) -> dict:
 def _print_quality(extra: dict) -> None:
     if extra:
         q = extra["quality"]
-        print(f"against the {q['reference']} reference: hv ratio {q['hv_ratio']:.4f}, "
-              f"IGD+ {q['igd_plus']:.4g}, {q['reference_points_found']:.0%} of its points found")
+        print(
+            f"against the {q['reference']} reference: hv ratio {q['hv_ratio']:.4f}, "
+            f"IGD+ {q['igd_plus']:.4g}, {q['reference_points_found']:.0%} of its points found"
+        )
 
 
 def _run(args, workspace) -> int:
     from gapath.results import write_result
     from gapath.solver import solve
 
-    kwargs = dict(objectives=args.objectives, encoding=args.encoding, constraints=args.constraints,
-                  penalty=args.penalty, pop_size=args.pop, n_gen=args.gen,
-                  tiebreak=None if args.tiebreak == "none" else args.tiebreak,
-                  sbx_eta=args.sbx_eta, seed_from=args.seed_from, engine=args.engine,
-                  progress=not args.quiet, paths=getattr(args, "paths", "monotone"))
+    kwargs = dict(
+        objectives=args.objectives,
+        encoding=args.encoding,
+        constraints=args.constraints,
+        penalty=args.penalty,
+        pop_size=args.pop,
+        n_gen=args.gen,
+        tiebreak=None if args.tiebreak == "none" else args.tiebreak,
+        sbx_eta=args.sbx_eta,
+        seed_from=args.seed_from,
+        engine=args.engine,
+        progress=not args.quiet,
+        paths=getattr(args, "paths", "monotone"),
+    )
     out_dir = Path(args.out)
-    if kwargs["paths"] == "free":          # no path at all: exit 1 with the reason, before the GA
+    if kwargs["paths"] == "free":  # no path at all: exit 1 with the reason, before the GA
         why = no_path_error(workspace, monotone=False)
         if why is not None:
             raise why
@@ -227,8 +290,7 @@ def _run(args, workspace) -> int:
     if result.interrupted:
         return EXIT_INTERRUPTED
     if len(result.front) == 0:
-        raise empty_front_error(workspace, result.n_gen, result.n_eval,
-                                free_hint=_exact_free_command(args))
+        raise empty_front_error(workspace, result.n_gen, result.n_eval, free_hint=_exact_free_command(args))
     return 0
 
 
@@ -266,15 +328,21 @@ def _multirun(args, workspace, kwargs, out_dir: Path, reference) -> int:
     }
     write_front(out_dir, workspace, m.front, summary, plots=not args.no_plots)
     if not args.quiet:
-        print(f"merged front of {len(m.runs)} runs: {len(m.front)} paths; wrote {out_dir}/front.csv, "
-              f"paths.json, summary.json and {out_dir}/runs/<seed>/")
+        print(
+            f"merged front of {len(m.runs)} runs: {len(m.front)} paths; wrote {out_dir}/front.csv, "
+            f"paths.json, summary.json and {out_dir}/runs/<seed>/"
+        )
         _print_quality(extra)
     if m.interrupted:
         return EXIT_INTERRUPTED
     if len(m.front) == 0:
-        raise empty_front_error(workspace, sum(r.n_gen for r in m.runs),
-                                sum(r.n_eval for r in m.runs), runs=len(m.runs),
-                                free_hint=_exact_free_command(args))
+        raise empty_front_error(
+            workspace,
+            sum(r.n_gen for r in m.runs),
+            sum(r.n_eval for r in m.runs),
+            runs=len(m.runs),
+            free_hint=_exact_free_command(args),
+        )
     return 0
 
 
@@ -313,8 +381,11 @@ def no_path_error(workspace, *, monotone: bool = True, free_hint: str | None = N
                 hint = "try --corner-cutting (diagonal moves past blocked corners join them)"
             except NoPathError:
                 pass
-        return NoPathError(f"no path joins {s} and {g} at all: they lie in separate free regions "
-                           f"of the {h}x{w} map (8-connected, corner cutting {rule})", hint=hint)
+        return NoPathError(
+            f"no path joins {s} and {g} at all: they lie in separate free regions "
+            f"of the {h}x{w} map (8-connected, corner cutting {rule})",
+            hint=hint,
+        )
     if not monotone:
         return None
     from gapath.planners.weighted_sum import weighted_sum_path
@@ -322,8 +393,9 @@ def no_path_error(workspace, *, monotone: bool = True, free_hint: str | None = N
     try:
         weighted_sum_path(workspace)
     except NoPathError:
-        return NoPathError(f"no column-monotone path joins {s} and {g}; every route must step "
-                           f"back a column", hint=free_hint)
+        return NoPathError(
+            f"no column-monotone path joins {s} and {g}; every route must step back a column", hint=free_hint
+        )
     return None
 
 
@@ -333,12 +405,16 @@ def _exact_free_command(args) -> str:
         cell = getattr(args, flag, None)
         if cell is not None:
             cmd += [f"--{flag}", f"{cell[0]},{cell[1]}"]
-    return ("try `--paths free` (the GA over all simple 8-connected paths) or `"
-            + " ".join(cmd) + "` (their exact front)")
+    return (
+        "try `--paths free` (the GA over all simple 8-connected paths) or `"
+        + " ".join(cmd)
+        + "` (their exact front)"
+    )
 
 
-def empty_front_error(workspace, n_gen: int, n_eval: int, runs: int = 1,
-                      free_hint: str | None = None) -> NoPathError:
+def empty_front_error(
+    workspace, n_gen: int, n_eval: int, runs: int = 1, free_hint: str | None = None
+) -> NoPathError:
     """The :class:`NoPathError` of a GA run whose front is empty: no
     column-monotone path exists (:func:`no_path_error`; ``free_hint`` says
     what to try), or the GA found none of those that do."""
@@ -349,21 +425,28 @@ def empty_front_error(workspace, n_gen: int, n_eval: int, runs: int = 1,
     return NoPathError(
         f"the GA found no feasible path ({what}: {n_gen} generations, {n_eval} evaluations), "
         f"although column-monotone paths join {tuple(workspace.start)} and {tuple(workspace.goal)}",
-        hint="try --seed-from weighted (the default), or a larger --pop or --gen")
+        hint="try --seed-from weighted (the default), or a larger --pop or --gen",
+    )
 
 
 #: Ranges of the numeric options of every command, by argparse ``dest``:
 #: ``(low, low_included, high, high_included)``, None for no bound. Every
 #: float option must also be finite (``nan`` and ``inf`` parse as floats).
 NUMERIC_RANGES: dict[str, tuple] = {
-    **{d: (0, True, None, False) for d in ("seed", "map_seed", "terrain_seed", "obstacles",
-                                            "stationary", "workers", "large_runs")},
-    **{d: (1, True, None, False) for d in ("pop", "gen", "runs", "iterations", "n", "size",
-                                            "ga_pop", "ga_gen", "max_labels")},
+    **{
+        d: (0, True, None, False)
+        for d in ("seed", "map_seed", "terrain_seed", "obstacles", "stationary", "workers", "large_runs")
+    },
+    **{
+        d: (1, True, None, False)
+        for d in ("pop", "gen", "runs", "iterations", "n", "size", "ga_pop", "ga_gen", "max_labels")
+    },
     "heading_bins": (4, True, None, False),
     **{d: (0, True, None, False) for d in ("sbx_eta", "penalty", "radius", "sensor_range")},
-    **{d: (0, False, None, False) for d in ("wheelbase", "speed", "dt", "max_time", "step",
-                                             "arc_length", "heuristic_weight")},
+    **{
+        d: (0, False, None, False)
+        for d in ("wheelbase", "speed", "dt", "max_time", "step", "arc_length", "heuristic_weight")
+    },
     "goal_bias": (0, True, 1, True),
     "fov": (0, False, 180, True),
     "max_steer": (0, False, 90, False),
@@ -418,8 +501,7 @@ def _default_hint(args) -> str | None:
     if planner in ("rrt", "rrt-star"):
         return f"try more --iterations (now {args.iterations}) or another --seed"
     if planner == "hybrid-astar":
-        return ("try a smaller --radius or a larger --max-steer (a tighter turn), or check "
-                "--start and --goal")
+        return "try a smaller --radius or a larger --max-steer (a tighter turn), or check --start and --goal"
     if planner is None:
         return None
     if getattr(args, "corner_cutting", None) is False:
@@ -450,7 +532,7 @@ def _dispatch(args) -> int:
         check_output_dir(out)
     if getattr(args, "func", None) is not None:
         return args.func(args)
-    from gapath.workspace import default_workspace   # demo: every other command has its func
+    from gapath.workspace import default_workspace  # demo: every other command has its func
 
     return _run(args, default_workspace())
 
@@ -476,11 +558,11 @@ def main(argv=None) -> int:
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:
-        raise _usage_exit(exc)
+        raise _usage_exit(exc) from None
     try:
         return _dispatch(args)
     except SystemExit as exc:
-        raise _usage_exit(exc)
+        raise _usage_exit(exc) from None
     except NoPathError as exc:
         return _no_result(exc, args)
     except GapathError as exc:
@@ -498,8 +580,11 @@ def main(argv=None) -> int:
             import traceback
 
             traceback.print_exc()
-        print(f"gapath: internal error: {type(exc).__name__}: {exc} (a bug in gapath; set "
-              f"GAPATH_TRACEBACK=1 to see the traceback)", file=sys.stderr)
+        print(
+            f"gapath: internal error: {type(exc).__name__}: {exc} (a bug in gapath; set "
+            f"GAPATH_TRACEBACK=1 to see the traceback)",
+            file=sys.stderr,
+        )
         return EXIT_INTERNAL
 
 

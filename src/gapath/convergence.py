@@ -138,7 +138,7 @@ class HypervolumeRatioCallback(Callback):
         self.reference = reference
         self.problem = problem
         self.history: list[tuple[int, int, float]] = []
-        self._last = None              # (front, ratio) of the last generation
+        self._last = None  # (front, ratio) of the last generation
         R = np.asarray(getattr(reference, "F", reference), dtype=float)
         if R.ndim != 2 or len(R) == 0:
             raise ConfigError(f"the reference front must be a non-empty (k, m) array, got shape {R.shape}")
@@ -156,20 +156,21 @@ class HypervolumeRatioCallback(Callback):
         ref_names = getattr(self.reference, "objectives", None)
         if names is not None and ref_names is not None and tuple(ref_names) != tuple(names):
             if sorted(ref_names) != sorted(names):
-                raise ConfigError(f"the reference front's objectives {tuple(ref_names)} differ "
-                                  f"from the problem's {tuple(names)}")
+                raise ConfigError(
+                    f"the reference front's objectives {tuple(ref_names)} differ "
+                    f"from the problem's {tuple(names)}"
+                )
             self._R = self._R[:, [list(ref_names).index(n) for n in names]]
             self._set_bounds()
         n_obj = getattr(problem, "n_obj", self._R.shape[1])
         if n_obj != self._R.shape[1]:
-            raise ConfigError(f"the reference front has {self._R.shape[1]} objectives, "
-                              f"the problem {n_obj}")
+            raise ConfigError(f"the reference front has {self._R.shape[1]} objectives, the problem {n_obj}")
 
     def notify(self, algorithm):
         F = _population_front(algorithm, self.problem)
         last = self._last
         if last is not None and last[0].shape == F.shape and np.array_equal(last[0], F):
-            ratio = last[1]        # the same front as last generation (elitism): same value
+            ratio = last[1]  # the same front as last generation (elitism): same value
         else:
             ratio = hypervolume(F, self.ideal, self.nadir) / self._hv_ref if len(F) else 0.0
             self._last = (F.copy(), ratio)

@@ -59,8 +59,15 @@ import numpy as np
 from gapath.errors import ConfigError
 
 __all__ = [
-    "Costmap", "BUILTIN_LAYERS", "CELL_MEAN", "elevation_from_dem", "fractal_terrain",
-    "load_dem", "risk_layer", "solar_step_cost", "evaluate_layer_profiles",
+    "Costmap",
+    "BUILTIN_LAYERS",
+    "CELL_MEAN",
+    "elevation_from_dem",
+    "fractal_terrain",
+    "load_dem",
+    "risk_layer",
+    "solar_step_cost",
+    "evaluate_layer_profiles",
 ]
 
 #: The paper's layer names (section III-A), in its order.
@@ -85,6 +92,7 @@ _DC = np.array([1, 1, 0, -1, -1, -1, 0, 1], dtype=np.int64)
 # validation
 # ---------------------------------------------------------------------------
 
+
 def _check_layer(name: str, values, shape, *, allow_negative: bool = False) -> np.ndarray:
     """``values`` as a C-contiguous float64 array of ``shape``.
 
@@ -98,12 +106,12 @@ def _check_layer(name: str, values, shape, *, allow_negative: bool = False) -> n
         arr = np.asarray(values)
     except Exception:  # pragma: no cover - exotic objects
         raise ConfigError(f"layer {name!r} must be an array, got {type(values).__name__}") from None
-    if arr.dtype == np.bool_ or not (np.issubdtype(arr.dtype, np.integer)
-                                     or np.issubdtype(arr.dtype, np.floating)):
+    if arr.dtype == np.bool_ or not (
+        np.issubdtype(arr.dtype, np.integer) or np.issubdtype(arr.dtype, np.floating)
+    ):
         raise ConfigError(f"layer {name!r} must be a numeric array, got dtype {arr.dtype}")
     if shape is not None and arr.shape != tuple(shape):
-        raise ConfigError(
-            f"layer {name!r} must have the grid's shape {tuple(shape)}, got shape {arr.shape}")
+        raise ConfigError(f"layer {name!r} must have the grid's shape {tuple(shape)}, got shape {arr.shape}")
     if shape is None and (arr.ndim != 2 or arr.size == 0):
         raise ConfigError(f"layer {name!r} must be a non-empty 2-D array, got shape {arr.shape}")
     arr = np.ascontiguousarray(arr, dtype=np.float64)
@@ -116,14 +124,16 @@ def _check_layer(name: str, values, shape, *, allow_negative: bool = False) -> n
         r, c = np.argwhere(bad)[0]
         raise ConfigError(
             f"layer {name!r} holds {float(arr[r, c])!r} at (row {r}, col {c}); costs must be "
-            f"finite (mark impassable cells as obstacles instead)")
+            f"finite (mark impassable cells as obstacles instead)"
+        )
     if not allow_negative:
         neg = arr < 0
         if neg.any():
             r, c = np.argwhere(neg)[0]
             raise ConfigError(
                 f"layer {name!r} holds the negative value {float(arr[r, c])!r} at "
-                f"(row {r}, col {c}); costs must be >= 0")
+                f"(row {r}, col {c}); costs must be >= 0"
+            )
     return arr
 
 
@@ -153,14 +163,17 @@ def _check_cell(value, name, shape) -> tuple[int, int]:
 # terrain sources
 # ---------------------------------------------------------------------------
 
+
 def _dem_error(p: Path, exc: BaseException) -> ConfigError:
     if isinstance(exc, FileNotFoundError):
         return ConfigError(f"DEM file {str(p)!r} does not exist")
     if isinstance(exc, OSError):
         return ConfigError(f"DEM file {str(p)!r} cannot be read ({exc.strerror or exc})")
     if str(exc) == "object array":
-        return ConfigError(f"DEM file {str(p)!r} holds Python objects (pickled), which gapath "
-                           f"does not load; save a numeric array with numpy.save")
+        return ConfigError(
+            f"DEM file {str(p)!r} holds Python objects (pickled), which gapath "
+            f"does not load; save a numeric array with numpy.save"
+        )
     what = "a NumPy .npy array" if p.suffix == ".npy" else "a NumPy .npz archive of arrays"
     return ConfigError(f"DEM file {str(p)!r} is not {what} (not that format, or truncated)")
 
@@ -195,8 +208,11 @@ def check_dem_file(path) -> Path:
             return p
         with open(p, "rb") as f:
             version = np.lib.format.read_magic(f)
-            read = (np.lib.format.read_array_header_1_0 if version == (1, 0)
-                    else np.lib.format.read_array_header_2_0)
+            read = (
+                np.lib.format.read_array_header_1_0
+                if version == (1, 0)
+                else np.lib.format.read_array_header_2_0
+            )
             _, _, dtype = read(f)
     except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
         raise _dem_error(p, exc) from None
@@ -230,8 +246,9 @@ def load_dem(path) -> np.ndarray:
     return _check_layer(f"dem {p.name}", arr, None, allow_negative=True)
 
 
-def elevation_from_dem(dem, shape, *, method: str = "bilinear", offset=(0, 0),
-                       normalise: bool = True) -> np.ndarray:
+def elevation_from_dem(
+    dem, shape, *, method: str = "bilinear", offset=(0, 0), normalise: bool = True
+) -> np.ndarray:
     """An ``(H, W)`` elevation layer from a DEM raster.
 
     Parameters
@@ -290,8 +307,12 @@ def elevation_from_dem(dem, shape, *, method: str = "bilinear", offset=(0, 0),
         x1 = np.minimum(x0 + 1, wd - 1)
         fy = (y - y0)[:, None]
         fx = (x - x0)[None, :]
-        out = ((1 - fy) * (1 - fx) * dem[np.ix_(y0, x0)] + (1 - fy) * fx * dem[np.ix_(y0, x1)]
-               + fy * (1 - fx) * dem[np.ix_(y1, x0)] + fy * fx * dem[np.ix_(y1, x1)])
+        out = (
+            (1 - fy) * (1 - fx) * dem[np.ix_(y0, x0)]
+            + (1 - fy) * fx * dem[np.ix_(y0, x1)]
+            + fy * (1 - fx) * dem[np.ix_(y1, x0)]
+            + fy * fx * dem[np.ix_(y1, x1)]
+        )
     elif method == "reflect":
         r0, c0 = (int(v) for v in offset)
         r0 %= 2 * hd
@@ -387,6 +408,7 @@ def risk_layer(shape, cells, *, cap: float = 1.0) -> np.ndarray:
 # the solar cost
 # ---------------------------------------------------------------------------
 
+
 def solar_step_cost(dr, dc, step, *, rate: float, angle0: float = 0.0):
     """Solar deviation of a step (see :meth:`Costmap.solar_cost`); vectorised."""
     dr = np.asarray(dr, dtype=np.float64)
@@ -401,6 +423,7 @@ def solar_step_cost(dr, dc, step, *, rate: float, angle0: float = 0.0):
 # ---------------------------------------------------------------------------
 # the costmap
 # ---------------------------------------------------------------------------
+
 
 class Costmap:
     """Named cost layers over a workspace (paper section III-A).
@@ -443,8 +466,17 @@ class Costmap:
     ('length', 'elevation', 'solar', 'risk')
     """
 
-    def __init__(self, workspace, *, elevation=None, risk=None, risk_cap: float = 1.0,
-                 solar_rate: float = 0.01, solar_angle0: float = 0.0, layers=None):
+    def __init__(
+        self,
+        workspace,
+        *,
+        elevation=None,
+        risk=None,
+        risk_cap: float = 1.0,
+        solar_rate: float = 0.01,
+        solar_angle0: float = 0.0,
+        layers=None,
+    ):
         self.workspace = workspace
         self._layers: dict[str, np.ndarray] = {}
         self.risk_cells: list[tuple[int, int]] = []
@@ -548,8 +580,7 @@ class Costmap:
         if arr.shape == self.shape and method == "bilinear" and tuple(offset) == (0, 0):
             self._layers["elevation"] = _normalise(arr)
         else:
-            self._layers["elevation"] = elevation_from_dem(arr, self.shape, method=method,
-                                                           offset=offset)
+            self._layers["elevation"] = elevation_from_dem(arr, self.shape, method=method, offset=offset)
 
     def set_risk(self, cells, *, cap: float | None = None) -> None:
         """Set the risk layer from one ``(row, col)`` or several risk cells
@@ -575,8 +606,7 @@ class Costmap:
         if not isinstance(name, str) or not name or "," in name:
             raise ConfigError(f"layer names must be non-empty strings without commas, got {name!r}")
         if name in _RESERVED:
-            raise ConfigError(f"layer name {name!r} is reserved (computed by gapath); "
-                              f"choose another name")
+            raise ConfigError(f"layer name {name!r} is reserved (computed by gapath); choose another name")
         self._layers[name] = _check_layer(name, values, self.shape)
 
     # -- reading layers ----------------------------------------------------
@@ -598,8 +628,10 @@ class Costmap:
             dc = np.abs(np.arange(w) - gc)[None, :]
             out = (np.maximum(dr, dc) + (SQRT2 - 1.0) * np.minimum(dr, dc)) * self.workspace.cell_size
         elif name == "solar":
-            raise ConfigError("layer 'solar' is dynamic (it depends on the step direction and "
-                              "index); use Costmap.solar_cost or Costmap.solar_table")
+            raise ConfigError(
+                "layer 'solar' is dynamic (it depends on the step direction and "
+                "index); use Costmap.solar_cost or Costmap.solar_table"
+            )
         elif name in self._layers:
             out = self._layers[name].view()
         else:
@@ -676,7 +708,7 @@ class Costmap:
                 out[n] = float(np.mean(self._layers[n][p[:, 0], p[:, 1]]))
         return out
 
-    def with_workspace(self, workspace) -> "Costmap":
+    def with_workspace(self, workspace) -> Costmap:
         """A copy over another workspace of the same shape (e.g. with other
         obstacles, start or goal); the layers are shared.
 
@@ -686,8 +718,7 @@ class Costmap:
             If the grid shapes differ.
         """
         if tuple(workspace.shape) != tuple(self.shape):
-            raise ConfigError(f"workspace shape {workspace.shape} differs from the costmap's "
-                              f"{self.shape}")
+            raise ConfigError(f"workspace shape {workspace.shape} differs from the costmap's {self.shape}")
         out = object.__new__(Costmap)
         out.__dict__.update(self.__dict__)
         out.workspace = workspace
@@ -695,7 +726,7 @@ class Costmap:
         out.risk_cells = list(self.risk_cells)
         return out
 
-    def profile_evaluator(self, frame, objectives) -> "LayerProfileEvaluator":
+    def profile_evaluator(self, frame, objectives) -> LayerProfileEvaluator:
         """A callable ``(entries, exits) -> (N, k)`` giving the layer
         objectives ``objectives`` of column profiles of ``frame`` (see
         :func:`evaluate_layer_profiles`)."""
@@ -703,17 +734,19 @@ class Costmap:
 
     def __repr__(self) -> str:
         h, w = self.shape
-        return (f"Costmap({self.workspace.name!r}, {h}x{w}, layers={list(self.names)}, "
-                f"solar_rate={self.solar_rate:g}, risk_cells={self.risk_cells})")
+        return (
+            f"Costmap({self.workspace.name!r}, {h}x{w}, layers={list(self.names)}, "
+            f"solar_rate={self.solar_rate:g}, risk_cells={self.risk_cells})"
+        )
 
 
 # ---------------------------------------------------------------------------
 # layer objectives of column profiles (the GA's kernel)
 # ---------------------------------------------------------------------------
 
+
 @numba.njit(cache=True)
-def evaluate_layer_profiles(entries, exits, col0, layers, agg, flip, transpose, solar_angle0,
-                            solar_rate):
+def evaluate_layer_profiles(entries, exits, col0, layers, agg, flip, transpose, solar_angle0, solar_rate):
     """Layer objectives of column-monotone paths given as column profiles.
 
     Cells are visited in path order exactly as
@@ -753,7 +786,7 @@ def evaluate_layer_profiles(entries, exits, col0, layers, agg, flip, transpose, 
             c = col0 + k
             a = entries[i, k]
             b = exits[i, k]
-            if k > 0:                              # the step into column k
+            if k > 0:  # the step into column k
                 dr = a - exits[i, k - 1]
                 dc = 1
                 # frame step -> workspace step (undo the flip, then the transpose)
@@ -810,11 +843,13 @@ class LayerProfileEvaluator:
     def __init__(self, costmap: Costmap, frame, objectives):
         names = costmap.check_objectives(objectives)
         if "length" in names:
-            raise ConfigError("'length' is computed by the frame's objective kernel, "
-                              "not as a layer objective")
+            raise ConfigError(
+                "'length' is computed by the frame's objective kernel, not as a layer objective"
+            )
         if tuple(costmap.shape) != tuple(frame.workspace.shape):
-            raise ConfigError(f"the costmap's grid {costmap.shape} differs from the "
-                              f"workspace's {frame.workspace.shape}")
+            raise ConfigError(
+                f"the costmap's grid {costmap.shape} differs from the workspace's {frame.workspace.shape}"
+            )
         self.objectives = names
         self.costmap = costmap
         self.frame = frame
@@ -833,6 +868,13 @@ class LayerProfileEvaluator:
 
     def __call__(self, entries, exits) -> np.ndarray:
         return evaluate_layer_profiles(
-            np.asarray(entries, np.int64), np.asarray(exits, np.int64), self.frame.col0,
-            self._layers, self._agg, bool(self.frame.flip), bool(self.frame.transpose),
-            self.costmap.solar_angle0, self.costmap.solar_rate)
+            np.asarray(entries, np.int64),
+            np.asarray(exits, np.int64),
+            self.frame.col0,
+            self._layers,
+            self._agg,
+            bool(self.frame.flip),
+            bool(self.frame.transpose),
+            self.costmap.solar_angle0,
+            self.costmap.solar_rate,
+        )

@@ -15,15 +15,26 @@ import numpy as np
 from matplotlib.patches import Circle, Rectangle
 
 #: Colours of the planners in comparison plots.
-PLANNER_COLOURS = {"hybrid-astar": "tab:blue", "rrt": "tab:orange", "rrt-star": "tab:red",
-                   "astar": "tab:green", "dstar-lite": "tab:purple"}
+PLANNER_COLOURS = {
+    "hybrid-astar": "tab:blue",
+    "rrt": "tab:orange",
+    "rrt-star": "tab:red",
+    "astar": "tab:green",
+    "dstar-lite": "tab:purple",
+}
 
 
 def _base(workspace, ax, stationary=(), appeared=None):
     cs = workspace.cell_size
     h, w = workspace.shape
-    ax.imshow(workspace.occ, cmap="Greys", vmin=0, vmax=1.0, interpolation="nearest",
-              extent=(-0.5 * cs, (w - 0.5) * cs, (h - 0.5) * cs, -0.5 * cs))
+    ax.imshow(
+        workspace.occ,
+        cmap="Greys",
+        vmin=0,
+        vmax=1.0,
+        interpolation="nearest",
+        extent=(-0.5 * cs, (w - 0.5) * cs, (h - 0.5) * cs, -0.5 * cs),
+    )
     for k, o in enumerate(stationary):
         if appeared is not None and not appeared[k]:
             continue
@@ -56,8 +67,10 @@ def plot_run(workspace, result, stationary=(), ax=None, title=None, moving=True)
     if ax is None:
         h, w = workspace.shape
         _, ax = plt.subplots(figsize=(6.0 * w / max(h, w) + 0.4, 6.0 * h / max(h, w) + 0.4))
-    appeared = [any(e["kind"] == "appear" and e.get("obstacle") == f"stationary-{k}"
-                    for e in result.events) for k in range(len(stationary))]
+    appeared = [
+        any(e["kind"] == "appear" and e.get("obstacle") == f"stationary-{k}" for e in result.events)
+        for k in range(len(stationary))
+    ]
     _base(workspace, ax, stationary, appeared)
     g = result.global_path
     if len(g):
@@ -68,8 +81,9 @@ def plot_run(workspace, result, stationary=(), ax=None, title=None, moving=True)
         for k in range(result.obstacles.shape[1]):
             ob = result.obstacles[:, k]
             ax.plot(ob[:, 0], ob[:, 1], "-", color="tab:green", lw=0.8, alpha=0.6)
-    ax.set_title(title or f"{result.planner}: {result.reason}, {result.path_length:.1f} "
-                          f"{_unit(workspace)}", fontsize=9)
+    ax.set_title(
+        title or f"{result.planner}: {result.reason}, {result.path_length:.1f} {_unit(workspace)}", fontsize=9
+    )
     ax.legend(fontsize=7, loc="lower right")
     return ax
 
@@ -84,15 +98,30 @@ def plot_paths(workspace, results: dict, stationary=(), ax=None, title=None):
     for name, res in results.items():
         tr = res.trajectory
         mark = "" if res.success else f" ({res.reason})"
-        ax.plot(tr[:, 1], tr[:, 2], "-", lw=1.8, color=PLANNER_COLOURS.get(name),
-                label=f"{name}: {res.path_length:.1f} {_unit(workspace)}{mark}")
+        ax.plot(
+            tr[:, 1],
+            tr[:, 2],
+            "-",
+            lw=1.8,
+            color=PLANNER_COLOURS.get(name),
+            label=f"{name}: {res.path_length:.1f} {_unit(workspace)}{mark}",
+        )
     ax.set_title(title or workspace.name, fontsize=9)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.0, 1.0))
     return ax
 
 
-def animate_run(workspace, result, stationary=(), path=None, *, fps: int = 8, every: float = 0.5,
-                size: float = 5.0, dpi: int = 64):
+def animate_run(
+    workspace,
+    result,
+    stationary=(),
+    path=None,
+    *,
+    fps: int = 8,
+    every: float = 0.5,
+    size: float = 5.0,
+    dpi: int = 64,
+):
     """Write a GIF of a run: the robot (arrow), its current plan, its trail,
     the appeared stationary obstacles and the moving obstacles.
 
@@ -147,8 +176,18 @@ def animate_run(workspace, result, stationary=(), path=None, *, fps: int = 8, ev
                     if np.all(np.isfinite(q)):
                         ax.add_patch(Circle(q, 0.4 * workspace.cell_size, color="tab:green"))
             x, y, th = tr[i, 1:4]
-            ax.arrow(x, y, 1.2 * math.cos(th), 1.2 * math.sin(th), width=0.35, head_width=1.1,
-                     head_length=0.8, color="tab:red", zorder=6, length_includes_head=True)
+            ax.arrow(
+                x,
+                y,
+                1.2 * math.cos(th),
+                1.2 * math.sin(th),
+                width=0.35,
+                head_width=1.1,
+                head_length=0.8,
+                color="tab:red",
+                zorder=6,
+                length_includes_head=True,
+            )
             ax.set_title(f"{result.planner}  t = {t:5.1f} s", fontsize=8)
             fig.tight_layout(pad=0.3)
             writer.grab_frame()

@@ -42,12 +42,15 @@ class PathFront:
         other metrics under ``"metrics"``)."""
         out = []
         for f, m, p in zip(self.F, self.metrics, self.paths):
-            out.append({
-                "objectives": {n: float(v) for n, v in zip(self.objectives, f)},
-                "metrics": {n: (int(v) if n == "interfering" else float(v))
-                            for n, v in zip(OBJECTIVES, m)},
-                "path": np.asarray(p).tolist(),
-            })
+            out.append(
+                {
+                    "objectives": {n: float(v) for n, v in zip(self.objectives, f)},
+                    "metrics": {
+                        n: (int(v) if n == "interfering" else float(v)) for n, v in zip(OBJECTIVES, m)
+                    },
+                    "path": np.asarray(p).tolist(),
+                }
+            )
         return out
 
     def best(self, name: str) -> int:
@@ -95,5 +98,4 @@ def path_front(problem, X) -> PathFront:
     F = problem.objective_values(metrics)
     keep = select_front(F, metrics)
     X = X[keep]
-    return PathFront(problem.objectives, F[keep], metrics[keep], X,
-                     problem.decode(X) if len(X) else [])
+    return PathFront(problem.objectives, F[keep], metrics[keep], X, problem.decode(X) if len(X) else [])

@@ -85,17 +85,22 @@ ROS_DEFAULTS = dict(negate=False, occupied_thresh=0.65, free_thresh=0.196)
 #: The corner rule of each map source when ``corner_cutting`` is not given
 #: (SPEC): ``False`` = a diagonal move needs both orthogonal neighbours free.
 CORNER_RULES = {
-    "movingai": False,   # MovingAI's rule: its .scen optima assume it
-    "ros": False,        # a robot cannot pass between two diagonal obstacles
-    "image": False,      # an occupancy image is a robot map (map_server defaults)
-    "text": True,        # SPEC's default (Ahmed & Deb's grids)
+    "movingai": False,  # MovingAI's rule: its .scen optima assume it
+    "ros": False,  # a robot cannot pass between two diagonal obstacles
+    "image": False,  # an occupancy image is a robot map (map_server defaults)
+    "text": True,  # SPEC's default (Ahmed & Deb's grids)
     "npy": True,
     "array": True,
 }
 
-_SOURCE_LABELS = {"movingai": "MovingAI .map", "ros": "ROS map_server map",
-                  "image": "occupancy image", "text": "text grid", "npy": ".npy array",
-                  "array": "array"}
+_SOURCE_LABELS = {
+    "movingai": "MovingAI .map",
+    "ros": "ROS map_server map",
+    "image": "occupancy image",
+    "text": "text grid",
+    "npy": ".npy array",
+    "array": "array",
+}
 
 
 def corner_rule(source: str) -> tuple[bool, str]:
@@ -188,9 +193,11 @@ class MapFrame:
         col, up = math.floor(u / self.resolution), math.floor(v / self.resolution)
         if not (0 <= col < self.width and 0 <= up < self.height):
             (x0, y0), (x1, y1) = self.extent()[:2], self.extent()[2:]
-            raise ConfigError(f"{name} {x:g},{y:g} is outside the map, which covers x "
-                              f"{x0:g}..{x1:g} m and y {y0:g}..{y1:g} m"
-                              + (f" (yaw {math.degrees(self.yaw):.1f} deg)" if self.yaw else ""))
+            raise ConfigError(
+                f"{name} {x:g},{y:g} is outside the map, which covers x "
+                f"{x0:g}..{x1:g} m and y {y0:g}..{y1:g} m"
+                + (f" (yaw {math.degrees(self.yaw):.1f} deg)" if self.yaw else "")
+            )
         return self.height - 1 - up, col
 
     def extent(self) -> tuple[float, float, float, float]:
@@ -204,16 +211,15 @@ class MapFrame:
 
     def to_json(self) -> dict:
         """The frame as ``summary.json`` stores it."""
-        return {"origin": [self.x, self.y, self.yaw], "resolution": self.resolution,
-                "units": "m"}
+        return {"origin": [self.x, self.y, self.yaw], "resolution": self.resolution, "units": "m"}
 
 
 # ---------------------------------------------------------------------------
 # errors and file access
 # ---------------------------------------------------------------------------
 
-def _map_error(source, message: str, line: int | None = None,
-               column: int | None = None) -> MapError:
+
+def _map_error(source, message: str, line: int | None = None, column: int | None = None) -> MapError:
     """A MapError reading ``<source>[, line L][, column C]: <message>``."""
     where = str(source)
     if line is not None:
@@ -242,8 +248,9 @@ def _text_lines(path: Path) -> list[str]:
         text = data.decode("utf-8").removeprefix("\ufeff")
     except UnicodeDecodeError as exc:
         line = data.count(b"\n", 0, exc.start) + 1
-        raise _map_error(path, f"byte 0x{data[exc.start]:02x} is not UTF-8 text "
-                               "(is this a binary file?)", line) from None
+        raise _map_error(
+            path, f"byte 0x{data[exc.start]:02x} is not UTF-8 text (is this a binary file?)", line
+        ) from None
     lines = [line.rstrip() for line in text.split("\n")]
     while lines and not lines[-1]:
         lines.pop()
@@ -261,17 +268,18 @@ def _parse_int(text: str, source, line: int, what: str, minimum: int) -> int:
 # the parsed grid and the workspace built from it
 # ---------------------------------------------------------------------------
 
+
 @dataclass(frozen=True)
 class _Grid:
     """What a map file holds before it becomes a Workspace."""
 
     blocked: np.ndarray
-    unknown: np.ndarray | None = None   # cells neither free nor blocked (images)
-    cell_size: float | None = None      # from the file (ROS resolution)
+    unknown: np.ndarray | None = None  # cells neither free nor blocked (images)
+    cell_size: float | None = None  # from the file (ROS resolution)
     start: tuple[int, int] | None = None  # marked in the file (text S)
-    goal: tuple[int, int] | None = None   # marked in the file (text G)
-    corner_cutting: bool = True          # the source's rule (CORNER_RULES)
-    frame: MapFrame | None = None        # world frame (ROS maps)
+    goal: tuple[int, int] | None = None  # marked in the file (text G)
+    corner_cutting: bool = True  # the source's rule (CORNER_RULES)
+    frame: MapFrame | None = None  # world frame (ROS maps)
 
     def occupancy(self, policy: str) -> np.ndarray:
         """Obstacles, unknown cells included when ``policy`` is "blocked"."""
@@ -285,20 +293,25 @@ def _check_unknown(unknown) -> None:
         raise ConfigError(f"unknown must be 'blocked' or 'free', got {unknown!r}")
 
 
-def _workspace(occ, source, start, goal, *, corner_cutting, cell_size, name,
-               frame=None) -> Workspace:
+def _workspace(occ, source, start, goal, *, corner_cutting, cell_size, name, frame=None) -> Workspace:
     """Build the Workspace, naming ``source`` in its errors."""
     try:
-        return Workspace(occ, start, goal, cell_size=cell_size,
-                         corner_cutting=corner_cutting, name=name, frame=frame)
+        return Workspace(
+            occ, start, goal, cell_size=cell_size, corner_cutting=corner_cutting, name=name, frame=frame
+        )
     except (ConfigError, MapError) as exc:
         message = str(exc)
-        defaulted = [label for label, cell in (("start", start), ("goal", goal))
-                     if cell is None and message.startswith(f"{label} (")]
+        defaulted = [
+            label
+            for label, cell in (("start", start), ("goal", goal))
+            if cell is None and message.startswith(f"{label} (")
+        ]
         if defaulted and "obstacle" in message:
-            message += (f" (the default {defaulted[0]}, the {'bottom-left' if defaulted[0] == 'start' else 'top-right'} "
-                        f"cell; choose a free cell with --{defaulted[0]} ROW,COL, or "
-                        f"{defaulted[0]}=(row, col) in Python)")
+            message += (
+                f" (the default {defaulted[0]}, the {'bottom-left' if defaulted[0] == 'start' else 'top-right'} "
+                f"cell; choose a free cell with --{defaulted[0]} ROW,COL, or "
+                f"{defaulted[0]}=(row, col) in Python)"
+            )
         raise type(exc)(f"{source}: {message}") from None
 
 
@@ -309,12 +322,15 @@ def _load(reader, path, start, goal, *, corner_cutting, cell_size, unknown, name
     path = Path(path)
     grid = reader(path)
     return _workspace(
-        grid.occupancy(unknown), path,
+        grid.occupancy(unknown),
+        path,
         grid.start if start is None else start,
         grid.goal if goal is None else goal,
         corner_cutting=grid.corner_cutting if corner_cutting is None else corner_cutting,
         cell_size=cell_size if cell_size is not None else (grid.cell_size or 1.0),
-        name=path.stem if name is None else name, frame=grid.frame)
+        name=path.stem if name is None else name,
+        frame=grid.frame,
+    )
 
 
 # ---------------------------------------------------------------------------
@@ -322,17 +338,24 @@ def _load(reader, path, start, goal, *, corner_cutting, cell_size, unknown, name
 # ---------------------------------------------------------------------------
 
 _FREE, _BLOCKED, _START, _GOAL, _BAD = range(5)
-_MOVINGAI_LEGEND = {".": _FREE, "G": _FREE, "S": _FREE,
-                    "@": _BLOCKED, "O": _BLOCKED, "T": _BLOCKED, "W": _BLOCKED}
+_MOVINGAI_LEGEND = {
+    ".": _FREE,
+    "G": _FREE,
+    "S": _FREE,
+    "@": _BLOCKED,
+    "O": _BLOCKED,
+    "T": _BLOCKED,
+    "W": _BLOCKED,
+}
 _TEXT_LEGEND = {".": _FREE, "#": _BLOCKED, "@": _BLOCKED, "S": _START, "G": _GOAL}
 
 
-def _check_row_lengths(rows: list[str], source, first_line: int, width: int,
-                       expected: str) -> None:
+def _check_row_lengths(rows: list[str], source, first_line: int, width: int, expected: str) -> None:
     for i, row in enumerate(rows):
         if len(row) != width or not row:
-            raise _map_error(source, f"row has {len(row)} characters, expected {width} "
-                                     f"({expected})", first_line + i)
+            raise _map_error(
+                source, f"row has {len(row)} characters, expected {width} ({expected})", first_line + i
+            )
 
 
 def _classify(rows: list[str], source, first_line: int, legend: dict) -> np.ndarray:
@@ -347,8 +370,9 @@ def _classify(rows: list[str], source, first_line: int, legend: dict) -> np.ndar
     if len(bad):
         r, c = bad[0]
         allowed = ", ".join(repr(ch) for ch in legend)
-        raise _map_error(source, f"unknown character {rows[r][c]!r}, expected one of {allowed}",
-                         first_line + r, c + 1)
+        raise _map_error(
+            source, f"unknown character {rows[r][c]!r}, expected one of {allowed}", first_line + r, c + 1
+        )
     return codes
 
 
@@ -357,15 +381,20 @@ def _mark(codes: np.ndarray, code: int, char: str, source, first_line: int):
     cells = np.argwhere(codes == code)
     if len(cells) > 1:
         r, c = cells[1]
-        raise _map_error(source, f"second {char!r} mark (the first is at row {cells[0][0]}, "
-                                 f"col {cells[0][1]}); expected at most one",
-                         first_line + r, c + 1)
+        raise _map_error(
+            source,
+            f"second {char!r} mark (the first is at row {cells[0][0]}, "
+            f"col {cells[0][1]}); expected at most one",
+            first_line + r,
+            c + 1,
+        )
     return (int(cells[0][0]), int(cells[0][1])) if len(cells) else None
 
 
 # ---------------------------------------------------------------------------
 # MovingAI .map
 # ---------------------------------------------------------------------------
+
 
 def _header_value(lines: list[str], index: int, key: str, source) -> str:
     found = lines[index] if index < len(lines) else None
@@ -390,14 +419,14 @@ def _read_movingai(path: Path) -> _Grid:
     _check_row_lengths(rows[:height], path, 5, width, "width on line 3")
     if len(rows) != height:
         where = 5 + min(len(rows), height)
-        raise _map_error(path, f"found {len(rows)} rows, expected {height} (height on line 2)",
-                         where)
+        raise _map_error(path, f"found {len(rows)} rows, expected {height} (height on line 2)", where)
     codes = _classify(rows, path, 5, _MOVINGAI_LEGEND)
     return _Grid(blocked=codes == _BLOCKED, corner_cutting=CORNER_RULES["movingai"])
 
 
-def load_movingai(path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
-                  unknown="blocked", name=None) -> Workspace:
+def load_movingai(
+    path, start=None, goal=None, *, corner_cutting=None, cell_size=None, unknown="blocked", name=None
+) -> Workspace:
     """Load a MovingAI benchmark ``.map`` file.
 
     The file has the header lines ``type octile``, ``height H``, ``width W``,
@@ -439,8 +468,16 @@ def load_movingai(path, start=None, goal=None, *, corner_cutting=None, cell_size
     >>> ws.shape, ws.n_obstacles                              # doctest: +SKIP
     ((32, 32), 0)
     """
-    return _load(_read_movingai, path, start, goal, corner_cutting=corner_cutting,
-                 cell_size=cell_size, unknown=unknown, name=name)
+    return _load(
+        _read_movingai,
+        path,
+        start,
+        goal,
+        corner_cutting=corner_cutting,
+        cell_size=cell_size,
+        unknown=unknown,
+        name=name,
+    )
 
 
 def save_movingai(workspace, path) -> None:
@@ -485,6 +522,7 @@ def save_movingai(workspace, path) -> None:
 # ---------------------------------------------------------------------------
 # MovingAI .scen
 # ---------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class Scenario:
@@ -536,22 +574,33 @@ class Scenario:
             folder = Path(self.source).parent if self.source is not None else Path(".")
         candidate = Path(folder) / self.map
         if not candidate.is_file():
-            raise _map_error(self.source or "scenario", f"map {self.map!r} not found in {folder}",
-                             self.line)
+            raise _map_error(self.source or "scenario", f"map {self.map!r} not found in {folder}", self.line)
         return candidate
 
 
-_SCEN_COLUMNS = ("bucket", "map", "map width", "map height", "start x", "start y",
-                 "goal x", "goal y", "optimal length")
+_SCEN_COLUMNS = (
+    "bucket",
+    "map",
+    "map width",
+    "map height",
+    "start x",
+    "start y",
+    "goal x",
+    "goal y",
+    "optimal length",
+)
 
 
 def _parse_scenario(text: str, source: Path, line: int) -> Scenario:
     fields = text.split("\t")
     if len(fields) != len(_SCEN_COLUMNS):
-        fields = text.split()   # tolerate space-separated copies
+        fields = text.split()  # tolerate space-separated copies
     if len(fields) != len(_SCEN_COLUMNS):
-        raise _map_error(source, f"expected 9 tab-separated columns ({', '.join(_SCEN_COLUMNS)}), "
-                                 f"found {len(fields)} in {text!r}", line)
+        raise _map_error(
+            source,
+            f"expected 9 tab-separated columns ({', '.join(_SCEN_COLUMNS)}), found {len(fields)} in {text!r}",
+            line,
+        )
     fields = [f.strip() for f in fields]
 
     def integer(i, minimum=0):
@@ -560,20 +609,19 @@ def _parse_scenario(text: str, source: Path, line: int) -> Scenario:
     bucket, width, height = integer(0), integer(2, 1), integer(3, 1)
     map_name = re.split(r"[\\/]", fields[1])[-1]
     if not map_name:
-        raise _map_error(source, f"column 2 (map): expected a map file name, got {fields[1]!r}",
-                         line)
+        raise _map_error(source, f"column 2 (map): expected a map file name, got {fields[1]!r}", line)
     start, goal = (integer(5), integer(4)), (integer(7), integer(6))
     for label, (r, c) in (("start", start), ("goal", goal)):
         if r >= height or c >= width:
-            raise _map_error(source, f"{label} (x={c}, y={r}) is outside the "
-                                     f"{width}x{height} map", line)
+            raise _map_error(source, f"{label} (x={c}, y={r}) is outside the {width}x{height} map", line)
     try:
         optimal = float(fields[8])
     except ValueError:
         optimal = math.nan
     if not (math.isfinite(optimal) and optimal >= 0):
-        raise _map_error(source, "column 9 (optimal length): expected a non-negative number, "
-                                 f"got {fields[8]!r}", line)
+        raise _map_error(
+            source, f"column 9 (optimal length): expected a non-negative number, got {fields[8]!r}", line
+        )
     return Scenario(bucket, map_name, width, height, start, goal, optimal, source, line)
 
 
@@ -612,13 +660,15 @@ def load_scenarios(path) -> list[Scenario]:
     if len(header) != 2 or header[0] != "version" or header[1] not in ("1", "1.0"):
         got = repr(lines[0]) if lines else "an empty file"
         raise _map_error(path, f"expected the header line 'version 1', got {got}", 1)
-    return [_parse_scenario(text, path, number)
-            for number, text in enumerate(lines[1:], start=2) if text.strip()]
+    return [
+        _parse_scenario(text, path, number) for number, text in enumerate(lines[1:], start=2) if text.strip()
+    ]
 
 
 # ---------------------------------------------------------------------------
 # plain text and NumPy
 # ---------------------------------------------------------------------------
+
 
 def _read_text(path: Path) -> _Grid:
     rows = _text_lines(path)
@@ -626,13 +676,17 @@ def _read_text(path: Path) -> _Grid:
         raise _map_error(path, "empty map, expected rows of '.' (free) and '#' or '@' (blocked)")
     _check_row_lengths(rows, path, 1, len(rows[0]), "the length of line 1")
     codes = _classify(rows, path, 1, _TEXT_LEGEND)
-    return _Grid(blocked=codes == _BLOCKED, corner_cutting=CORNER_RULES["text"],
-                 start=_mark(codes, _START, "S", path, 1),
-                 goal=_mark(codes, _GOAL, "G", path, 1))
+    return _Grid(
+        blocked=codes == _BLOCKED,
+        corner_cutting=CORNER_RULES["text"],
+        start=_mark(codes, _START, "S", path, 1),
+        goal=_mark(codes, _GOAL, "G", path, 1),
+    )
 
 
-def load_text(path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
-              unknown="blocked", name=None) -> Workspace:
+def load_text(
+    path, start=None, goal=None, *, corner_cutting=None, cell_size=None, unknown="blocked", name=None
+) -> Workspace:
     """Load a plain text grid.
 
     One line per row: ``.`` free, ``#`` or ``@`` blocked, optionally one
@@ -669,8 +723,16 @@ def load_text(path, start=None, goal=None, *, corner_cutting=None, cell_size=Non
     >>> load_text("tiny.txt").n_obstacles                       # doctest: +SKIP
     1
     """
-    return _load(_read_text, path, start, goal, corner_cutting=corner_cutting,
-                 cell_size=cell_size, unknown=unknown, name=name)
+    return _load(
+        _read_text,
+        path,
+        start,
+        goal,
+        corner_cutting=corner_cutting,
+        cell_size=cell_size,
+        unknown=unknown,
+        name=name,
+    )
 
 
 def _check_array(array, source) -> np.ndarray:
@@ -682,11 +744,12 @@ def _check_array(array, source) -> np.ndarray:
         return arr
     if not (np.issubdtype(arr.dtype, np.integer) or np.issubdtype(arr.dtype, np.floating)):
         raise _map_error(source, f"expected a boolean or 0/1 array, got dtype {arr.dtype}")
-    bad = np.argwhere((arr != 0) & (arr != 1))   # NaN included
+    bad = np.argwhere((arr != 0) & (arr != 1))  # NaN included
     if len(bad):
         r, c = bad[0]
-        raise _map_error(source, f"value {arr[r, c].item()!r} at (row {r}, col {c}); "
-                                 "expected a boolean or 0/1 array")
+        raise _map_error(
+            source, f"value {arr[r, c].item()!r} at (row {r}, col {c}); expected a boolean or 0/1 array"
+        )
     return arr.astype(bool)
 
 
@@ -701,8 +764,9 @@ def _read_npy(path: Path) -> _Grid:
     return _Grid(blocked=_check_array(array, path), corner_cutting=CORNER_RULES["npy"])
 
 
-def load_npy(path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
-             unknown="blocked", name=None) -> Workspace:
+def load_npy(
+    path, start=None, goal=None, *, corner_cutting=None, cell_size=None, unknown="blocked", name=None
+) -> Workspace:
     """Load a NumPy ``.npy`` occupancy array (True/1 = obstacle).
 
     Read with ``allow_pickle=False``. The array must be 2-D, boolean or
@@ -734,12 +798,21 @@ def load_npy(path, start=None, goal=None, *, corner_cutting=None, cell_size=None
     >>> load_npy("grid.npy").shape                    # doctest: +SKIP
     (4, 4)
     """
-    return _load(_read_npy, path, start, goal, corner_cutting=corner_cutting,
-                 cell_size=cell_size, unknown=unknown, name=name)
+    return _load(
+        _read_npy,
+        path,
+        start,
+        goal,
+        corner_cutting=corner_cutting,
+        cell_size=cell_size,
+        unknown=unknown,
+        name=name,
+    )
 
 
-def from_array(array, start=None, goal=None, *, corner_cutting=None, cell_size=1.0,
-               name="array") -> Workspace:
+def from_array(
+    array, start=None, goal=None, *, corner_cutting=None, cell_size=1.0, name="array"
+) -> Workspace:
     """A workspace from an (H, W) array, True/1 for obstacles.
 
     Like :class:`Workspace`, with the array checked first so that the error
@@ -772,8 +845,15 @@ def from_array(array, start=None, goal=None, *, corner_cutting=None, cell_size=1
     """
     if corner_cutting is None:
         corner_cutting = CORNER_RULES["array"]
-    return _workspace(_check_array(array, "array"), "array", start, goal,
-                      corner_cutting=corner_cutting, cell_size=cell_size, name=name)
+    return _workspace(
+        _check_array(array, "array"),
+        "array",
+        start,
+        goal,
+        corner_cutting=corner_cutting,
+        cell_size=cell_size,
+        name=name,
+    )
 
 
 # ---------------------------------------------------------------------------
@@ -795,14 +875,23 @@ def _read_image(path: Path) -> tuple[np.ndarray, np.ndarray]:
     except (OSError, ValueError, SyntaxError, Image.DecompressionBombError) as exc:
         raise _map_error(path, f"cannot read the image ({exc})") from None
     if la is None:
-        raise _map_error(path, f"image mode {mode!r} is not supported, expected an 8-bit "
-                               "grey or colour image (PGM P5 / PNG)")
+        raise _map_error(
+            path,
+            f"image mode {mode!r} is not supported, expected an 8-bit grey or colour image (PGM P5 / PNG)",
+        )
     pixels = np.asarray(la)
     return pixels[..., 0], pixels[..., 1]
 
 
-def _threshold(grey: np.ndarray, alpha: np.ndarray, *, negate: bool, occupied_thresh: float,
-               free_thresh: float, mode: str = "trinary") -> _Grid:
+def _threshold(
+    grey: np.ndarray,
+    alpha: np.ndarray,
+    *,
+    negate: bool,
+    occupied_thresh: float,
+    free_thresh: float,
+    mode: str = "trinary",
+) -> _Grid:
     """map_server's rule: occupancy ``p = (255 - v) / 255`` (``v / 255`` when
     negated) is occupied above ``occupied_thresh``, free below
     ``free_thresh``, unknown otherwise. In ``scale`` mode non-opaque pixels
@@ -824,8 +913,9 @@ def _read_plain_image(path: Path) -> _Grid:
     return replace(grid, corner_cutting=CORNER_RULES["image"])
 
 
-def load_image(path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
-               unknown="blocked", name=None) -> Workspace:
+def load_image(
+    path, start=None, goal=None, *, corner_cutting=None, cell_size=None, unknown="blocked", name=None
+) -> Workspace:
     """Load an occupancy image (``.pgm``, ``.png``) with map_server defaults.
 
     Same thresholding as :func:`load_ros` with ``negate: 0``,
@@ -861,8 +951,16 @@ def load_image(path, start=None, goal=None, *, corner_cutting=None, cell_size=No
     >>> load_image("map.pgm", start=(200, 160), goal=(170, 220)).shape  # doctest: +SKIP
     (384, 384)
     """
-    return _load(_read_plain_image, path, start, goal, corner_cutting=corner_cutting,
-                 cell_size=cell_size, unknown=unknown, name=name)
+    return _load(
+        _read_plain_image,
+        path,
+        start,
+        goal,
+        corner_cutting=corner_cutting,
+        cell_size=cell_size,
+        unknown=unknown,
+        name=name,
+    )
 
 
 def _yaml_mapping(path: Path) -> dict:
@@ -871,11 +969,15 @@ def _yaml_mapping(path: Path) -> dict:
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         problem = getattr(exc, "problem", None) or exc
-        raise _map_error(path, f"invalid YAML ({problem})",
-                         mark.line + 1 if mark is not None else None) from None
+        raise _map_error(
+            path, f"invalid YAML ({problem})", mark.line + 1 if mark is not None else None
+        ) from None
     if not isinstance(meta, dict):
-        raise _map_error(path, "expected a mapping with the map_server keys image, resolution, "
-                               f"origin, negate, occupied_thresh, free_thresh; got {meta!r}")
+        raise _map_error(
+            path,
+            "expected a mapping with the map_server keys image, resolution, "
+            f"origin, negate, occupied_thresh, free_thresh; got {meta!r}",
+        )
     return meta
 
 
@@ -890,31 +992,44 @@ def _yaml_value(meta: dict, key: str, path: Path, expected: str, valid):
 
 
 def _is_number(value) -> bool:
-    return (isinstance(value, (int, float)) and not isinstance(value, bool)
-            and math.isfinite(value))
+    return isinstance(value, (int, float)) and not isinstance(value, bool) and math.isfinite(value)
 
 
 def _read_ros(path: Path) -> _Grid:
     meta = _yaml_mapping(path)
     mode = meta.get("mode", "trinary")
     if mode == "raw":
-        raise _map_error(path, "key 'mode': 'raw' stores occupancy values, not grey levels, and "
-                               "is not supported; use 'trinary' or 'scale'")
+        raise _map_error(
+            path,
+            "key 'mode': 'raw' stores occupancy values, not grey levels, and "
+            "is not supported; use 'trinary' or 'scale'",
+        )
     if mode not in ("trinary", "scale"):
         raise _map_error(path, f"key 'mode': expected 'trinary' or 'scale', got {mode!r}")
-    image = _yaml_value(meta, "image", path, "the image file name",
-                        lambda v: isinstance(v, str) and v.strip())
-    resolution = _yaml_value(meta, "resolution", path, "a positive number (metres per cell)",
-                             lambda v: _is_number(v) and v > 0)
-    origin = _yaml_value(meta, "origin", path, "[x, y, yaw]",
-                         lambda v: isinstance(v, list) and len(v) == 3 and all(map(_is_number, v)))
+    image = _yaml_value(
+        meta, "image", path, "the image file name", lambda v: isinstance(v, str) and v.strip()
+    )
+    resolution = _yaml_value(
+        meta, "resolution", path, "a positive number (metres per cell)", lambda v: _is_number(v) and v > 0
+    )
+    origin = _yaml_value(
+        meta,
+        "origin",
+        path,
+        "[x, y, yaw]",
+        lambda v: isinstance(v, list) and len(v) == 3 and all(map(_is_number, v)),
+    )
     negate = _yaml_value(meta, "negate", path, "0 or 1", lambda v: v in (0, 1))
-    thresholds = {key: _yaml_value(meta, key, path, "a number in [0, 1]",
-                                   lambda v: _is_number(v) and 0 <= v <= 1)
-                  for key in ("occupied_thresh", "free_thresh")}
+    thresholds = {
+        key: _yaml_value(meta, key, path, "a number in [0, 1]", lambda v: _is_number(v) and 0 <= v <= 1)
+        for key in ("occupied_thresh", "free_thresh")
+    }
     if thresholds["free_thresh"] > thresholds["occupied_thresh"]:
-        raise _map_error(path, f"key 'free_thresh': {thresholds['free_thresh']!r} is above "
-                               f"occupied_thresh {thresholds['occupied_thresh']!r}")
+        raise _map_error(
+            path,
+            f"key 'free_thresh': {thresholds['free_thresh']!r} is above "
+            f"occupied_thresh {thresholds['occupied_thresh']!r}",
+        )
     try:
         grey, alpha = _read_image(path.parent / image.strip())
     except MapError as exc:
@@ -922,12 +1037,12 @@ def _read_ros(path: Path) -> _Grid:
     grid = _threshold(grey, alpha, negate=bool(negate), mode=mode, **thresholds)
     h, w = grey.shape
     frame = MapFrame(*map(float, origin), float(resolution), int(h), int(w))
-    return replace(grid, cell_size=float(resolution), corner_cutting=CORNER_RULES["ros"],
-                   frame=frame)
+    return replace(grid, cell_size=float(resolution), corner_cutting=CORNER_RULES["ros"], frame=frame)
 
 
-def load_ros(yaml_path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
-             unknown="blocked", name=None) -> Workspace:
+def load_ros(
+    yaml_path, start=None, goal=None, *, corner_cutting=None, cell_size=None, unknown="blocked", name=None
+) -> Workspace:
     """Load a ROS map_server map (``.yaml`` description + image).
 
     Required keys, as map_server reads them: ``image`` (relative to the yaml
@@ -979,8 +1094,16 @@ def load_ros(yaml_path, start=None, goal=None, *, corner_cutting=None, cell_size
     >>> ws.frame.to_world([ws.start]).round(3).tolist()                # doctest: +SKIP
     [[0.525, 0.475]]
     """
-    return _load(_read_ros, yaml_path, start, goal, corner_cutting=corner_cutting,
-                 cell_size=cell_size, unknown=unknown, name=name)
+    return _load(
+        _read_ros,
+        yaml_path,
+        start,
+        goal,
+        corner_cutting=corner_cutting,
+        cell_size=cell_size,
+        unknown=unknown,
+        name=name,
+    )
 
 
 # ---------------------------------------------------------------------------
@@ -989,28 +1112,38 @@ def load_ros(yaml_path, start=None, goal=None, *, corner_cutting=None, cell_size
 
 _READERS = {
     ".map": _read_movingai,
-    ".yaml": _read_ros, ".yml": _read_ros,
-    ".pgm": _read_plain_image, ".png": _read_plain_image,
-    ".txt": _read_text, ".grid": _read_text,
+    ".yaml": _read_ros,
+    ".yml": _read_ros,
+    ".pgm": _read_plain_image,
+    ".png": _read_plain_image,
+    ".txt": _read_text,
+    ".grid": _read_text,
     ".npy": _read_npy,
 }
 
 
-_SOURCES = {_read_movingai: "movingai", _read_ros: "ros", _read_plain_image: "image",
-            _read_text: "text", _read_npy: "npy"}
+_SOURCES = {
+    _read_movingai: "movingai",
+    _read_ros: "ros",
+    _read_plain_image: "image",
+    _read_text: "text",
+    _read_npy: "npy",
+}
 
 
 def _reader_for(path: Path):
     reader = _READERS.get(path.suffix.lower())
     if reader is None:
         hint = "; scenario files are read with load_scenarios" if path.suffix.lower() == ".scen" else ""
-        raise _map_error(path, f"unknown map extension {path.suffix!r}, expected one of "
-                               f"{', '.join(_READERS)}{hint}")
+        raise _map_error(
+            path, f"unknown map extension {path.suffix!r}, expected one of {', '.join(_READERS)}{hint}"
+        )
     return reader
 
 
-def load_map(path, start=None, goal=None, *, corner_cutting=None, cell_size=None,
-             unknown="blocked", name=None) -> Workspace:
+def load_map(
+    path, start=None, goal=None, *, corner_cutting=None, cell_size=None, unknown="blocked", name=None
+) -> Workspace:
     """Load a map file, the format chosen by its extension.
 
     ``.map`` MovingAI (:func:`load_movingai`), ``.yaml``/``.yml`` ROS
@@ -1054,8 +1187,16 @@ def load_map(path, start=None, goal=None, *, corner_cutting=None, cell_size=None
     ((32, 32), False)
     """
     path = Path(path)
-    return _load(_reader_for(path), path, start, goal, corner_cutting=corner_cutting,
-                 cell_size=cell_size, unknown=unknown, name=name)
+    return _load(
+        _reader_for(path),
+        path,
+        start,
+        goal,
+        corner_cutting=corner_cutting,
+        cell_size=cell_size,
+        unknown=unknown,
+        name=name,
+    )
 
 
 def load_occupancy(path, *, unknown="blocked") -> np.ndarray:

@@ -27,8 +27,16 @@ import numpy as np
 from gapath.errors import ConfigError
 
 __all__ = [
-    "TOL", "REF_POINT", "close", "normalisation_bounds", "hypervolume", "hv_ratio",
-    "igd_plus", "coverage", "nondominated", "dedupe",
+    "TOL",
+    "REF_POINT",
+    "close",
+    "normalisation_bounds",
+    "hypervolume",
+    "hv_ratio",
+    "igd_plus",
+    "coverage",
+    "nondominated",
+    "dedupe",
 ]
 
 #: SPEC tolerance for equal objective values.
@@ -131,8 +139,7 @@ def hypervolume(front, ideal, nadir) -> float:
         return 0.0
     # norm_ref_point=False: the reference point is given in normalised units
     # (with the default True pymoo would normalise 1.1 a second time).
-    hv = HV(ref_point=np.full(m, REF_POINT), ideal=ideal, nadir=nadir,
-            zero_to_one=True, norm_ref_point=False)
+    hv = HV(ref_point=np.full(m, REF_POINT), ideal=ideal, nadir=nadir, zero_to_one=True, norm_ref_point=False)
     return float(hv(F))
 
 
@@ -229,8 +236,8 @@ def coverage(front, reference, tol: float = TOL) -> float:
     matched = np.zeros(len(R), bool)
     chunk = max(1, 2_000_000 // max(1, F.size))
     for s in range(0, len(R), chunk):
-        eq = close(R[s:s + chunk, None, :], F[None, :, :], tol).all(axis=2)
-        matched[s:s + chunk] = eq.any(axis=1)
+        eq = close(R[s : s + chunk, None, :], F[None, :, :], tol).all(axis=2)
+        matched[s : s + chunk] = eq.any(axis=1)
     return float(matched.mean())
 
 
@@ -270,12 +277,12 @@ def nondominated(F, tol: float = 0.0) -> np.ndarray:
     dominated = np.zeros(len(F), bool)
     chunk = max(1, 2_000_000 // max(1, F.size))
     for s in range(0, len(F), chunk):
-        B = F[s:s + chunk, None, :]          # candidates to be dominated
-        A = F[None, :, :]                     # potential dominators
+        B = F[s : s + chunk, None, :]  # candidates to be dominated
+        A = F[None, :, :]  # potential dominators
         eq = close(A, B, tol)
         not_worse = ((A <= B) | eq).all(axis=2)
         better = ((A < B) & ~eq).any(axis=2)
-        dominated[s:s + chunk] = (not_worse & better).any(axis=1)
+        dominated[s : s + chunk] = (not_worse & better).any(axis=1)
     return np.flatnonzero(~dominated)
 
 

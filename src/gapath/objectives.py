@@ -35,9 +35,7 @@ SQRT2 = math.sqrt(2.0)
 QUARTER_PI = math.pi / 4.0
 
 # direction index (counter-clockwise in eighths) of a step (dr, dc), row up = -1
-_DIR = np.array([[3, 2, 1],
-                 [4, -1, 0],
-                 [5, 6, 7]], dtype=np.int64)
+_DIR = np.array([[3, 2, 1], [4, -1, 0], [5, 6, 7]], dtype=np.int64)
 
 
 def objective_index(names) -> list[int]:
@@ -224,7 +222,8 @@ def _check_path(workspace, path) -> np.ndarray:
         k = int(np.flatnonzero(step != 1)[0])
         raise ConfigError(
             f"path cells {k} {tuple(int(v) for v in p[k])} and {k + 1} "
-            f"{tuple(int(v) for v in p[k + 1])} are not 8-adjacent")
+            f"{tuple(int(v) for v in p[k + 1])} are not 8-adjacent"
+        )
     return p.astype(np.int64)
 
 
@@ -251,8 +250,14 @@ def evaluate_path(workspace, path) -> dict[str, float]:
     True
     """
     p = _check_path(workspace, path)
-    res = evaluate_paths(p[None], np.array([len(p)]), workspace.occ, workspace.potential,
-                         workspace.cell_size, workspace.corner_cutting)[0]
+    res = evaluate_paths(
+        p[None],
+        np.array([len(p)]),
+        workspace.occ,
+        workspace.potential,
+        workspace.cell_size,
+        workspace.corner_cutting,
+    )[0]
     out = dict(zip(OBJECTIVES, (float(v) for v in res)))
     out["interfering"] = int(out["interfering"])
     return out

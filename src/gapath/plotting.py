@@ -65,10 +65,8 @@ def label_map_axes(ax, workspace, scale: float = 1.0, unit: str | None = None) -
         res, h = frame.resolution, frame.height
         xs = [v for v in MaxNLocator(nbins=6).tick_values(x0, x1) if x0 <= v <= x1]
         ys = [v for v in MaxNLocator(nbins=6).tick_values(y0, y1) if y0 <= v <= y1]
-        ax.set_xticks([((v - frame.x) / res - 0.5) * scale for v in xs],
-                      [f"{v:g}" for v in xs])
-        ax.set_yticks([(h - (v - frame.y) / res - 0.5) * scale for v in ys],
-                      [f"{v:g}" for v in ys])
+        ax.set_xticks([((v - frame.x) / res - 0.5) * scale for v in xs], [f"{v:g}" for v in xs])
+        ax.set_yticks([(h - (v - frame.y) / res - 0.5) * scale for v in ys], [f"{v:g}" for v in ys])
         ax.set_xlabel("x (m, map frame)")
         ax.set_ylabel("y (m, map frame)")
         return
@@ -109,8 +107,14 @@ def plot_front(front, ax=None, reference=None, title=None, workspace=None):
     names = front.objectives
     if reference is not None and len(reference):
         R = np.asarray(reference)
-        ax.scatter(R[:, 0], R[:, 1] if R.shape[1] > 1 else np.zeros(len(R)), s=40,
-                   facecolors="none", edgecolors="0.6", label="reference")
+        ax.scatter(
+            R[:, 0],
+            R[:, 1] if R.shape[1] > 1 else np.zeros(len(R)),
+            s=40,
+            facecolors="none",
+            edgecolors="0.6",
+            label="reference",
+        )
     if len(F):
         y = F[:, 1] if F.shape[1] > 1 else np.zeros(len(F))
         if F.shape[1] > 2:
@@ -121,10 +125,9 @@ def plot_front(front, ax=None, reference=None, title=None, workspace=None):
         for label, i in marked_paths(front).items():
             ax.scatter([F[i, 0]], [y[i]], s=90, marker="*", color=MARKS[label], label=label, zorder=4)
     ax.set_xlabel(objective_label(names[0], workspace))
-    ax.set_ylabel(objective_label(names[1], workspace) if len(names) > 1
-                  else "(one objective)")
+    ax.set_ylabel(objective_label(names[1], workspace) if len(names) > 1 else "(one objective)")
     ax.set_title(title or f"front ({len(F)} paths)")
-    if ax.get_legend_handles_labels()[0]:          # an empty front has nothing to label
+    if ax.get_legend_handles_labels()[0]:  # an empty front has nothing to label
         ax.legend(fontsize=8)
     return ax
 

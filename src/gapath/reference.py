@@ -34,8 +34,10 @@ def read_front_csv(path, objectives=None) -> np.ndarray:
     except OSError as exc:
         raise MapError(f"{path}: cannot read reference front ({exc.strerror})") from None
     except UnicodeDecodeError as exc:
-        raise MapError(f"{path}: not a text front.csv (undecodable byte at offset {exc.start}); "
-                       f"expected a CSV file as written by 'gapath exact' or 'gapath solve'") from None
+        raise MapError(
+            f"{path}: not a text front.csv (undecodable byte at offset {exc.start}); "
+            f"expected a CSV file as written by 'gapath exact' or 'gapath solve'"
+        ) from None
     if not rows:
         raise MapError(f"{path}: empty reference front (expected a header of objective names)")
     header = [h.strip() for h in rows[0]]

@@ -52,7 +52,7 @@ def json_safe(obj):
         return {k: json_safe(v) for k, v in obj.items()}
     if isinstance(obj, (list, tuple)):
         return [json_safe(v) for v in obj]
-    tolist = getattr(obj, "tolist", None)          # NumPy arrays and scalars
+    tolist = getattr(obj, "tolist", None)  # NumPy arrays and scalars
     if tolist is not None:
         return json_safe(tolist())
     return obj
@@ -74,7 +74,7 @@ def dumps(obj, **kwargs) -> str:
 
 def _umask() -> int:
     """The process's umask (read on every call: it may change)."""
-    try:                                           # Linux: read it without changing it
+    try:  # Linux: read it without changing it
         with open("/proc/self/status") as f:
             for line in f:
                 if line.startswith("Umask:"):
@@ -121,8 +121,7 @@ def check_output_dir(path, flag: str = "--out") -> Path:
         fd, tmp = tempfile.mkstemp(dir=probe, prefix=".gapath-write-test.")
     except OSError as exc:
         where = "" if probe == path else f" (its parent {str(probe)!r} is not writable)"
-        raise ConfigError(f"{flag} {str(path)!r}: cannot write there{where}: "
-                          f"{exc.strerror or exc}") from None
+        raise ConfigError(f"{flag} {str(path)!r}: cannot write there{where}: {exc.strerror or exc}") from None
     os.close(fd)
     os.unlink(tmp)
     return path
@@ -135,7 +134,7 @@ def atomic_write(path, data: str | bytes) -> None:
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
     try:
-        if hasattr(os, "fchmod"):                  # not on Windows (before 3.13)
+        if hasattr(os, "fchmod"):  # not on Windows (before 3.13)
             os.fchmod(fd, 0o666 & ~_umask())
         with os.fdopen(fd, "wb") as f:
             f.write(data.encode() if isinstance(data, str) else data)
@@ -165,13 +164,15 @@ def write_front(out_dir, workspace, front, summary: dict, *, plots: bool = True)
     atomic_write(out / "front.csv", front_csv(front))
     records = front.records()
     frame = getattr(workspace, "frame", None)
-    if frame is not None:   # the path in the map's world frame too (ROS maps: metres)
+    if frame is not None:  # the path in the map's world frame too (ROS maps: metres)
         for rec in records:
             rec["world"] = frame.to_world(rec["path"]).round(6).tolist()
     atomic_write(out / "paths.json", dumps(records, indent=1) + "\n")
     if plots:
-        for name, draw in (("front.png", lambda: plotting.plot_front(front, workspace=workspace)),
-                           ("paths.png", lambda: plotting.plot_paths(workspace, front))):
+        for name, draw in (
+            ("front.png", lambda: plotting.plot_front(front, workspace=workspace)),
+            ("paths.png", lambda: plotting.plot_paths(workspace, front)),
+        ):
             atomic_write(out / name, plotting.png_bytes(draw()))
     atomic_write(out / "summary.json", dumps(summary, indent=1, sort_keys=True) + "\n")
 
@@ -187,8 +188,10 @@ def run_summary(result) -> dict:
         "generations": result.n_gen,
         "interrupted": result.interrupted,
         "front_size": len(result.front),
-        "marked": {k: {"index": i, **dict(zip(result.front.objectives, map(float, result.front.F[i])))}
-                   for k, i in marks.items()},
+        "marked": {
+            k: {"index": i, **dict(zip(result.front.objectives, map(float, result.front.F[i])))}
+            for k, i in marks.items()
+        },
     }
 
 

@@ -35,15 +35,23 @@ Dynamic obstacles
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from gapath.errors import ConfigError, NoPathError
 from gapath.workspace import Workspace
 
-__all__ = ["Scenario", "complex_maze", "dynamic_obstacles", "load_scenario_map", "make_scenario",
-           "straight_line_distance", "warehouse", "SCENARIOS"]
+__all__ = [
+    "Scenario",
+    "complex_maze",
+    "dynamic_obstacles",
+    "load_scenario_map",
+    "make_scenario",
+    "straight_line_distance",
+    "warehouse",
+    "SCENARIOS",
+]
 
 #: NO-MOPP's straight-line start-goal distances (Tables I and II).
 SEED_DISTANCE = {"maze": 51.856, "warehouse": 62.1488}
@@ -91,9 +99,17 @@ def _check_int(value, name, lo):
 # complex maze
 # ---------------------------------------------------------------------------
 
-def complex_maze(seed: int = 0, *, rows: int = 8, cols: int = 8, corridor: int = 4,
-                 max_detour: float = 1.20, target_distance: float = SEED_DISTANCE["maze"],
-                 cell_size: float = 1.0) -> Workspace:
+
+def complex_maze(
+    seed: int = 0,
+    *,
+    rows: int = 8,
+    cols: int = 8,
+    corridor: int = 4,
+    max_detour: float = 1.20,
+    target_distance: float = SEED_DISTANCE["maze"],
+    cell_size: float = 1.0,
+) -> Workspace:
     """A braided maze with wide corridors (NO-MOPP's "complex map").
 
     Parameters
@@ -149,7 +165,7 @@ def complex_maze(seed: int = 0, *, rows: int = 8, cols: int = 8, corridor: int =
     def wall_cells(a, b):
         """Cells of the wall between maze cells a and b (adjacent)."""
         (i1, j1), (i2, j2) = sorted((a, b))
-        if i1 == i2:                                   # east-west neighbours
+        if i1 == i2:  # east-west neighbours
             col = j2 * p - 1
             return (slice(i1 * p, i1 * p + k), slice(col, col + 1))
         row = i2 * p - 1
@@ -161,8 +177,11 @@ def complex_maze(seed: int = 0, *, rows: int = 8, cols: int = 8, corridor: int =
     seen[nr - 1, 0] = True
     while stack:
         i, j = stack[-1]
-        nbrs = [(i + di, j + dj) for di, dj in ((0, 1), (1, 0), (0, -1), (-1, 0))
-                if 0 <= i + di < nr and 0 <= j + dj < nc and not seen[i + di, j + dj]]
+        nbrs = [
+            (i + di, j + dj)
+            for di, dj in ((0, 1), (1, 0), (0, -1), (-1, 0))
+            if 0 <= i + di < nr and 0 <= j + dj < nc and not seen[i + di, j + dj]
+        ]
         if not nbrs:
             stack.pop()
             continue
@@ -174,11 +193,13 @@ def complex_maze(seed: int = 0, *, rows: int = 8, cols: int = 8, corridor: int =
     def corner_cells(i, j):
         return [(i * p + a, j * p + b) for a in range(k) for b in range(k)]
 
-    start, goal = _closest_pair(corner_cells(nr - 1, 0), corner_cells(0, nc - 1),
-                                float(target_distance) / cell_size)
+    start, goal = _closest_pair(
+        corner_cells(nr - 1, 0), corner_cells(0, nc - 1), float(target_distance) / cell_size
+    )
     # braid: remove the remaining walls in a random order until the detour is small
-    walls = [((i, j), (i, j + 1)) for i in range(nr) for j in range(nc - 1)] + \
-            [((i, j), (i + 1, j)) for i in range(nr - 1) for j in range(nc)]
+    walls = [((i, j), (i, j + 1)) for i in range(nr) for j in range(nc - 1)] + [
+        ((i, j), (i + 1, j)) for i in range(nr - 1) for j in range(nc)
+    ]
     walls = [wl for wl in walls if occ[wall_cells(*wl)].all()]
     order = rng.permutation(len(walls))
     ratio = _grid_ratio(occ, start, goal)
@@ -194,10 +215,20 @@ def complex_maze(seed: int = 0, *, rows: int = 8, cols: int = 8, corridor: int =
 # warehouse
 # ---------------------------------------------------------------------------
 
-def warehouse(seed: int = 0, *, height: int = 48, width: int = 66, shelf_length: int = 10,
-              aisle: int = 4, dock_depth: int = 7, missing: float = 0.1, pallets: int = 6,
-              target_distance: float = SEED_DISTANCE["warehouse"],
-              cell_size: float = 1.0) -> Workspace:
+
+def warehouse(
+    seed: int = 0,
+    *,
+    height: int = 48,
+    width: int = 66,
+    shelf_length: int = 10,
+    aisle: int = 4,
+    dock_depth: int = 7,
+    missing: float = 0.1,
+    pallets: int = 6,
+    target_distance: float = SEED_DISTANCE["warehouse"],
+    cell_size: float = 1.0,
+) -> Workspace:
     """A warehouse floor with shelves, aisles and a loading dock.
 
     Shelves are 2 cells deep and ``shelf_length`` long, in rows separated by
@@ -248,7 +279,7 @@ def warehouse(seed: int = 0, *, height: int = 48, width: int = 66, shelf_length:
     rng = np.random.default_rng(seed)
     occ = np.zeros((h, w), bool)
     top = a
-    bottom = h - dock                       # shelves end above the dock
+    bottom = h - dock  # shelves end above the dock
     shelf_rows = list(range(top, bottom - 2 - a + 1, 2 + a))
     shelf_cols = list(range(a, w - a - L + 1, L + a))
     if not shelf_rows or not shelf_cols:
@@ -258,16 +289,15 @@ def warehouse(seed: int = 0, *, height: int = 48, width: int = 66, shelf_length:
         for c0 in shelf_cols:
             if rng.random() < missing:
                 continue
-            occ[r0:r0 + 2, c0:c0 + L] = True
-            faces.extend((r0 - 1, c) for c in range(c0, c0 + L))       # aisle above
-            faces.extend((r0 + 2, c) for c in range(c0, c0 + L))       # aisle below
+            occ[r0 : r0 + 2, c0 : c0 + L] = True
+            faces.extend((r0 - 1, c) for c in range(c0, c0 + L))  # aisle above
+            faces.extend((r0 + 2, c) for c in range(c0, c0 + L))  # aisle below
     # pallets on the dock, away from the start corner
     dock_cells = [(r, c) for r in range(bottom + 1, h - 1) for c in range(6, w - 1)]
     for idx in rng.choice(len(dock_cells), size=min(n_pal, len(dock_cells)), replace=False):
         occ[dock_cells[idx]] = True
     starts = [(r, c) for r in range(h - 3, h - 1) for c in range(1, 4) if not occ[r, c]]
-    goals = [(r, c) for (r, c) in faces
-             if 0 <= r < h and not occ[r, c] and r <= h // 3 and c >= (2 * w) // 3]
+    goals = [(r, c) for (r, c) in faces if 0 <= r < h and not occ[r, c] and r <= h // 3 and c >= (2 * w) // 3]
     if not starts or not goals:
         raise ConfigError("the warehouse layout left no start or goal cell")
     start, goal = _closest_pair(starts, goals, float(target_distance) / cell_size)
@@ -288,6 +318,7 @@ SCENARIOS = {"maze": complex_maze, "warehouse": warehouse}
 # ---------------------------------------------------------------------------
 # dynamic obstacles and whole scenarios
 # ---------------------------------------------------------------------------
+
 
 @dataclass(eq=False)
 class Scenario:
@@ -324,8 +355,16 @@ class Scenario:
         """Run this scenario (see :func:`gapath.dynamic.simulate`)."""
         from gapath.dynamic import simulate
 
-        return simulate(self.workspace, planner, robot, self.stationary, self.moving, settings,
-                        self.start, self.seed if seed is None else seed)
+        return simulate(
+            self.workspace,
+            planner,
+            robot,
+            self.stationary,
+            self.moving,
+            settings,
+            self.start,
+            self.seed if seed is None else seed,
+        )
 
 
 def _reference_path(workspace) -> np.ndarray:
@@ -349,10 +388,19 @@ def _free_run(occ, p, direction, radius, max_len, cs, step=0.25):
     return d
 
 
-def dynamic_obstacles(workspace, seed: int = 0, *, n_stationary: int = 3, n_crossers: int = 2,
-                      n_wanderers: int = 2, robot_speed: float = 1.0, sensor_range: float = 6.0,
-                      obstacle_radius: float = 0.4, speed_range=(0.3, 0.7),
-                      min_run: float = 4.0):
+def dynamic_obstacles(
+    workspace,
+    seed: int = 0,
+    *,
+    n_stationary: int = 3,
+    n_crossers: int = 2,
+    n_wanderers: int = 2,
+    robot_speed: float = 1.0,
+    sensor_range: float = 6.0,
+    obstacle_radius: float = 0.4,
+    speed_range=(0.3, 0.7),
+    min_run: float = 4.0,
+):
     """Seeded dynamic obstacles for one run on any map.
 
     * ``n_stationary`` obstacles of one or two cells on the reference path
@@ -385,8 +433,7 @@ def dynamic_obstacles(workspace, seed: int = 0, *, n_stationary: int = 3, n_cros
     from gapath.dynamic import MovingObstacle, StationaryObstacle
     from gapath.planners._geometry import disc_free
 
-    for name, v in (("n_stationary", n_stationary), ("n_crossers", n_crossers),
-                    ("n_wanderers", n_wanderers)):
+    for name, v in (("n_stationary", n_stationary), ("n_crossers", n_crossers), ("n_wanderers", n_wanderers)):
         _check_int(v, name, 0)
     lo, hi = (float(v) for v in speed_range)
     if not 0 < lo <= hi:
@@ -427,8 +474,11 @@ def dynamic_obstacles(workspace, seed: int = 0, *, n_stationary: int = 3, n_cros
                     cells.append((r + dr, c + dc))
             if any(occ[q] or blocked[q] for q in cells):
                 continue
-            if any(math.hypot(q[1] * cs - e[0], q[0] * cs - e[1]) < 3.0 * cs
-                   for q in cells for e in (start, goal)):
+            if any(
+                math.hypot(q[1] * cs - e[0], q[0] * cs - e[1]) < 3.0 * cs
+                for q in cells
+                for e in (start, goal)
+            ):
                 continue
             trial = blocked.copy()
             for q in cells:
@@ -441,7 +491,7 @@ def dynamic_obstacles(workspace, seed: int = 0, *, n_stationary: int = 3, n_cros
             break
 
     moving = []
-    for i in range(int(n_crossers)):
+    for _ in range(int(n_crossers)):
         best = None
         for _ in range(40):
             s = float(rng.uniform(0.15, 0.85) * L)
@@ -465,7 +515,7 @@ def dynamic_obstacles(workspace, seed: int = 0, *, n_stationary: int = 3, n_cros
         appear = max(0.0, t_cross - min(run, need) / u)
         moving.append(MovingObstacle(q, direction * u, obstacle_radius, "bounce", appear))
     free = np.argwhere(~occ)
-    for i in range(int(n_wanderers)):
+    for _ in range(int(n_wanderers)):
         for _ in range(100):
             r, c = free[int(rng.integers(len(free)))]
             p = np.array([c * cs, r * cs], float)
@@ -475,14 +525,16 @@ def dynamic_obstacles(workspace, seed: int = 0, *, n_stationary: int = 3, n_cros
                 continue
             ang = float(rng.uniform(0, 2 * math.pi))
             u = float(rng.uniform(lo, hi))
-            moving.append(MovingObstacle(p, (u * math.cos(ang), u * math.sin(ang)),
-                                         obstacle_radius, "bounce", 0.0))
+            moving.append(
+                MovingObstacle(p, (u * math.cos(ang), u * math.sin(ang)), obstacle_radius, "bounce", 0.0)
+            )
             break
     return stationary, moving, ref
 
 
-def make_scenario(kind="maze", seed: int = 0, *, map_seed: int = 0, start=None, goal=None,
-                  **obstacle_kw) -> Scenario:
+def make_scenario(
+    kind="maze", seed: int = 0, *, map_seed: int = 0, start=None, goal=None, **obstacle_kw
+) -> Scenario:
     """A scenario: the map (``"maze"``, ``"warehouse"``, a map file path or a
     Workspace) with seeded dynamic obstacles (:func:`dynamic_obstacles`).
 
@@ -503,12 +555,12 @@ def make_scenario(kind="maze", seed: int = 0, *, map_seed: int = 0, start=None, 
     elif isinstance(kind, str) and "." in kind:
         ws = load_scenario_map(kind, start=start, goal=goal)
     else:
-        raise ConfigError(f"unknown scenario {kind!r}; choose one of {', '.join(SCENARIOS)} "
-                          f"or give a map file")
+        raise ConfigError(
+            f"unknown scenario {kind!r}; choose one of {', '.join(SCENARIOS)} or give a map file"
+        )
     generated = isinstance(kind, Workspace) or kind in SCENARIOS
     changes = {k: v for k, v in (("start", start), ("goal", goal)) if v is not None}
     if generated and changes:
         ws = ws.replace(**changes)
     stationary, moving, ref = dynamic_obstacles(ws, seed, **obstacle_kw)
-    return Scenario(ws, stationary, moving, start_pose(ws), ref, name=f"{ws.name}-o{seed}",
-                    seed=int(seed))
+    return Scenario(ws, stationary, moving, start_pose(ws), ref, name=f"{ws.name}-o{seed}", seed=int(seed))

@@ -9,12 +9,11 @@ import numpy as np
 from pymoo.optimize import minimize
 
 from gapath.algorithms import FastNSGA2, paper_nsga2
+from gapath.callbacks import Callbacks, ProgressBar, population_arrays
 from gapath.errors import ConfigError
 from gapath.front import PathFront, path_front
 from gapath.operators import PlannerSampling
 from gapath.problems import GridPathProblem
-from gapath.callbacks import Callbacks, ProgressBar, population_arrays
-
 
 #: Engines that run Ahmed & Deb's NSGA-II (same results for the same seed).
 ENGINES = {"fast": lambda pop_size, **kw: FastNSGA2(pop_size, **kw), "pymoo": paper_nsga2}
@@ -72,15 +71,31 @@ def objective_mode(objectives, constraints=None, sbx_eta=None, tiebreak="smoothn
     """
     names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
     single = len([n for n in names if n.strip()]) == 1
-    return dict(constraints=constraints or ("constraint" if single else "penalty"),
-                sbx_eta=sbx_eta if sbx_eta is not None else (2.0 if single else 10.0),
-                tiebreak=tiebreak)
+    return dict(
+        constraints=constraints or ("constraint" if single else "penalty"),
+        sbx_eta=sbx_eta if sbx_eta is not None else (2.0 if single else 10.0),
+        tiebreak=tiebreak,
+    )
 
 
-def solve(workspace, *, objectives=("length", "vulnerability"), encoding=None, paths="monotone",
-          constraints=None, penalty=1000.0, pop_size=500, n_gen=500, seed=1,
-          tiebreak="smoothness", sbx_eta=None, seed_from="weighted", engine="fast",
-          progress=False, callback=None) -> SolveResult:
+def solve(
+    workspace,
+    *,
+    objectives=("length", "vulnerability"),
+    encoding=None,
+    paths="monotone",
+    constraints=None,
+    penalty=1000.0,
+    pop_size=500,
+    n_gen=500,
+    seed=1,
+    tiebreak="smoothness",
+    sbx_eta=None,
+    seed_from="weighted",
+    engine="fast",
+    progress=False,
+    callback=None,
+) -> SolveResult:
     """Run Ahmed & Deb's NSGA-II on ``workspace`` and return its front.
 
     Parameters
@@ -131,8 +146,9 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding=None, p
     constraints, sbx_eta = mode["constraints"], mode["sbx_eta"]
     from gapath.problems.free_path import path_problem
 
-    problem = path_problem(workspace, objectives, paths=paths, encoding=encoding,
-                           constraints=constraints, penalty=penalty)
+    problem = path_problem(
+        workspace, objectives, paths=paths, encoding=encoding, constraints=constraints, penalty=penalty
+    )
     encoding = problem.encoding.name
     if paths == "free":
         from gapath.operators.sampling.free_sampling import FreeSampling
@@ -142,24 +158,40 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding=None, p
         sampling = None if seed_from == "none" else PlannerSampling(seed_from)
     if engine not in ENGINES:
         raise ConfigError(f"unknown engine {engine!r}; expected one of {', '.join(ENGINES)}")
-    algorithm = ENGINES[engine](pop_size, encoding=encoding, tiebreak=tiebreak, sbx_eta=sbx_eta,
-                                sampling=sampling)
+    algorithm = ENGINES[engine](
+        pop_size, encoding=encoding, tiebreak=tiebreak, sbx_eta=sbx_eta, sampling=sampling
+    )
     bar = ProgressBar(n_gen, disable=not progress)
     callbacks = Callbacks(bar, callback)
 
-    settings = dict(map=workspace.name, shape=list(workspace.shape), start=list(workspace.start),
-                    goal=list(workspace.goal), cell_size=workspace.cell_size,
-                    corner_cutting=workspace.corner_cutting, objectives=list(problem.objectives),
-                    paths=paths, encoding=encoding, constraints=constraints, penalty=problem.penalty,
-                    pop_size=pop_size, n_gen=n_gen, seed=seed, tiebreak=tiebreak, sbx_eta=sbx_eta,
-                    seed_from=seed_from, engine=engine,
-                    algorithm="NSGA-II (Ahmed & Deb 2013 settings)")
+    settings = dict(
+        map=workspace.name,
+        shape=list(workspace.shape),
+        start=list(workspace.start),
+        goal=list(workspace.goal),
+        cell_size=workspace.cell_size,
+        corner_cutting=workspace.corner_cutting,
+        objectives=list(problem.objectives),
+        paths=paths,
+        encoding=encoding,
+        constraints=constraints,
+        penalty=problem.penalty,
+        pop_size=pop_size,
+        n_gen=n_gen,
+        seed=seed,
+        tiebreak=tiebreak,
+        sbx_eta=sbx_eta,
+        seed_from=seed_from,
+        engine=engine,
+        algorithm="NSGA-II (Ahmed & Deb 2013 settings)",
+    )
     t0 = time.perf_counter()
     interrupted = False
     res = None
     try:
-        res = minimize(problem, algorithm, ("n_gen", n_gen), seed=seed, callback=callbacks,
-                       copy_algorithm=False)
+        res = minimize(
+            problem, algorithm, ("n_gen", n_gen), seed=seed, callback=callbacks, copy_algorithm=False
+        )
     except KeyboardInterrupt:
         interrupted = True
     finally:
@@ -169,5 +201,14 @@ def solve(workspace, *, objectives=("length", "vulnerability"), encoding=None, p
     A = population_arrays(algorithm)
     X = np.empty((0, problem.n_var)) if A is None or len(A) == 0 else A.X
     front = path_front(problem, X)
-    return SolveResult(workspace, problem, front, settings, seconds,
-                       int(algorithm.evaluator.n_eval), bar.last_gen, interrupted, res)
+    return SolveResult(
+        workspace,
+        problem,
+        front,
+        settings,
+        seconds,
+        int(algorithm.evaluator.n_eval),
+        bar.last_gen,
+        interrupted,
+        res,
+    )

@@ -7,9 +7,9 @@ cell ``(H-1, 0)`` and the default goal the top-right cell ``(0, W-1)``.
 
 from __future__ import annotations
 
+from collections.abc import Iterable
 from functools import cached_property
 from pathlib import Path
-from typing import Iterable
 
 import numba
 import numpy as np
@@ -41,8 +41,7 @@ def _potential_kernel(occ, s2, radius):
     return pot
 
 
-def potential_field(occ: np.ndarray, s2: float = POTENTIAL_S2,
-                    radius: int = POTENTIAL_RADIUS) -> np.ndarray:
+def potential_field(occ: np.ndarray, s2: float = POTENTIAL_S2, radius: int = POTENTIAL_RADIUS) -> np.ndarray:
     """Potential ``P(c) = sum_o exp(-|c - o|^2 / (2 s2))`` of every cell.
 
     The sum runs over the obstacle cells ``o`` in the square window
@@ -65,8 +64,7 @@ def potential_field(occ: np.ndarray, s2: float = POTENTIAL_S2,
     >>> float(potential_field(occ)[1, 1])
     1.0
     """
-    return _potential_kernel(np.ascontiguousarray(occ, dtype=np.bool_),
-                             float(s2), int(radius))
+    return _potential_kernel(np.ascontiguousarray(occ, dtype=np.bool_), float(s2), int(radius))
 
 
 def _as_cell(value, name: str, shape: tuple[int, int]) -> tuple[int, int]:
@@ -78,9 +76,7 @@ def _as_cell(value, name: str, shape: tuple[int, int]) -> tuple[int, int]:
         raise ConfigError(f"{name} must be a (row, col) pair of integers, got {value!r}") from None
     h, w = shape
     if not (0 <= r < h and 0 <= c < w):
-        raise ConfigError(
-            f"{name} {(r, c)} is outside the {h}x{w} grid "
-            f"(rows 0..{h - 1}, cols 0..{w - 1})")
+        raise ConfigError(f"{name} {(r, c)} is outside the {h}x{w} grid (rows 0..{h - 1}, cols 0..{w - 1})")
     return r, c
 
 
@@ -115,8 +111,17 @@ class Workspace:
     ((3, 0), (0, 4))
     """
 
-    def __init__(self, occ, start=None, goal=None, *, cell_size: float = 1.0,
-                 corner_cutting: bool = True, name: str = "workspace", frame=None):
+    def __init__(
+        self,
+        occ,
+        start=None,
+        goal=None,
+        *,
+        cell_size: float = 1.0,
+        corner_cutting: bool = True,
+        name: str = "workspace",
+        frame=None,
+    ):
         arr = np.asarray(occ)
         if arr.ndim != 2 or arr.shape[0] == 0 or arr.shape[1] == 0:
             raise MapError(f"occupancy must be a non-empty 2-D array, got shape {arr.shape}")
@@ -127,7 +132,8 @@ class Workspace:
             if bad.any():
                 r, c = np.argwhere(bad)[0]
                 raise MapError(
-                    f"occupancy must be boolean (or 0/1), got {arr[r, c].item()!r} at (row {r}, col {c})")
+                    f"occupancy must be boolean (or 0/1), got {arr[r, c].item()!r} at (row {r}, col {c})"
+                )
             arr = arr.astype(bool)
         self._occ = np.ascontiguousarray(arr, dtype=np.bool_)
         self._occ.setflags(write=False)
@@ -173,12 +179,18 @@ class Workspace:
         pot.setflags(write=False)
         return pot
 
-    def replace(self, **changes) -> "Workspace":
+    def replace(self, **changes) -> Workspace:
         """A copy with some of ``occ, start, goal, cell_size, corner_cutting,
         name, frame`` replaced."""
-        kw = dict(occ=self._occ, start=self.start, goal=self.goal,
-                  cell_size=self.cell_size, corner_cutting=self.corner_cutting,
-                  name=self.name, frame=self.frame)
+        kw = dict(
+            occ=self._occ,
+            start=self.start,
+            goal=self.goal,
+            cell_size=self.cell_size,
+            corner_cutting=self.corner_cutting,
+            name=self.name,
+            frame=self.frame,
+        )
         unknown = set(changes) - set(kw)
         if unknown:
             raise ConfigError(f"unknown workspace field(s): {sorted(unknown)}")
@@ -188,18 +200,24 @@ class Workspace:
 
     def __repr__(self) -> str:
         h, w = self.shape
-        return (f"Workspace(name={self.name!r}, shape={h}x{w}, obstacles={self.n_obstacles}, "
-                f"start={self.start}, goal={self.goal}, cell_size={self.cell_size}, "
-                f"corner_cutting={self.corner_cutting})")
+        return (
+            f"Workspace(name={self.name!r}, shape={h}x{w}, obstacles={self.n_obstacles}, "
+            f"start={self.start}, goal={self.goal}, cell_size={self.cell_size}, "
+            f"corner_cutting={self.corner_cutting})"
+        )
 
     def __eq__(self, other) -> bool:
         if not isinstance(other, Workspace):
             return NotImplemented
-        return (np.array_equal(self._occ, other._occ) and self.start == other.start
-                and self.goal == other.goal and self.cell_size == other.cell_size
-                and self.corner_cutting == other.corner_cutting)
+        return (
+            np.array_equal(self._occ, other._occ)
+            and self.start == other.start
+            and self.goal == other.goal
+            and self.cell_size == other.cell_size
+            and self.corner_cutting == other.corner_cutting
+        )
 
-    __hash__ = None
+    __hash__ = None  # type: ignore[assignment]  # mutable arrays: unhashable
 
     # -- text form ---------------------------------------------------------
     def to_text(self) -> str:
@@ -211,7 +229,7 @@ class Workspace:
 
     # -- loading -----------------------------------------------------------
     @classmethod
-    def load(cls, path, start=None, goal=None, **kwargs) -> "Workspace":
+    def load(cls, path, start=None, goal=None, **kwargs) -> Workspace:
         """Load a map file, the format chosen by extension.
 
         See :func:`gapath.loaders.load_map` for the formats.
@@ -233,12 +251,13 @@ class Workspace:
         if tuple(p[0]) != self.start or tuple(p[-1]) != self.goal:
             return False
         d = np.abs(np.diff(p, axis=0))
-        return bool(((d.max(axis=1) == 1)).all())
+        return bool((d.max(axis=1) == 1).all())
 
 
 # ---------------------------------------------------------------------------
 # generators
 # ---------------------------------------------------------------------------
+
 
 def _column_run(prev_row: int, target: int, col: int) -> list[tuple[int, int]]:
     """Cells entered in column ``col`` when moving from ``prev_row`` of the
@@ -248,8 +267,7 @@ def _column_run(prev_row: int, target: int, col: int) -> list[tuple[int, int]]:
     return [(rr, col) for rr in range(prev_row + s, target + s, s)] if s else [(target, col)]
 
 
-def random_monotone_path(shape, start, goal, rng: np.random.Generator,
-                         max_step: int = 2) -> np.ndarray:
+def random_monotone_path(shape, start, goal, rng: np.random.Generator, max_step: int = 2) -> np.ndarray:
     """A random column-monotone path from ``start`` to ``goal``.
 
     Columns advance by one per transition; in each new column the row changes
@@ -289,8 +307,9 @@ def _check_shape(shape):
     return h, w
 
 
-def dense_workspace(n: int | tuple[int, int], p0: float, seed: int = 0, *,
-                    start=None, goal=None, name: str | None = None) -> Workspace:
+def dense_workspace(
+    n: int | tuple[int, int], p0: float, seed: int = 0, *, start=None, goal=None, name: str | None = None
+) -> Workspace:
     """Ahmed & Deb's dense protocol (section 6).
 
     A random column-monotone path from start to goal is drawn first; then
@@ -320,8 +339,9 @@ def dense_workspace(n: int | tuple[int, int], p0: float, seed: int = 0, *,
     return Workspace(occ, start, goal, name=name or f"dense-{h}x{w}-p{p0:g}-s{seed}")
 
 
-def random_workspace(shape, n_obstacles: int, seed: int = 0, *, start=None, goal=None,
-                     name: str | None = None) -> Workspace:
+def random_workspace(
+    shape, n_obstacles: int, seed: int = 0, *, start=None, goal=None, name: str | None = None
+) -> Workspace:
     """``n_obstacles`` random obstacles with a guaranteed feasible
     column-monotone path (drawn first and kept free). Seeded.
 
@@ -342,13 +362,11 @@ def random_workspace(shape, n_obstacles: int, seed: int = 0, *, start=None, goal
     free[path[:, 0] * w + path[:, 1]] = False
     candidates = np.flatnonzero(free)
     if k > len(candidates):
-        raise ConfigError(
-            f"n_obstacles={k} exceeds the {len(candidates)} cells off the guaranteed path")
+        raise ConfigError(f"n_obstacles={k} exceeds the {len(candidates)} cells off the guaranteed path")
     chosen = rng.choice(candidates, size=k, replace=False)
     occ = np.zeros(h * w, bool)
     occ[chosen] = True
-    return Workspace(occ.reshape(h, w), start, goal,
-                     name=name or f"random-{h}x{w}-k{k}-s{seed}")
+    return Workspace(occ.reshape(h, w), start, goal, name=name or f"random-{h}x{w}-k{k}-s{seed}")
 
 
 DEFAULT_SCENARIO = Path(__file__).with_name("data") / "default-32x32-173.map"
@@ -366,5 +384,5 @@ def default_workspace() -> Workspace:
     """
     from gapath.loaders import load_movingai
 
-    ws = load_movingai(DEFAULT_SCENARIO, corner_cutting=True)   # SPEC's rule, not MovingAI's
+    ws = load_movingai(DEFAULT_SCENARIO, corner_cutting=True)  # SPEC's rule, not MovingAI's
     return ws.replace(name="default-32x32-173")

@@ -9,8 +9,16 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["accept_new_rows", "binary_tournament", "crowding_by_front", "order_survivors",
-           "pareto_rank_2d", "profile_keys", "repeated_rows", "row_hashes"]
+__all__ = [
+    "accept_new_rows",
+    "binary_tournament",
+    "crowding_by_front",
+    "order_survivors",
+    "pareto_rank_2d",
+    "profile_keys",
+    "repeated_rows",
+    "row_hashes",
+]
 
 
 @numba.njit(cache=True)
@@ -52,7 +60,7 @@ def binary_tournament(P, cv, rank, smooth, crowding, use_smooth, coin):
 def _hash_weights(m):
     w = np.empty(m, np.int64)
     x = np.int64(0x2545F4914F6CDD1D)
-    for j in range(m):                  # xorshift64: fixed odd 64-bit weights
+    for j in range(m):  # xorshift64: fixed odd 64-bit weights
         x ^= x << 13
         x ^= (x >> 7) & np.int64(0x01FFFFFFFFFFFFFF)
         x ^= x << 17
@@ -105,8 +113,9 @@ def accept_new_rows(K, h, pop_K, pop_h, pop_order, off_K, off_h, n_off, n_max, c
     if check:
         dup = repeated_rows(h, K, pop_h, pop_K, pop_order)
         if n_off:
-            dup |= repeated_rows(h, K, off_h[:n_off], off_K[:n_off],
-                                 np.argsort(off_h[:n_off], kind="mergesort"))
+            dup |= repeated_rows(
+                h, K, off_h[:n_off], off_K[:n_off], np.argsort(off_h[:n_off], kind="mergesort")
+            )
     out = np.empty(min(n, n_max), np.int64)
     m = 0
     for i in range(n):
@@ -148,7 +157,7 @@ def repeated_rows(h, K, h_old, K_old, old_order):
                 dup[i] = True
                 break
             p += 1
-    order = np.argsort(h, kind="mergesort")      # stable: equal hashes by index
+    order = np.argsort(h, kind="mergesort")  # stable: equal hashes by index
     g = 0
     while g < n:
         e = g + 1
@@ -185,7 +194,7 @@ def crowding_by_front(F, front, n_fronts):
     start = 0
     for k in range(n_fronts):
         c = counts[k]
-        members = order[start:start + c]
+        members = order[start : start + c]
         start += c
         acc = np.zeros((c, m))
         vals = np.empty(c)
@@ -227,15 +236,15 @@ def pareto_rank_2d(F):
     """
     n = F.shape[0]
     order = np.argsort(F[:, 1], kind="mergesort")
-    order = order[np.argsort(F[order, 0], kind="mergesort")]      # lexicographic
+    order = order[np.argsort(F[order, 0], kind="mergesort")]  # lexicographic
     rank = np.empty(n, np.int64)
-    min_f2 = np.empty(n)            # per front: smallest f2, and the f1 of that point
+    min_f2 = np.empty(n)  # per front: smallest f2, and the f1 of that point
     f1_at = np.empty(n)
     n_fronts = 0
     for t in range(n):
         i = order[t]
         f1, f2 = F[i, 0], F[i, 1]
-        lo, hi = 0, n_fronts        # first front without a dominator of i
+        lo, hi = 0, n_fronts  # first front without a dominator of i
         while lo < hi:
             mid = (lo + hi) // 2
             if min_f2[mid] < f2 or (min_f2[mid] == f2 and f1_at[mid] < f1):
@@ -287,11 +296,11 @@ def order_survivors(F, smooth, cv, feasible, ranks, n_survive):
         idx = feasible[keep]
         r = ranks[keep]
         cd = crowding_by_front(np.ascontiguousarray(F[idx]), r, n_fronts)
-        by_front = np.argsort(r, kind="mergesort")       # index order inside a front
+        by_front = np.argsort(r, kind="mergesort")  # index order inside a front
         start = 0
         for k in range(n_fronts):
             c = counts[k]
-            members = by_front[start:start + c]
+            members = by_front[start : start + c]
             start += c
             o = np.argsort(-cd[members], kind="mergesort")
             members = members[o]

@@ -47,8 +47,14 @@ from pymoo.operators.crossover.sbx import SimulatedBinaryCrossover
 from pymoo.operators.mutation.pm import PolynomialMutation
 from pymoo.operators.repair.rounding import RoundingRepair
 
-__all__ = ["discrete_supported", "discrete_variation", "pm_mutation", "pm_supported",
-           "sbx_crossover", "sbx_supported"]
+__all__ = [
+    "discrete_supported",
+    "discrete_variation",
+    "pm_mutation",
+    "pm_supported",
+    "sbx_crossover",
+    "sbx_supported",
+]
 
 
 def _value(v):
@@ -62,21 +68,28 @@ def _scalars(*values) -> bool:
 def sbx_supported(op) -> bool:
     """True when ``op._do`` is pymoo's SBX with two children and scalar
     parameters."""
-    return (isinstance(op, SimulatedBinaryCrossover)
-            and type(op)._do is SimulatedBinaryCrossover._do and type(op).do is Crossover.do
-            and op.n_offsprings == 2
-            and _scalars(op.prob, op.eta, op.prob_var, op.prob_exch, op.prob_bin))
+    return (
+        isinstance(op, SimulatedBinaryCrossover)
+        and type(op)._do is SimulatedBinaryCrossover._do
+        and type(op).do is Crossover.do
+        and op.n_offsprings == 2
+        and _scalars(op.prob, op.eta, op.prob_var, op.prob_exch, op.prob_bin)
+    )
 
 
 def pm_supported(op, problem) -> bool:
     """True when ``op._do`` is pymoo's polynomial mutation without
     ``at_least_once`` and with scalar parameters."""
-    return (isinstance(op, PolynomialMutation)
-            and type(op)._do is PolynomialMutation._do and type(op).do is Mutation.do
-            and not op.at_least_once and _scalars(op.eta, op.prob, op.get_prob_var(problem)))
+    return (
+        isinstance(op, PolynomialMutation)
+        and type(op)._do is PolynomialMutation._do
+        and type(op).do is Mutation.do
+        and not op.at_least_once
+        and _scalars(op.eta, op.prob, op.get_prob_var(problem))
+    )
 
 
-_NJIT = dict(cache=True, error_model="numpy")      # IEEE division, as NumPy's
+_NJIT = dict(cache=True, error_model="numpy")  # IEEE division, as NumPy's
 
 
 @numba.njit(**_NJIT)
@@ -91,8 +104,7 @@ def _sbx_betas(X0, X1, xl, xu, r, prob_var, eta):
     n_cross = 0
     for i in range(n):
         for j in range(m):
-            c = (r[i, j] < prob_var and not abs(X0[i, j] - X1[i, j]) <= 1.0e-14
-                 and xl[j] != xu[j])
+            c = r[i, j] < prob_var and not abs(X0[i, j] - X1[i, j]) <= 1.0e-14 and xl[j] != xu[j]
             cross[i, j] = c
             n_cross += c
     B = np.empty(2 * n_cross)
@@ -160,7 +172,7 @@ def _sbx_children(X0, X1, xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w, ma
                 k += 1
                 if mating[i]:
                     a, b = ch1, ch2
-            if mating[i]:                       # pymoo's repair_clamp of the SBX output
+            if mating[i]:  # pymoo's repair_clamp of the SBX output
                 a = min(max(a, xl[j]), xu[j]) if a == a else a
                 b = min(max(b, xl[j]), xu[j]) if b == b else b
             Q[i, j] = np.rint(a) if rint else a
@@ -174,21 +186,34 @@ def _sbx(op, X, random_state, xl, xu, rint):
     docstring), the rest by numba: the ``(2 n, m)`` children."""
     _, n, m = X.shape
     mating = random_state.random(n) < float(_value(op.prob))
-    if not mating.any():                           # pymoo does not call _do then
+    if not mating.any():  # pymoo does not call _do then
         none = np.zeros(0)
-        return _sbx_children(X[0], X[1], xl, xu, 0.0, np.zeros(n), 1.0,
-                             np.zeros((n, m), np.bool_), none, none, none, mating, rint)
-    eta, prob_var, prob_exch, prob_bin = (float(_value(v)) for v in
-                                          (op.eta, op.prob_var, op.prob_exch, op.prob_bin))
-    exch = random_state.random(n)                  # pymoo: random((n, 1)) > prob_exch
+        return _sbx_children(
+            X[0],
+            X[1],
+            xl,
+            xu,
+            0.0,
+            np.zeros(n),
+            1.0,
+            np.zeros((n, m), np.bool_),
+            none,
+            none,
+            none,
+            mating,
+            rint,
+        )
+    eta, prob_var, prob_exch, prob_bin = (
+        float(_value(v)) for v in (op.eta, op.prob_var, op.prob_exch, op.prob_bin)
+    )
+    exch = random_state.random(n)  # pymoo: random((n, 1)) > prob_exch
     r = random_state.random((n, m))
     cross, B, E = _sbx_betas(X[0], X[1], xl, xu, r, prob_var, eta)
     u = random_state.random(len(B) // 2)
     w = random_state.random(len(B) // 2)
-    Z, E = _sbx_bases(np.power(B, E), u, eta)     # cross_sbx: np.power(beta, -(eta + 1.0))
-    Q2 = np.power(Z, E)                           # np.power(rand * alpha, 1.0 / (eta + 1.0)), ...
-    return _sbx_children(X[0], X[1], xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w,
-                         mating, rint)
+    Z, E = _sbx_bases(np.power(B, E), u, eta)  # cross_sbx: np.power(beta, -(eta + 1.0))
+    Q2 = np.power(Z, E)  # np.power(rand * alpha, 1.0 / (eta + 1.0)), ...
+    return _sbx_children(X[0], X[1], xl, xu, prob_bin, exch, prob_exch, cross, Z, Q2, w, mating, rint)
 
 
 def sbx_crossover(op, problem, X, random_state, bounds=None):
@@ -253,7 +278,7 @@ def _pm_children(X, xl, xu, mut, u, V, mutated, rint):
                 x = x + dq * (hi - lo)
             if not mutated[i]:
                 continue
-            if x < lo:                          # mut_pm's clamp, set_to_bounds_if_outside
+            if x < lo:  # mut_pm's clamp, set_to_bounds_if_outside
                 x = lo
             elif x > hi:
                 x = hi
@@ -272,8 +297,8 @@ def _pm(op, problem, X, random_state, xl, xu, rint):
     mutated = random_state.random(size=X.shape[0]) <= float(_value(op.prob))
     eta = float(_value(op.eta))
     xy, E = _pm_xy(X, xl, xu, mut, u, eta)
-    val, E = _pm_val(np.power(xy, E), u, eta)     # mut_pm: np.power(xy, (eta + 1.0))
-    V = np.power(val, E)                          # np.power(val, mut_pow)
+    val, E = _pm_val(np.power(xy, E), u, eta)  # mut_pm: np.power(xy, (eta + 1.0))
+    V = np.power(val, E)  # np.power(val, mut_pow)
     return _pm_children(X, xl, xu, mut, u, V, mutated, rint)
 
 
@@ -290,9 +315,11 @@ def discrete_supported(crossover, mutation, problem) -> bool:
     """True when both operators have twins and round their float output to
     integers with pymoo's ``RoundingRepair`` (gapath's DiscreteSBX and
     DiscretePM), so :func:`discrete_variation` applies."""
-    return (sbx_supported(crossover) and pm_supported(mutation, problem)
-            and all(op.vtype is float and type(op.repair) is RoundingRepair
-                    for op in (crossover, mutation)))
+    return (
+        sbx_supported(crossover)
+        and pm_supported(mutation, problem)
+        and all(op.vtype is float and type(op.repair) is RoundingRepair for op in (crossover, mutation))
+    )
 
 
 def discrete_variation(crossover, mutation, problem, X, random_state, bounds=None):

@@ -60,11 +60,11 @@ from pymoo.util.misc import random_permutations
 from gapath.algorithms._kernels import (
     accept_new_rows,
     binary_tournament,
+    order_survivors,
     pareto_rank_2d,
     profile_keys,
     repeated_rows,
     row_hashes,
-    order_survivors,
 )
 from gapath.algorithms._variation import (
     discrete_supported,
@@ -77,8 +77,7 @@ from gapath.algorithms._variation import (
 from gapath.errors import ConfigError
 from gapath.operators import DiscretePM, DiscreteSBX, EdgeFixingRepair
 
-__all__ = ["FastNSGA2", "PathArrays", "PHASES", "fast_survival_order", "pareto_ranks",
-           "path_duplicate_mask"]
+__all__ = ["FastNSGA2", "PathArrays", "PHASES", "fast_survival_order", "pareto_ranks", "path_duplicate_mask"]
 
 #: Phases of a generation timed in :attr:`FastNSGA2.timings` (seconds, summed
 #: over the run).
@@ -91,6 +90,7 @@ _CORE_OUTPUTS = ("F", "G", "H")
 # ---------------------------------------------------------------------------
 # array-level building blocks
 # ---------------------------------------------------------------------------
+
 
 def path_duplicate_mask(keys: np.ndarray, *others: np.ndarray) -> np.ndarray:
     """Rows of ``keys`` that repeat an earlier row of ``keys`` or any row of
@@ -119,8 +119,7 @@ def path_duplicate_mask(keys: np.ndarray, *others: np.ndarray) -> np.ndarray:
     """
     keys = np.ascontiguousarray(keys, dtype=np.int64).reshape(len(keys), -1)
     others = [np.asarray(o, dtype=np.int64).reshape(len(o), -1) for o in others if len(o)]
-    old = (np.ascontiguousarray(np.concatenate(others)) if others
-           else np.zeros((0, keys.shape[1]), np.int64))
+    old = np.ascontiguousarray(np.concatenate(others)) if others else np.zeros((0, keys.shape[1]), np.int64)
     h_old = row_hashes(old)
     return repeated_rows(row_hashes(keys), keys, h_old, old, np.argsort(h_old, kind="stable"))
 
@@ -204,7 +203,7 @@ def _repair_do(repair, problem, X, **kwargs) -> np.ndarray:
         return X
     if repair.vtype is not None:
         X = X.astype(repair.vtype)
-    if type(repair)._do is Repair._do:      # NoRepair
+    if type(repair)._do is Repair._do:  # NoRepair
         return X
     return np.asarray(repair._do(problem, X, **kwargs))
 
@@ -212,6 +211,7 @@ def _repair_do(repair, problem, X, **kwargs) -> np.ndarray:
 # ---------------------------------------------------------------------------
 # the population as arrays
 # ---------------------------------------------------------------------------
+
 
 @dataclass
 class PathArrays:
@@ -249,23 +249,24 @@ class PathArrays:
     def __len__(self) -> int:
         return len(self.X)
 
-    def take(self, idx) -> "PathArrays":
+    def take(self, idx) -> PathArrays:
         """The rows ``idx`` (any NumPy index)."""
-        out = PathArrays(*(getattr(self, k)[idx] for k in self._ROWS),
-                         data={k: v[idx] for k, v in self.data.items()})
+        out = PathArrays(
+            *(getattr(self, k)[idx] for k in self._ROWS), data={k: v[idx] for k, v in self.data.items()}
+        )
         if self.rank is not None:
             out.rank, out.crowding = self.rank[idx], self.crowding[idx]
         if self.keys is not None:
             out.keys, out.hashes = self.keys[idx], self.hashes[idx]
         return out
 
-    def concat(self, other: "PathArrays") -> "PathArrays":
+    def concat(self, other: PathArrays) -> PathArrays:
         """This population followed by ``other`` (without rank and crowding;
         ``data`` keeps the keys both have)."""
-        out = PathArrays(*(np.concatenate([getattr(self, k), getattr(other, k)])
-                           for k in self._ROWS),
-                         data={k: np.concatenate([v, other.data[k]])
-                               for k, v in self.data.items() if k in other.data})
+        out = PathArrays(
+            *(np.concatenate([getattr(self, k), getattr(other, k)]) for k in self._ROWS),
+            data={k: np.concatenate([v, other.data[k]]) for k, v in self.data.items() if k in other.data},
+        )
         if self.keys is not None and other.keys is not None:
             out.keys = np.concatenate([self.keys, other.keys])
             out.hashes = np.concatenate([self.hashes, other.hashes])
@@ -310,8 +311,18 @@ class _SeenPaths:
     def accept(self, keys, hashes, n_max: int) -> np.ndarray:
         """Indices of the first ``n_max`` rows whose path is new (not seen,
         not repeated inside ``keys``); they become seen."""
-        idx = accept_new_rows(keys, hashes, self.pop_keys, self.pop_hashes, self.pop_order,
-                              self.keys, self.hashes, self.n, n_max, self.check)
+        idx = accept_new_rows(
+            keys,
+            hashes,
+            self.pop_keys,
+            self.pop_hashes,
+            self.pop_order,
+            self.keys,
+            self.hashes,
+            self.n,
+            n_max,
+            self.check,
+        )
         self.n += len(idx)
         return idx
 
@@ -320,15 +331,20 @@ class _SeenPaths:
 # the algorithm
 # ---------------------------------------------------------------------------
 
+
 def _check_problem(problem) -> None:
     encoding = getattr(problem, "encoding", None)
-    if encoding is None or not callable(getattr(encoding, "decode", None)) \
-            or not callable(getattr(problem, "metrics", None)):
+    if (
+        encoding is None
+        or not callable(getattr(encoding, "decode", None))
+        or not callable(getattr(problem, "metrics", None))
+    ):
         raise ConfigError(
             f"FastNSGA2 needs a gapath path problem (an `encoding` that decodes genomes into "
             f"paths and a `metrics` method, e.g. gapath.problems.GridPathProblem), got "
             f"{type(problem).__name__}; use gapath.algorithms.paper_nsga2 or pymoo's NSGA2 for "
-            f"other problems")
+            f"other problems"
+        )
 
 
 def _default_operators(encoding: str, **settings) -> dict:
@@ -336,13 +352,16 @@ def _default_operators(encoding: str, **settings) -> dict:
     settings) from :func:`gapath.operators.defaults.default_operators`."""
     try:
         from gapath.operators.defaults import default_operators
-    except ImportError:            # a gapath without per-encoding defaults: integer only
+    except ImportError:  # a gapath without per-encoding defaults: integer only
         if encoding != "integer":
-            raise ConfigError(f"no default operators for the {encoding!r} encoding; pass "
-                              f"sampling, crossover and mutation") from None
-        return dict(sampling=IntegerRandomSampling(),
-                    crossover=DiscreteSBX(prob=settings["sbx_prob"], eta=settings["sbx_eta"]),
-                    mutation=DiscretePM(eta=settings["pm_eta"], prob_var=settings["pm_prob_var"]))
+            raise ConfigError(
+                f"no default operators for the {encoding!r} encoding; pass sampling, crossover and mutation"
+            ) from None
+        return dict(
+            sampling=IntegerRandomSampling(),
+            crossover=DiscreteSBX(prob=settings["sbx_prob"], eta=settings["sbx_eta"]),
+            mutation=DiscretePM(eta=settings["pm_eta"], prob_var=settings["pm_prob_var"]),
+        )
     return default_operators(encoding, **settings)
 
 
@@ -431,12 +450,26 @@ class FastNSGA2(Algorithm):
 
     clock = staticmethod(time.perf_counter)
 
-    def __init__(self, pop_size: int = 500, *, tiebreak: str | None = "smoothness",
-                 sampling=None, crossover=None, mutation=None, repair=None, encoding=None,
-                 sbx_prob: float = 0.9, sbx_eta: float = 10, pm_eta: float = 20,
-                 pm_prob_var: float | None = None, n_offsprings: int | None = None,
-                 eliminate_duplicates: bool = True, n_max_iterations: int = 100,
-                 fast_operators: bool = True, **kwargs):
+    def __init__(
+        self,
+        pop_size: int = 500,
+        *,
+        tiebreak: str | None = "smoothness",
+        sampling=None,
+        crossover=None,
+        mutation=None,
+        repair=None,
+        encoding=None,
+        sbx_prob: float = 0.9,
+        sbx_eta: float = 10,
+        pm_eta: float = 20,
+        pm_prob_var: float | None = None,
+        n_offsprings: int | None = None,
+        eliminate_duplicates: bool = True,
+        n_max_iterations: int = 100,
+        fast_operators: bool = True,
+        **kwargs,
+    ):
         # state behind the pymoo views (set before Algorithm.__init__ assigns them)
         self._arrays = self._offspring = None
         self._pop = self._opt = self._off = self._opt_idx = None
@@ -458,8 +491,9 @@ class FastNSGA2(Algorithm):
         self.n_offsprings = n_offsprings
         self.tiebreak = tiebreak
         self.encoding = encoding
-        self.operator_settings = dict(sbx_prob=sbx_prob, sbx_eta=sbx_eta, pm_eta=pm_eta,
-                                      pm_prob_var=pm_prob_var)
+        self.operator_settings = dict(
+            sbx_prob=sbx_prob, sbx_eta=sbx_eta, pm_eta=pm_eta, pm_prob_var=pm_prob_var
+        )
         self.sampling, self.crossover, self.mutation = sampling, crossover, mutation
         if encoding is not None:
             self._default_operators(encoding)
@@ -483,7 +517,7 @@ class FastNSGA2(Algorithm):
             merged = self._arrays if offspring is None else self._arrays.concat(offspring)
             survivors = self._survival(merged, self.pop_size)
         self._set_arrays(survivors, offspring)
-        self._post_advance()                # optimum, termination, display, history, callback
+        self._post_advance()  # optimum, termination, display, history, callback
         if self.termination.has_terminated():
             self.finalize()
         if self.archive is not None and offspring is not None:
@@ -528,7 +562,7 @@ class FastNSGA2(Algorithm):
                 break
         if n_off < n_offsprings and self.verbose:
             print("WARNING: Mating could not produce the required number of (unique) offsprings!")
-        return np.concatenate(offspring), seen.keys[:seen.n], seen.hashes[:seen.n]
+        return np.concatenate(offspring), seen.keys[: seen.n], seen.hashes[: seen.n]
 
     # == NSGA-II steps ========================================================
     def _tournament_criteria(self):
@@ -537,9 +571,13 @@ class FastNSGA2(Algorithm):
         A = self._arrays
         smooth = A.data.get("smoothness")
         use_smooth = self.tiebreak is not None and smooth is not None
-        return (A.CV.astype(float), A.rank.astype(float),
-                np.asarray(smooth if use_smooth else A.CV, dtype=float),
-                A.crowding.astype(float), use_smooth)
+        return (
+            A.CV.astype(float),
+            A.rank.astype(float),
+            np.asarray(smooth if use_smooth else A.CV, dtype=float),
+            A.crowding.astype(float),
+            use_smooth,
+        )
 
     def _selection(self, n_matings: int, criteria) -> np.ndarray:
         """Binary tournaments: ``(n_matings, n_parents)`` row indices
@@ -555,16 +593,17 @@ class FastNSGA2(Algorithm):
         """Crossover, then mutation, of the parents' genomes (for gapath's
         DiscreteSBX and DiscretePM in one numba twin, see ``fast_operators``)."""
         if self._fast_discrete:
-            X = self._arrays.X[parents.T]              # (n_parents, n_matings, n_var)
-            return discrete_variation(self.crossover, self.mutation, self.problem, X,
-                                      self.random_state, self._bounds)
+            X = self._arrays.X[parents.T]  # (n_parents, n_matings, n_var)
+            return discrete_variation(
+                self.crossover, self.mutation, self.problem, X, self.random_state, self._bounds
+            )
         return self._mutation(self._crossover(parents))
 
     def _crossover(self, parents: np.ndarray) -> np.ndarray:
         """pymoo's ``Crossover.do`` on arrays: each mating is crossed with
         probability ``prob``, the others pass their parents on."""
         op = self.crossover
-        X = self._arrays.X[parents.T]                  # (n_parents, n_matings, n_var)
+        X = self._arrays.X[parents.T]  # (n_parents, n_matings, n_var)
         if op.vtype is not None:
             X = X.astype(op.vtype)
         if self._fast_sbx:
@@ -584,7 +623,7 @@ class FastNSGA2(Algorithm):
             Xp[:, cross] = Q[:, cross]
         if n_off == n_par:
             Xp[:, ~cross] = X[:, ~cross]
-        else:                                          # pymoo's per-mating draws, in order
+        else:  # pymoo's per-mating draws, in order
             for k in np.flatnonzero(~cross):
                 if n_off < n_par:
                     s = rng.choice(np.arange(n_par), size=n_off, replace=False)
@@ -627,17 +666,30 @@ class FastNSGA2(Algorithm):
         path is decoded once."""
         t0 = self.clock()
         kwargs = {}
-        if keys is not None and getattr(self.problem, "accepts_profiles", False) \
-                and getattr(self.problem, "requires_kwargs", False):
+        if (
+            keys is not None
+            and getattr(self.problem, "accepts_profiles", False)
+            and getattr(self.problem, "requires_kwargs", False)
+        ):
             # the paths were decoded for duplicate elimination: not again
             kwargs["profiles"] = _split_keys(keys)
-        out = self.problem.evaluate(X, return_values_of=list(_CORE_OUTPUTS),
-                                    return_as_dictionary=True, algorithm=self, **kwargs)
+        out = self.problem.evaluate(
+            X, return_values_of=list(_CORE_OUTPUTS), return_as_dictionary=True, algorithm=self, **kwargs
+        )
         self.evaluator.n_eval += len(X)
         F, G, H = (np.asarray(out[k], dtype=float).reshape(len(X), -1) for k in _CORE_OUTPUTS)
         data = {k: np.asarray(v) for k, v in out.items() if k not in _CORE_OUTPUTS and v is not None}
-        arrays = PathArrays(X, F, G, H, _constraint_violation(G, H),
-                            np.full(len(X), self.n_iter, np.int64), data, keys=keys, hashes=hashes)
+        arrays = PathArrays(
+            X,
+            F,
+            G,
+            H,
+            _constraint_violation(G, H),
+            np.full(len(X), self.n_iter, np.int64),
+            data,
+            keys=keys,
+            hashes=hashes,
+        )
         self._tick("evaluation", t0)
         return arrays
 
@@ -651,8 +703,7 @@ class FastNSGA2(Algorithm):
         t0 = self._tick("sorting", t0)
         smooth = arrays.data.get("smoothness") if self.tiebreak is not None else None
         smooth = np.zeros(len(arrays)) if smooth is None else np.asarray(smooth, dtype=float)
-        order, rank, crowding = order_survivors(arrays.F, smooth, arrays.CV, feasible, ranks,
-                                                n_survive)
+        order, rank, crowding = order_survivors(arrays.F, smooth, arrays.CV, feasible, ranks, n_survive)
         survivors = arrays.take(order)
         survivors.rank, survivors.crowding = rank, crowding
         self._tick("survival", t0)
@@ -674,8 +725,9 @@ class FastNSGA2(Algorithm):
             X = s(problem, self.pop_size, random_state=rng, algorithm=self, to_numpy=True)
             given = None
         else:
-            raise ConfigError(f"sampling must be a pymoo Sampling, an array or a Population, "
-                              f"got {type(s).__name__}")
+            raise ConfigError(
+                f"sampling must be a pymoo Sampling, an array or a Population, got {type(s).__name__}"
+            )
         t0 = self.clock()
         if given is None:
             X = self._repair(X)
@@ -706,7 +758,7 @@ class FastNSGA2(Algorithm):
     def _keys(self, X):
         """Decoded column profiles of ``X`` (the identity of each path) and
         their hashes."""
-        if hasattr(self.problem, "path_keys"):              # free paths: identity rows
+        if hasattr(self.problem, "path_keys"):  # free paths: identity rows
             K = np.ascontiguousarray(self.problem.path_keys(X), dtype=np.int64)
             return K, row_hashes(K)
         entries, exits = self.problem.encoding.decode(X)
@@ -724,12 +776,12 @@ class FastNSGA2(Algorithm):
     def _from_population(self, pop) -> PathArrays:
         """:class:`PathArrays` of an evaluated pymoo population."""
         X = pop.get("X")
-        F, G, H, CV = (np.asarray(pop.get(k), dtype=float).reshape(len(pop), -1)
-                       for k in ("F", "G", "H", "CV"))
+        F, G, H, CV = (
+            np.asarray(pop.get(k), dtype=float).reshape(len(pop), -1) for k in ("F", "G", "H", "CV")
+        )
         skip = ("rank", "crowding", "n_gen", "n_iter")
         names = [k for k in (pop[0].data if len(pop) else ()) if k not in skip]
-        data = {k: np.array([ind.data[k] for ind in pop]) for k in names
-                if all(k in ind.data for ind in pop)}
+        data = {k: np.array([ind.data[k] for ind in pop]) for k in names if all(k in ind.data for ind in pop)}
         n_gen = np.array([ind.data.get("n_gen") or self.n_iter or 1 for ind in pop], np.int64)
         return PathArrays(X, F, G, H, CV[:, 0], n_gen, data)
 
@@ -802,7 +854,8 @@ class FastNSGA2(Algorithm):
         if self.encoding is not None and used is not None and used != self.encoding:
             raise ConfigError(
                 f"FastNSGA2 was configured for the {self.encoding!r} encoding but the problem "
-                f"uses {used!r}; pass FastNSGA2(..., encoding={used!r})")
+                f"uses {used!r}; pass FastNSGA2(..., encoding={used!r})"
+            )
         self._default_operators(used or self.encoding or "integer")
         if self.output is None:
             self.output = MultiObjectiveOutput() if problem.n_obj > 1 else SingleObjectiveOutput()
@@ -812,8 +865,9 @@ class FastNSGA2(Algorithm):
         self.timings = dict.fromkeys(PHASES, 0.0)
         self._fast_sbx = self.fast_operators and sbx_supported(self.crossover)
         self._fast_pm = self.fast_operators and pm_supported(self.mutation, problem)
-        self._fast_discrete = self.fast_operators and discrete_supported(self.crossover,
-                                                                         self.mutation, problem)
+        self._fast_discrete = self.fast_operators and discrete_supported(
+            self.crossover, self.mutation, problem
+        )
         self._bounds = (np.asarray(problem.xl, dtype=float), np.asarray(problem.xu, dtype=float))
 
     def _initialize(self):

@@ -46,16 +46,25 @@ class PathNSGA2(NSGA2):
         if self.encoding_name is not None and used is not None and used != self.encoding_name:
             raise ConfigError(
                 f"paper_nsga2 was configured for the {self.encoding_name!r} encoding but the "
-                f"problem uses {used!r}; pass paper_nsga2(..., encoding={used!r})")
+                f"problem uses {used!r}; pass paper_nsga2(..., encoding={used!r})"
+            )
         super()._setup(problem, **kwargs)
         if isinstance(self.eliminate_duplicates, PathDuplicateElimination):
             self.eliminate_duplicates.bind(problem)
 
 
-def paper_nsga2(pop_size: int = 500, *, encoding: str = "integer",
-                tiebreak: str | None = "smoothness", sbx_prob: float = 0.9,
-                sbx_eta: float = 10, pm_eta: float = 20, pm_prob_var: float | None = None,
-                sampling=None, **kwargs) -> PathNSGA2:
+def paper_nsga2(
+    pop_size: int = 500,
+    *,
+    encoding: str = "integer",
+    tiebreak: str | None = "smoothness",
+    sbx_prob: float = 0.9,
+    sbx_eta: float = 10,
+    pm_eta: float = 20,
+    pm_prob_var: float | None = None,
+    sampling=None,
+    **kwargs,
+) -> PathNSGA2:
     """NSGA-II with Ahmed & Deb's settings (2013, sections 2 and 5.2).
 
     The encoding's operators from :func:`gapath.operators.default_operators`
@@ -122,8 +131,9 @@ def paper_nsga2(pop_size: int = 500, *, encoding: str = "integer",
 
     if encoding not in ENCODINGS and encoding not in FREE_ENCODINGS:
         raise ConfigError(f"unknown encoding {encoding!r}; expected one of {', '.join(ENCODINGS)}")
-    ops = default_operators(encoding, sbx_prob=sbx_prob, sbx_eta=sbx_eta, pm_eta=pm_eta,
-                            pm_prob_var=pm_prob_var)
+    ops = default_operators(
+        encoding, sbx_prob=sbx_prob, sbx_eta=sbx_eta, pm_eta=pm_eta, pm_prob_var=pm_prob_var
+    )
     return PathNSGA2(
         encoding=encoding,
         pop_size=pop_size,

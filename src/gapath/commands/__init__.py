@@ -9,8 +9,13 @@ with ``parser.set_defaults``. Errors derived from
 import importlib
 
 #: Modules that add sub-commands, in help order.
-MODULES: list[str] = ["gapath.commands.exact", "gapath.commands.experiment", "gapath.commands.dynamic",
-                      "gapath.commands.plan", "gapath.commands.scen"]
+MODULES: list[str] = [
+    "gapath.commands.exact",
+    "gapath.commands.experiment",
+    "gapath.commands.dynamic",
+    "gapath.commands.plan",
+    "gapath.commands.scen",
+]
 
 
 def register_all(subparsers) -> None:

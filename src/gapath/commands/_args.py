@@ -86,19 +86,29 @@ def scen_ref(text: str) -> tuple[Path, int]:
     name, sep, index = str(text).rpartition(":")
     if not sep or not name or not index.isdigit():
         raise argparse.ArgumentTypeError(
-            f"expected FILE:INDEX (a .scen file and a scenario index from 0), got {text!r}")
+            f"expected FILE:INDEX (a .scen file and a scenario index from 0), got {text!r}"
+        )
     return Path(name), int(index)
 
 
 def add_corner_arguments(parser) -> None:
     """``--corner-cutting`` / ``--no-corner-cutting`` (default: the map's rule)."""
     cc = parser.add_mutually_exclusive_group()
-    cc.add_argument("--corner-cutting", dest="corner_cutting", action="store_true", default=None,
-                    help="allow diagonal moves past blocked corners (default for text grids, "
-                         ".npy and the bundled scenario)")
-    cc.add_argument("--no-corner-cutting", dest="corner_cutting", action="store_false",
-                    help="a diagonal move needs both orthogonal neighbours free (MovingAI's "
-                         "rule; default for MovingAI .map, ROS maps and images)")
+    cc.add_argument(
+        "--corner-cutting",
+        dest="corner_cutting",
+        action="store_true",
+        default=None,
+        help="allow diagonal moves past blocked corners (default for text grids, "
+        ".npy and the bundled scenario)",
+    )
+    cc.add_argument(
+        "--no-corner-cutting",
+        dest="corner_cutting",
+        action="store_false",
+        help="a diagonal move needs both orthogonal neighbours free (MovingAI's "
+        "rule; default for MovingAI .map, ROS maps and images)",
+    )
 
 
 #: What argparse takes for a negative number: also "X,Y" pairs such as
@@ -109,25 +119,44 @@ _NEGATIVE = re.compile(r"^-\d+$|^-\d*\.\d+$|^-?\d*\.?\d+(e-?\d+)?,-?\d*\.?\d+(e-
 def add_map_arguments(parser, *, what: str = "map") -> None:
     """``MAP``, ``--start``/``--goal``, ``--start-xy``/``--goal-xy``,
     ``--scen`` and the corner rule (see the module docstring)."""
-    if hasattr(parser, "_negative_number_matcher"):    # argparse has no public hook
+    if hasattr(parser, "_negative_number_matcher"):  # argparse has no public hook
         parser._negative_number_matcher = _NEGATIVE
-    parser.add_argument("map", nargs="?", default=None, metavar="MAP",
-                        help=f"{what} file (.map, .yaml, .txt, .grid, .npy, .pgm, .png) or "
-                             "'default' for the bundled 32x32 scenario; optional with --scen")
-    parser.add_argument("--start", type=cell, metavar="ROW,COL",
-                        help="start cell, row 0 at the top (default: bottom-left; a text grid's S)")
-    parser.add_argument("--goal", type=cell, metavar="ROW,COL",
-                        help="goal cell (default: top-right; a text grid's G)")
-    parser.add_argument("--start-xy", type=point, metavar="X,Y",
-                        help="start in metres in the map frame of a ROS map (origin and "
-                             "resolution from its yaml; y grows up the image)")
-    parser.add_argument("--goal-xy", type=point, metavar="X,Y",
-                        help="goal in metres in the map frame of a ROS map")
-    parser.add_argument("--scen", type=scen_ref, metavar="FILE:INDEX",
-                        help="start and goal of scenario INDEX (from 0) of a MovingAI .scen file, "
-                             "with MovingAI's corner rule; the map is MAP or, without MAP, the "
-                             "scenario's map next to the .scen file; its optimal length is "
-                             "reported beside the result")
+    parser.add_argument(
+        "map",
+        nargs="?",
+        default=None,
+        metavar="MAP",
+        help=f"{what} file (.map, .yaml, .txt, .grid, .npy, .pgm, .png) or "
+        "'default' for the bundled 32x32 scenario; optional with --scen",
+    )
+    parser.add_argument(
+        "--start",
+        type=cell,
+        metavar="ROW,COL",
+        help="start cell, row 0 at the top (default: bottom-left; a text grid's S)",
+    )
+    parser.add_argument(
+        "--goal", type=cell, metavar="ROW,COL", help="goal cell (default: top-right; a text grid's G)"
+    )
+    parser.add_argument(
+        "--start-xy",
+        type=point,
+        metavar="X,Y",
+        help="start in metres in the map frame of a ROS map (origin and "
+        "resolution from its yaml; y grows up the image)",
+    )
+    parser.add_argument(
+        "--goal-xy", type=point, metavar="X,Y", help="goal in metres in the map frame of a ROS map"
+    )
+    parser.add_argument(
+        "--scen",
+        type=scen_ref,
+        metavar="FILE:INDEX",
+        help="start and goal of scenario INDEX (from 0) of a MovingAI .scen file, "
+        "with MovingAI's corner rule; the map is MAP or, without MAP, the "
+        "scenario's map next to the .scen file; its optimal length is "
+        "reported beside the result",
+    )
     add_corner_arguments(parser)
 
 
@@ -168,10 +197,11 @@ class MapChoice:
     def corner_line(self) -> str:
         """The report line of the corner rule."""
         if self.workspace.corner_cutting:
-            return (f"corner cutting: allowed ({self.corner_source}; --no-corner-cutting "
-                    "forbids it)")
-        return (f"corner cutting: not allowed, a diagonal move needs both orthogonal "
-                f"neighbours free ({self.corner_source}; --corner-cutting allows it)")
+            return f"corner cutting: allowed ({self.corner_source}; --no-corner-cutting forbids it)"
+        return (
+            f"corner cutting: not allowed, a diagonal move needs both orthogonal "
+            f"neighbours free ({self.corner_source}; --corner-cutting allows it)"
+        )
 
     def settings(self) -> dict:
         """Entries for ``summary.json``'s settings: the corner rule, where it
@@ -182,7 +212,8 @@ class MapChoice:
         if frame is not None:
             out["frame"] = frame.to_json()
             out["start_xy"], out["goal_xy"] = (
-                [round(float(v), 6) for v in p] for p in frame.to_world([ws.start, ws.goal]))
+                [round(float(v), 6) for v in p] for p in frame.to_world([ws.start, ws.goal])
+            )
         return out
 
     def scenario_record(self, length) -> dict | None:
@@ -192,26 +223,34 @@ class MapChoice:
         if sc is None:
             return None
         found = None if length is None else float(length)
-        return {"file": str(self.scen_file), "index": self.scen_index, "line": sc.line,
-                "map": sc.map, "start": list(sc.start), "goal": list(sc.goal),
-                "optimal": sc.optimal, "length": found,
-                "matches": None if found is None else matches_optimum(found, sc.optimal),
-                "rule": "no corner cutting",
-                "tolerance": "abs(length - optimal) <= 1e-5 * max(1, optimal)"}
+        return {
+            "file": str(self.scen_file),
+            "index": self.scen_index,
+            "line": sc.line,
+            "map": sc.map,
+            "start": list(sc.start),
+            "goal": list(sc.goal),
+            "optimal": sc.optimal,
+            "length": found,
+            "matches": None if found is None else matches_optimum(found, sc.optimal),
+            "rule": "no corner cutting",
+            "tolerance": "abs(length - optimal) <= 1e-5 * max(1, optimal)",
+        }
 
     def scenario_line(self, length, what: str = "length") -> str | None:
         """The report line comparing ``length`` with the scenario's optimum."""
         sc = self.scenario
         if sc is None:
             return None
-        head = (f"scenario {self.scen_file}:{self.scen_index} (line {sc.line}): "
-                f"MovingAI optimum {sc.optimal:.8g}")
+        head = (
+            f"scenario {self.scen_file}:{self.scen_index} (line {sc.line}): MovingAI optimum {sc.optimal:.8g}"
+        )
         if length is None:
             return head + f"; no {what} to compare"
-        verdict = ("matches" if matches_optimum(length, sc.optimal)
-                   else f"differs by {length - sc.optimal:+.6g}")
-        note = ("" if not self.workspace.corner_cutting
-                else " (the optimum assumes no corner cutting)")
+        verdict = (
+            "matches" if matches_optimum(length, sc.optimal) else f"differs by {length - sc.optimal:+.6g}"
+        )
+        note = "" if not self.workspace.corner_cutting else " (the optimum assumes no corner cutting)"
         return head + f", {what} {length:.8g}: {verdict}{note}"
 
 
@@ -223,8 +262,10 @@ def _scenario(args):
     if not scens:
         raise ConfigError(f"--scen {path}:{index}: the file holds no scenario")
     if index >= len(scens):
-        raise ConfigError(f"--scen {path}:{index}: the file holds {len(scens)} scenarios, "
-                          f"expected an index 0..{len(scens) - 1}")
+        raise ConfigError(
+            f"--scen {path}:{index}: the file holds {len(scens)} scenarios, "
+            f"expected an index 0..{len(scens) - 1}"
+        )
     return scens[index]
 
 
@@ -232,16 +273,20 @@ def _xy_cells(args, map_arg):
     """``--start-xy`` / ``--goal-xy`` as cells (None where not given)."""
     from gapath.loaders import map_frame
 
-    wanted = [(flag, xy) for flag, xy in (("--start-xy", args.start_xy),
-                                          ("--goal-xy", args.goal_xy)) if xy is not None]
+    wanted = [
+        (flag, xy)
+        for flag, xy in (("--start-xy", args.start_xy), ("--goal-xy", args.goal_xy))
+        if xy is not None
+    ]
     if not wanted:
         return None, None
     frame = None if map_arg == "default" else map_frame(map_arg)
     if frame is None:
-        raise ConfigError(f"{wanted[0][0]} needs a map with a world frame (a ROS map_server "
-                          f".yaml); {map_arg} has none: give --{wanted[0][0][2:-3]} ROW,COL")
-    cells = {flag: frame.to_cell(*xy, name=f"{flag} (metres in the map frame)")
-             for flag, xy in wanted}
+        raise ConfigError(
+            f"{wanted[0][0]} needs a map with a world frame (a ROS map_server "
+            f".yaml); {map_arg} has none: give --{wanted[0][0][2:-3]} ROW,COL"
+        )
+    cells = {flag: frame.to_cell(*xy, name=f"{flag} (metres in the map frame)") for flag, xy in wanted}
     return cells.get("--start-xy"), cells.get("--goal-xy")
 
 
@@ -264,13 +309,17 @@ def load_workspace(args) -> MapChoice:
     map_arg = args.map
     start, goal = args.start, args.goal
     scen = getattr(args, "scen", None)
-    for flag, cell_value, xy in (("start", start, getattr(args, "start_xy", None)),
-                                 ("goal", goal, getattr(args, "goal_xy", None))):
+    for flag, cell_value, xy in (
+        ("start", start, getattr(args, "start_xy", None)),
+        ("goal", goal, getattr(args, "goal_xy", None)),
+    ):
         if cell_value is not None and xy is not None:
             raise ConfigError(f"--{flag} and --{flag}-xy both give the {flag}; keep one")
         if scen is not None and (cell_value is not None or xy is not None):
-            raise ConfigError(f"--scen gives the start and the goal; drop --{flag}"
-                              + ("" if cell_value is not None else "-xy"))
+            raise ConfigError(
+                f"--scen gives the start and the goal; drop --{flag}"
+                + ("" if cell_value is not None else "-xy")
+            )
     scenario = None
     if scen is not None:
         scenario = _scenario(args)
@@ -299,12 +348,13 @@ def load_workspace(args) -> MapChoice:
             changes["corner_cutting"] = cc
         ws = ws.replace(**changes) if changes else ws
     else:
-        ws = load_map(map_arg, start=start, goal=goal,
-                      **({} if cc is None else {"corner_cutting": cc}))
+        ws = load_map(map_arg, start=start, goal=goal, **({} if cc is None else {"corner_cutting": cc}))
     if scenario is not None and ws.shape != (scenario.height, scenario.width):
-        raise ConfigError(f"--scen {args.scen[0]}:{args.scen[1]} is for a {scenario.width}x"
-                          f"{scenario.height} map ({scenario.map}, width x height), but "
-                          f"{map_arg} is {ws.shape[1]}x{ws.shape[0]}")
+        raise ConfigError(
+            f"--scen {args.scen[0]}:{args.scen[1]} is for a {scenario.width}x"
+            f"{scenario.height} map ({scenario.map}, width x height), but "
+            f"{map_arg} is {ws.shape[1]}x{ws.shape[0]}"
+        )
     return MapChoice(ws, source, scenario, *(args.scen if scen is not None else (None, None)))
 
 

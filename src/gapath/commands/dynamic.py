@@ -50,7 +50,7 @@ def _cell_arg(text):
 def _add(parser, *flags, **kwargs) -> None:
     """Add an option unless one of its flags is already there."""
     existing = set()
-    for action in parser._actions:                         # argparse has no public query
+    for action in parser._actions:  # argparse has no public query
         existing.update(action.option_strings)
     if not existing.intersection(flags):
         parser.add_argument(*flags, **kwargs)
@@ -59,30 +59,85 @@ def _add(parser, *flags, **kwargs) -> None:
 def add_planner_arguments(parser) -> None:
     """The options of the car, hybrid A* and RRT(*) (already present options
     are left alone)."""
-    _add(parser, "--wheelbase", type=float, default=0.6,
-         help="car wheelbase, world units (default: %(default)s)")
-    _add(parser, "--max-steer", type=float, default=34.4,
-         help="maximum steering angle in degrees, below 90 (default: %(default)s)")
-    _add(parser, "--radius", type=float, default=0.3,
-         help="robot footprint radius, world units (default: %(default)s)")
-    _add(parser, "--speed", type=float, default=1.0,
-         help="robot speed, world units per second (default: %(default)s)")
-    _add(parser, "--heading", type=float, default=None,
-         help="start heading in degrees from +x (east) towards +y (south, down the map); on a "
-              "ROS map counter-clockwise from the map frame's +x (ROS yaw); default along "
-              "the first steps of the grid shortest path")
-    _add(parser, "--heading-bins", type=int, default=72,
-         help="hybrid A*: heading bins of the discrete states (default: %(default)s)")
-    _add(parser, "--arc-length", type=float, default=None,
-         help="hybrid A*: length of an expansion, above sqrt(2) cells (default: 1.5 cells)")
-    _add(parser, "--heuristic-weight", type=float, default=1.1,
-         help="hybrid A*: weight of the heuristic (default: %(default)s)")
-    _add(parser, "--iterations", type=int, default=20000,
-         help="RRT/RRT*: samples at most (default: %(default)s)")
-    _add(parser, "--step", type=float, default=None,
-         help="RRT/RRT*: tree extension, world units (default: 2 cells)")
-    _add(parser, "--goal-bias", type=float, default=0.1,
-         help="RRT/RRT*: probability of sampling the goal (default: %(default)s)")
+    _add(
+        parser,
+        "--wheelbase",
+        type=float,
+        default=0.6,
+        help="car wheelbase, world units (default: %(default)s)",
+    )
+    _add(
+        parser,
+        "--max-steer",
+        type=float,
+        default=34.4,
+        help="maximum steering angle in degrees, below 90 (default: %(default)s)",
+    )
+    _add(
+        parser,
+        "--radius",
+        type=float,
+        default=0.3,
+        help="robot footprint radius, world units (default: %(default)s)",
+    )
+    _add(
+        parser,
+        "--speed",
+        type=float,
+        default=1.0,
+        help="robot speed, world units per second (default: %(default)s)",
+    )
+    _add(
+        parser,
+        "--heading",
+        type=float,
+        default=None,
+        help="start heading in degrees from +x (east) towards +y (south, down the map); on a "
+        "ROS map counter-clockwise from the map frame's +x (ROS yaw); default along "
+        "the first steps of the grid shortest path",
+    )
+    _add(
+        parser,
+        "--heading-bins",
+        type=int,
+        default=72,
+        help="hybrid A*: heading bins of the discrete states (default: %(default)s)",
+    )
+    _add(
+        parser,
+        "--arc-length",
+        type=float,
+        default=None,
+        help="hybrid A*: length of an expansion, above sqrt(2) cells (default: 1.5 cells)",
+    )
+    _add(
+        parser,
+        "--heuristic-weight",
+        type=float,
+        default=1.1,
+        help="hybrid A*: weight of the heuristic (default: %(default)s)",
+    )
+    _add(
+        parser,
+        "--iterations",
+        type=int,
+        default=20000,
+        help="RRT/RRT*: samples at most (default: %(default)s)",
+    )
+    _add(
+        parser,
+        "--step",
+        type=float,
+        default=None,
+        help="RRT/RRT*: tree extension, world units (default: 2 cells)",
+    )
+    _add(
+        parser,
+        "--goal-bias",
+        type=float,
+        default=0.1,
+        help="RRT/RRT*: probability of sampling the goal (default: %(default)s)",
+    )
     _add(parser, "--seed", type=int, default=1, help="random seed (default: %(default)s)")
 
 
@@ -95,12 +150,23 @@ def add_planner_choices(parser=None) -> tuple[str, ...]:
 
 
 #: Planner and car parameters by the CLI flag that sets them.
-FLAG_NAMES = {"max_iter": "--iterations", "goal_bias": "--goal-bias", "step": "--step",
-              "radius": "--radius", "wheelbase": "--wheelbase", "speed": "--speed",
-              "max_steer": "--max-steer", "heading_bins": "--heading-bins",
-              "arc_length": "--arc-length", "heuristic_weight": "--heuristic-weight",
-              "sensor_range": "--sensor-range", "fov": "--fov", "dt": "--dt",
-              "max_time": "--max-time", "speed_range": "--obstacle-speed"}
+FLAG_NAMES = {
+    "max_iter": "--iterations",
+    "goal_bias": "--goal-bias",
+    "step": "--step",
+    "radius": "--radius",
+    "wheelbase": "--wheelbase",
+    "speed": "--speed",
+    "max_steer": "--max-steer",
+    "heading_bins": "--heading-bins",
+    "arc_length": "--arc-length",
+    "heuristic_weight": "--heuristic-weight",
+    "sensor_range": "--sensor-range",
+    "fov": "--fov",
+    "dt": "--dt",
+    "max_time": "--max-time",
+    "speed_range": "--obstacle-speed",
+}
 
 
 @contextlib.contextmanager
@@ -117,7 +183,7 @@ def cli_vocabulary():
         m = re.match(r"(\w+)(?= must| \()", message)
         if m is None or m.group(1) not in FLAG_NAMES:
             raise
-        raise ConfigError(FLAG_NAMES[m.group(1)] + message[len(m.group(1)):]) from None
+        raise ConfigError(FLAG_NAMES[m.group(1)] + message[len(m.group(1)) :]) from None
 
 
 def planner_heading(workspace, degrees: float) -> float:
@@ -141,12 +207,14 @@ def car_from_args(args):
     except (TypeError, ValueError):
         raise ConfigError(f"--max-steer must be a number of degrees, got {steer!r}") from None
     if not 0.0 < degrees < 90.0:
-        raise ConfigError(f"--max-steer must be between 0 and 90 degrees (both excluded), "
-                          f"got {degrees:g}")
+        raise ConfigError(f"--max-steer must be between 0 and 90 degrees (both excluded), got {degrees:g}")
     with cli_vocabulary():
-        return CarModel(wheelbase=getattr(args, "wheelbase", 0.6),
-                        max_steer=math.radians(degrees), speed=getattr(args, "speed", 1.0),
-                        radius=getattr(args, "radius", 0.3))
+        return CarModel(
+            wheelbase=getattr(args, "wheelbase", 0.6),
+            max_steer=math.radians(degrees),
+            speed=getattr(args, "speed", 1.0),
+            radius=getattr(args, "radius", 0.3),
+        )
 
 
 @dataclass(eq=False)
@@ -177,20 +245,31 @@ class PlanOutcome:
 
     def records(self) -> list[dict]:
         """``paths.json`` content: ``[{"objectives", "path", "poses"}]``."""
-        return [{"objectives": {k: float(v) for k, v in self.objectives.items()},
-                 "path": np.asarray(self.cells).tolist(),
-                 "poses": np.round(self.poses, 6).tolist()}]
+        return [
+            {
+                "objectives": {k: float(v) for k, v in self.objectives.items()},
+                "path": np.asarray(self.cells).tolist(),
+                "poses": np.round(self.poses, 6).tolist(),
+            }
+        ]
 
     def summary(self, workspace) -> dict:
         from gapath.results import versions
 
-        return {"settings": {"map": workspace.name, "shape": list(workspace.shape),
-                             "start": list(workspace.start), "goal": list(workspace.goal),
-                             "cell_size": workspace.cell_size, "planner": self.planner,
-                             **{k: v for k, v in self.info.items() if k != "seconds"}},
-                "versions": versions(),
-                "wall_time_s": round(self.seconds, 6),
-                "objectives": {k: float(v) for k, v in self.objectives.items()}}
+        return {
+            "settings": {
+                "map": workspace.name,
+                "shape": list(workspace.shape),
+                "start": list(workspace.start),
+                "goal": list(workspace.goal),
+                "cell_size": workspace.cell_size,
+                "planner": self.planner,
+                **{k: v for k, v in self.info.items() if k != "seconds"},
+            },
+            "versions": versions(),
+            "wall_time_s": round(self.seconds, 6),
+            "objectives": {k: float(v) for k, v in self.objectives.items()},
+        }
 
 
 def _cells(poses, cell_size):
@@ -226,8 +305,7 @@ def plan_with(name: str, workspace, args) -> PlanOutcome:
     from gapath.errors import ConfigError
 
     if name not in PLANNER_CHOICES:
-        raise ConfigError(f"unknown planner {name!r}; this module plans with "
-                          f"{', '.join(PLANNER_CHOICES)}")
+        raise ConfigError(f"unknown planner {name!r}; this module plans with {', '.join(PLANNER_CHOICES)}")
     car = car_from_args(args)
     with cli_vocabulary():
         return _plan_with(name, workspace, args, car)
@@ -240,9 +318,13 @@ def _plan_with(name, workspace, args, car) -> PlanOutcome:
     cs = workspace.cell_size
     t0 = time.perf_counter()
     if name == "hybrid-astar":
-        planner = HybridAStar(workspace, car, heading_bins=getattr(args, "heading_bins", 72),
-                              arc_length=getattr(args, "arc_length", None),
-                              heuristic_weight=getattr(args, "heuristic_weight", 1.1))
+        planner = HybridAStar(
+            workspace,
+            car,
+            heading_bins=getattr(args, "heading_bins", 72),
+            arc_length=getattr(args, "arc_length", None),
+            heuristic_weight=getattr(args, "heuristic_weight", 1.1),
+        )
         heading = getattr(args, "heading", None)
         start = None
         if heading is not None:
@@ -250,22 +332,42 @@ def _plan_with(name, workspace, args, car) -> PlanOutcome:
             start = (sc * cs, sr * cs, planner_heading(workspace, heading))
         res = planner.plan(start)
         poses = np.asarray(res.poses)
-        info = {"expansions": res.expansions, "reached": res.reached, "cost": res.cost,
-                "min_turning_radius": car.min_turning_radius, "radius": car.radius,
-                "heading_bins": planner.heading_bins, "arc_length": planner.arc_length}
+        info = {
+            "expansions": res.expansions,
+            "reached": res.reached,
+            "cost": res.cost,
+            "min_turning_radius": car.min_turning_radius,
+            "radius": car.radius,
+            "heading_bins": planner.heading_bins,
+            "arc_length": planner.arc_length,
+        }
     else:
-        res = rrt(workspace, seed=getattr(args, "seed", 1), radius=car.radius,
-                  star=name == "rrt-star", max_iter=getattr(args, "iterations", 20000),
-                  step=getattr(args, "step", None), goal_bias=getattr(args, "goal_bias", 0.1))
+        res = rrt(
+            workspace,
+            seed=getattr(args, "seed", 1),
+            radius=car.radius,
+            star=name == "rrt-star",
+            max_iter=getattr(args, "iterations", 20000),
+            step=getattr(args, "step", None),
+            goal_bias=getattr(args, "goal_bias", 0.1),
+        )
         poses = np.asarray(res.poses)
-        info = {"iterations": res.iterations, "nodes": res.nodes,
-                "first_solution": res.first_solution, "radius": car.radius,
-                "seed": getattr(args, "seed", 1)}
+        info = {
+            "iterations": res.iterations,
+            "nodes": res.nodes,
+            "first_solution": res.first_solution,
+            "radius": car.radius,
+            "seed": getattr(args, "seed", 1),
+        }
     seconds = time.perf_counter() - t0
-    return PlanOutcome(planner=name, poses=poses, cells=_cells(poses, cs),
-                       objectives={"length": res.length, "turning": res.turning,
-                                   "clearance": res.clearance},
-                       seconds=seconds, info=info)
+    return PlanOutcome(
+        planner=name,
+        poses=poses,
+        cells=_cells(poses, cs),
+        objectives={"length": res.length, "turning": res.turning, "clearance": res.clearance},
+        seconds=seconds,
+        info=info,
+    )
 
 
 def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) -> list[Path]:
@@ -277,17 +379,19 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
     out = Path(out_dir)
     files = [out / "front.csv", out / "paths.json", out / "summary.json"]
     names = list(outcome.objectives)
-    atomic_write(files[0], ",".join(names) + "\n"
-                 + ",".join(repr(float(outcome.objectives[n])) for n in names) + "\n")
+    atomic_write(
+        files[0], ",".join(names) + "\n" + ",".join(repr(float(outcome.objectives[n])) for n in names) + "\n"
+    )
     records = outcome.records()
     frame = getattr(workspace, "frame", None)
-    if frame is not None:   # also in the map's world frame (ROS maps: metres, y up)
+    if frame is not None:  # also in the map's world frame (ROS maps: metres, y up)
         cs = workspace.cell_size
         p = np.asarray(outcome.poses, dtype=float)
         xy = frame.to_world(p[:, [1, 0]] / cs)
         records[0]["world"] = frame.to_world(outcome.cells).round(6).tolist()
-        records[0]["world_poses"] = np.column_stack(
-            [xy, np.mod(frame.yaw - p[:, 2] + np.pi, 2 * np.pi) - np.pi]).round(6).tolist()
+        records[0]["world_poses"] = (
+            np.column_stack([xy, np.mod(frame.yaw - p[:, 2] + np.pi, 2 * np.pi) - np.pi]).round(6).tolist()
+        )
     atomic_write(files[1], dumps(records, indent=1) + "\n")
     atomic_write(files[2], dumps(outcome.summary(workspace), indent=1, sort_keys=True) + "\n")
     if plots:
@@ -303,9 +407,12 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
         ax.plot(p[:, 0], p[:, 1], "-", color="tab:blue", lw=2)
         from gapath.plotting import length_unit
 
-        ax.set_title(f"{outcome.planner}: length {outcome.objectives['length']:.2f} "
-                     f"{length_unit(workspace)}, "
-                     f"turning {outcome.objectives['turning']:.2f} rad", fontsize=9)
+        ax.set_title(
+            f"{outcome.planner}: length {outcome.objectives['length']:.2f} "
+            f"{length_unit(workspace)}, "
+            f"turning {outcome.objectives['turning']:.2f} rad",
+            fontsize=9,
+        )
         atomic_write(out / "paths.png", png_bytes(ax))
         files.append(out / "paths.png")
     return files
@@ -315,33 +422,58 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
 # gapath simulate
 # ---------------------------------------------------------------------------
 
+
 def register(subparsers) -> None:
     p = subparsers.add_parser(
-        "simulate", help="simulate a robot among appearing and moving obstacles",
+        "simulate",
+        help="simulate a robot among appearing and moving obstacles",
         description="One seeded run of a planner among dynamic obstacles (NO-MOPP's setting): "
-                    "the robot senses, predicts collisions, replans locally or halts.")
-    p.add_argument("map", help="'maze', 'warehouse' (generated, seeded by --map-seed) or a map "
-                               "file (.map, .yaml, .txt, .grid, .npy, .pgm, .png)")
-    p.add_argument("--planner", choices=SIMULATE_PLANNERS, default="hybrid-astar",
-                   help="planner (default: %(default)s)")
-    p.add_argument("--obstacles", type=int, default=4,
-                   help="moving obstacles: half timed to cross the robot's path, half wandering "
-                        "(default: %(default)s)")
-    p.add_argument("--stationary", type=int, default=3,
-                   help="stationary obstacles appearing on the path (default: %(default)s)")
-    p.add_argument("--obstacle-speed", default="0.3,0.7",
-                   help="LOW,HIGH speed of moving obstacles (default: %(default)s)")
+        "the robot senses, predicts collisions, replans locally or halts.",
+    )
+    p.add_argument(
+        "map",
+        help="'maze', 'warehouse' (generated, seeded by --map-seed) or a map "
+        "file (.map, .yaml, .txt, .grid, .npy, .pgm, .png)",
+    )
+    p.add_argument(
+        "--planner", choices=SIMULATE_PLANNERS, default="hybrid-astar", help="planner (default: %(default)s)"
+    )
+    p.add_argument(
+        "--obstacles",
+        type=int,
+        default=4,
+        help="moving obstacles: half timed to cross the robot's path, half wandering (default: %(default)s)",
+    )
+    p.add_argument(
+        "--stationary",
+        type=int,
+        default=3,
+        help="stationary obstacles appearing on the path (default: %(default)s)",
+    )
+    p.add_argument(
+        "--obstacle-speed",
+        default="0.3,0.7",
+        help="LOW,HIGH speed of moving obstacles (default: %(default)s)",
+    )
     p.add_argument("--map-seed", type=int, default=0, help="seed of a generated map (default: 0)")
     p.add_argument("--start", type=_cell_arg, help="start cell ROW,COL (map files; default: the map's)")
     p.add_argument("--goal", type=_cell_arg, help="goal cell ROW,COL")
-    p.add_argument("--sensor-range", type=float, default=6.0,
-                   help="sensor range, world units (default: %(default)s)")
-    p.add_argument("--fov", type=float, default=180.0,
-                   help="half-angle of the field of view in degrees: 45, 90 or 180 in the paper "
-                        "(default: %(default)s)")
+    p.add_argument(
+        "--sensor-range", type=float, default=6.0, help="sensor range, world units (default: %(default)s)"
+    )
+    p.add_argument(
+        "--fov",
+        type=float,
+        default=180.0,
+        help="half-angle of the field of view in degrees: 45, 90 or 180 in the paper (default: %(default)s)",
+    )
     p.add_argument("--dt", type=float, default=0.1, help="tick, seconds (default: %(default)s)")
-    p.add_argument("--max-time", type=float, default=None,
-                   help="time limit, seconds (default: 3 x direct distance / speed + 60)")
+    p.add_argument(
+        "--max-time",
+        type=float,
+        default=None,
+        help="time limit, seconds (default: 3 x direct distance / speed + 60)",
+    )
     add_planner_arguments(p)
     p.add_argument("--out", default="gapath-simulate", help="output directory (default: %(default)s)")
     p.add_argument("--gif", action="store_true", help="also write run.gif")
@@ -391,11 +523,15 @@ def _warm_up_simulation(planner_name, planner_kw, robot, settings) -> float:
 
     t0 = time.perf_counter()
     try:
-        simulate(Workspace(np.zeros((12, 12), bool), name="warm-up"),
-                 make_planner(planner_name, **planner_kw), robot,
-                 settings=replace(settings, max_time=5.0), seed=0)
+        simulate(
+            Workspace(np.zeros((12, 12), bool), name="warm-up"),
+            make_planner(planner_name, **planner_kw),
+            robot,
+            settings=replace(settings, max_time=5.0),
+            seed=0,
+        )
     except GapathError:
-        pass            # a bad option is reported by the real run
+        pass  # a bad option is reported by the real run
     return time.perf_counter() - t0
 
 
@@ -411,22 +547,28 @@ def run(args) -> int:
     with cli_vocabulary():
         robot = Robot(car=car, sensor_range=args.sensor_range, fov=args.fov)
         settings = SimSettings(dt=args.dt, max_time=args.max_time)
-    obstacles = dict(n_stationary=args.stationary, n_crossers=(args.obstacles + 1) // 2,
-                     n_wanderers=args.obstacles // 2, robot_speed=robot.speed,
-                     sensor_range=robot.sensor_range,
-                     speed_range=_speed_range(args.obstacle_speed))
+    obstacles = dict(
+        n_stationary=args.stationary,
+        n_crossers=(args.obstacles + 1) // 2,
+        n_wanderers=args.obstacles // 2,
+        robot_speed=robot.speed,
+        sensor_range=robot.sensor_range,
+        speed_range=_speed_range(args.obstacle_speed),
+    )
     with cli_vocabulary():
         try:
-            sc = make_scenario(args.map, args.seed, map_seed=args.map_seed, start=args.start,
-                               goal=args.goal, **obstacles)
-        except ConfigError as exc:     # no path between start and goal: exit status 1, not 2
+            sc = make_scenario(
+                args.map, args.seed, map_seed=args.map_seed, start=args.start, goal=args.goal, **obstacles
+            )
+        except ConfigError as exc:  # no path between start and goal: exit status 1, not 2
             if isinstance(exc.__context__, NoPathError):
                 raise NoPathError(str(exc)) from None
             raise
     planner_kw = {}
     if args.planner == "hybrid-astar":
-        planner_kw = dict(heading_bins=args.heading_bins, arc_length=args.arc_length,
-                          heuristic_weight=args.heuristic_weight)
+        planner_kw = dict(
+            heading_bins=args.heading_bins, arc_length=args.arc_length, heuristic_weight=args.heuristic_weight
+        )
     elif args.planner in ("rrt", "rrt-star"):
         planner_kw = dict(max_iter=args.iterations, step=args.step, goal_bias=args.goal_bias)
     _check_planner_flags(args, sc.workspace, robot.car, planner_kw)
@@ -436,34 +578,50 @@ def run(args) -> int:
         start = sc.start
         if args.heading is not None:
             start = (start[0], start[1], planner_heading(sc.workspace, args.heading))
-        res = simulate(sc.workspace, planner, robot, sc.stationary, sc.moving, settings, start,
-                       args.seed)
+        res = simulate(sc.workspace, planner, robot, sc.stationary, sc.moving, settings, start, args.seed)
     out = Path(args.out)
     data = res.to_json()
-    data["stationary"] = [{"cells": o.cells.tolist(), "appear_at": o.appear_at}
-                          for o in sc.stationary]
-    data["moving"] = [{"position": o.position.tolist(), "velocity": o.velocity.tolist(),
-                       "radius": o.radius, "mode": o.mode, "appear_at": o.appear_at}
-                      for o in sc.moving]
+    data["stationary"] = [{"cells": o.cells.tolist(), "appear_at": o.appear_at} for o in sc.stationary]
+    data["moving"] = [
+        {
+            "position": o.position.tolist(),
+            "velocity": o.velocity.tolist(),
+            "radius": o.radius,
+            "mode": o.mode,
+            "appear_at": o.appear_at,
+        }
+        for o in sc.moving
+    ]
     if res.obstacles is not None:
         data["obstacle_positions"] = np.round(np.nan_to_num(res.obstacles, nan=-1e9), 4).tolist()
     atomic_write(out / "trajectory.json", dumps(data) + "\n")
     c = robot.car
     summary = {
         **res.summary(),
-        "settings": {"map": sc.workspace.name, "shape": list(sc.workspace.shape),
-                     "start": list(sc.workspace.start), "goal": list(sc.workspace.goal),
-                     "cell_size": sc.workspace.cell_size, "planner": args.planner,
-                     "seed": args.seed, "map_seed": args.map_seed, "obstacles": obstacles,
-                     "robot": {"wheelbase": c.wheelbase, "max_steer_deg": round(math.degrees(c.max_steer), 6),
-                               "speed": c.speed, "radius": c.radius,
-                               "sensor_range": robot.sensor_range, "fov_deg": robot.fov},
-                     "dt": settings.dt},
+        "settings": {
+            "map": sc.workspace.name,
+            "shape": list(sc.workspace.shape),
+            "start": list(sc.workspace.start),
+            "goal": list(sc.workspace.goal),
+            "cell_size": sc.workspace.cell_size,
+            "planner": args.planner,
+            "seed": args.seed,
+            "map_seed": args.map_seed,
+            "obstacles": obstacles,
+            "robot": {
+                "wheelbase": c.wheelbase,
+                "max_steer_deg": round(math.degrees(c.max_steer), 6),
+                "speed": c.speed,
+                "radius": c.radius,
+                "sensor_range": robot.sensor_range,
+                "fov_deg": robot.fov,
+            },
+            "dt": settings.dt,
+        },
         "versions": versions(),
         "compile_s": round(compile_s, 4),
     }
-    atomic_write(out / "summary.json", dumps(summary, indent=1, sort_keys=True, default=float)
-                 + "\n")
+    atomic_write(out / "summary.json", dumps(summary, indent=1, sort_keys=True, default=float) + "\n")
     written = ["trajectory.json", "summary.json"]
     if not args.no_plots:
         from gapath.dynamic_plots import plot_run
@@ -478,16 +636,21 @@ def run(args) -> int:
         written.append("run.gif")
     if not args.quiet:
         status = "reached the goal" if res.success else f"FAILED ({res.reason})"
-        print(f"{sc.workspace!r}\n{args.planner}: {status} after {res.time:.1f} s, driven "
-              f"{res.path_length:.2f} (direct {res.direct_distance:.2f}); global plan "
-              f"{1000 * res.global_plan_seconds:.1f} ms, {res.n_replans} replans "
-              f"({1000 * sum(res.replan_seconds):.1f} ms), {res.count('halt')} halts (numba "
-              f"warm-up {1000 * compile_s:.0f} ms not counted)\n"
-              f"wrote {out}/" + ", ".join(written))
-    if not res.success:                      # the run happened and failed: exit status 1
+        print(
+            f"{sc.workspace!r}\n{args.planner}: {status} after {res.time:.1f} s, driven "
+            f"{res.path_length:.2f} (direct {res.direct_distance:.2f}); global plan "
+            f"{1000 * res.global_plan_seconds:.1f} ms, {res.n_replans} replans "
+            f"({1000 * sum(res.replan_seconds):.1f} ms), {res.count('halt')} halts (numba "
+            f"warm-up {1000 * compile_s:.0f} ms not counted)\n"
+            f"wrote {out}/" + ", ".join(written)
+        )
+    if not res.success:  # the run happened and failed: exit status 1
         import sys
 
-        print(f"gapath: the robot did not reach the goal: {res.reason} (t = {res.time:.1f} s; "
-              f"written to {out}/)", file=sys.stderr)
+        print(
+            f"gapath: the robot did not reach the goal: {res.reason} (t = {res.time:.1f} s; "
+            f"written to {out}/)",
+            file=sys.stderr,
+        )
         return EXIT_NO_RESULT
     return 0

@@ -13,15 +13,25 @@ def register(subparsers) -> None:
 
     p = subparsers.add_parser("exact", help="compute the exact Pareto front (monotone or free paths)")
     add_map_arguments(p)
-    p.add_argument("--objectives", default="length,vulnerability",
-                   help="comma-separated objectives among length, vulnerability, smoothness "
-                        "(default: %(default)s)")
-    p.add_argument("--mode", choices=("monotone", "free"), default="monotone",
-                   help="column-monotone paths (the GA's path set) or all 8-connected paths "
-                        "(default: %(default)s)")
-    p.add_argument("--max-labels", type=_positive_int, default=None, metavar="N",
-                   help="label budget: stop with a message (no front) when the search would hold "
-                        "more than N labels (44 bytes each), instead of exhausting memory")
+    p.add_argument(
+        "--objectives",
+        default="length,vulnerability",
+        help="comma-separated objectives among length, vulnerability, smoothness (default: %(default)s)",
+    )
+    p.add_argument(
+        "--mode",
+        choices=("monotone", "free"),
+        default="monotone",
+        help="column-monotone paths (the GA's path set) or all 8-connected paths (default: %(default)s)",
+    )
+    p.add_argument(
+        "--max-labels",
+        type=_positive_int,
+        default=None,
+        metavar="N",
+        help="label budget: stop with a message (no front) when the search would hold "
+        "more than N labels (44 bytes each), instead of exhausting memory",
+    )
     p.add_argument("--out", default="gapath-exact", help="output directory (default: %(default)s)")
     p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
     p.add_argument("--quiet", action="store_true", help="no report")
@@ -59,12 +69,16 @@ class _ProgressLine:
             return
         self.last = now
         if info["phase"] == "free":
-            text = (f"exact free: {info['expansions']:,} expanded, {info['labels']:,} labels, "
-                    f"{info['open']:,} open, {info['solutions']:,} solutions so far, "
-                    f"{info['seconds']:.1f} s")
+            text = (
+                f"exact free: {info['expansions']:,} expanded, {info['labels']:,} labels, "
+                f"{info['open']:,} open, {info['solutions']:,} solutions so far, "
+                f"{info['seconds']:.1f} s"
+            )
         else:
-            text = (f"exact monotone: column {info['columns']:,}/{info['n_cols']:,}, "
-                    f"{info['labels']:,} labels, {info['seconds']:.1f} s")
+            text = (
+                f"exact monotone: column {info['columns']:,}/{info['n_cols']:,}, "
+                f"{info['labels']:,} labels, {info['seconds']:.1f} s"
+            )
         self.stream.write(("\r" + text + "\x1b[K") if self.tty else text + "\n")
         self.stream.flush()
         self.shown = True
@@ -93,8 +107,9 @@ def _path_front(workspace, ef):
     from gapath.objectives import evaluate_paths, pad_paths
 
     P, L = pad_paths(ef.paths)
-    metrics = evaluate_paths(P, L, workspace.occ, workspace.potential, workspace.cell_size,
-                             workspace.corner_cutting)
+    metrics = evaluate_paths(
+        P, L, workspace.occ, workspace.potential, workspace.cell_size, workspace.corner_cutting
+    )
     return PathFront(tuple(ef.objectives), ef.F, metrics, np.empty((len(ef.F), 0)), list(ef.paths))
 
 
@@ -110,19 +125,25 @@ def run(args) -> int:
     bar = None if args.quiet else _ProgressLine(args.mode)
     try:
         ef = _exact_front(ws, objectives, args.mode, max_labels=args.max_labels, progress=bar)
-    except NoPathError as exc:               # exit status 1, with the reason and what to try
+    except NoPathError as exc:  # exit status 1, with the reason and what to try
         from gapath.cli import no_path_error
 
-        why = no_path_error(ws, monotone=args.mode == "monotone",
-                            free_hint="try --mode free (the exact front of all 8-connected paths)")
+        why = no_path_error(
+            ws,
+            monotone=args.mode == "monotone",
+            free_hint="try --mode free (the exact front of all 8-connected paths)",
+        )
         raise (why or exc) from None
     except KeyboardInterrupt:
         import sys
 
         from gapath.errors import EXIT_INTERRUPTED
 
-        print(f"\ngapath: interrupted after {time.perf_counter() - t0:.1f} s: no front written "
-              f"(a partial exact search is not a Pareto front)", file=sys.stderr)
+        print(
+            f"\ngapath: interrupted after {time.perf_counter() - t0:.1f} s: no front written "
+            f"(a partial exact search is not a Pareto front)",
+            file=sys.stderr,
+        )
         return EXIT_INTERRUPTED
     finally:
         if bar is not None:
@@ -130,24 +151,37 @@ def run(args) -> int:
     front = _path_front(ws, ef)
     seconds = time.perf_counter() - t0
     summary = {
-        "settings": dict(map=ws.name, shape=list(ws.shape), start=list(ws.start), goal=list(ws.goal),
-                         cell_size=ws.cell_size, corner_cutting=ws.corner_cutting,
-                         objectives=list(front.objectives), mode=args.mode, algorithm="exact",
-                         max_labels=args.max_labels),
+        "settings": dict(
+            map=ws.name,
+            shape=list(ws.shape),
+            start=list(ws.start),
+            goal=list(ws.goal),
+            cell_size=ws.cell_size,
+            corner_cutting=ws.corner_cutting,
+            objectives=list(front.objectives),
+            mode=args.mode,
+            algorithm="exact",
+            max_labels=args.max_labels,
+        ),
         "versions": versions(),
         "wall_time_s": round(seconds, 4),
         "front_size": len(front),
         "search": {k: (round(v, 4) if isinstance(v, float) else v) for k, v in ef.stats.items()},
     }
     summary["settings"].update(choice.settings())
-    shortest = (float(front.F[:, front.objectives.index("length")].min())
-                if len(front) and "length" in front.objectives else None)
+    shortest = (
+        float(front.F[:, front.objectives.index("length")].min())
+        if len(front) and "length" in front.objectives
+        else None
+    )
     if choice.scenario is not None:
         summary["scenario"] = choice.scenario_record(shortest)
     write_front(Path(args.out), ws, front, summary, plots=not args.no_plots)
     if not args.quiet:
-        print(f"{ws!r}\n{choice.corner_line()}\nexact {args.mode} front: {len(front)} paths in "
-              f"{seconds:.3f} s; wrote {args.out}/front.csv, paths.json, summary.json")
+        print(
+            f"{ws!r}\n{choice.corner_line()}\nexact {args.mode} front: {len(front)} paths in "
+            f"{seconds:.3f} s; wrote {args.out}/front.csv, paths.json, summary.json"
+        )
         if choice.scenario is not None:
             print(choice.scenario_line(shortest, f"shortest length on the {args.mode} front"))
     return 0

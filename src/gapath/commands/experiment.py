@@ -23,40 +23,66 @@ import sys
 from pathlib import Path
 
 #: Modules that add ``gapath experiment`` sub-commands, in help order.
-EXPERIMENT_MODULES: list[str] = ["gapath.experiments.encodings", "gapath.experiments.dense", "gapath.experiments.mars",
-                               "gapath.experiments.dynamic"]
+EXPERIMENT_MODULES: list[str] = [
+    "gapath.experiments.encodings",
+    "gapath.experiments.dense",
+    "gapath.experiments.mars",
+    "gapath.experiments.dynamic",
+]
 
 
 def add_executor_options(p) -> None:
     """``--workers``, ``--scheduler``, ``--quiet`` and ``--retry-failed``
     (shared by the sub-commands that run experiments)."""
-    p.add_argument("--workers", type=int, default=None,
-                   help="processes of the local pool, or of the LocalCluster with --scheduler "
-                        "local (default: the number of CPUs; 0: run in this process)")
-    p.add_argument("--scheduler", default=None, metavar="tcp://HOST:PORT|local",
-                   help="run on this Dask scheduler instead; 'local': start a Dask LocalCluster "
-                        "of --workers processes with gapath's Dask settings, run on it, close it "
-                        "(default: $GAPATH_SCHEDULER if set)")
-    p.add_argument("--no-retry-failed", dest="retry_failed", action="store_false",
-                   help="do not run again the runs whose last attempt failed")
+    p.add_argument(
+        "--workers",
+        type=int,
+        default=None,
+        help="processes of the local pool, or of the LocalCluster with --scheduler "
+        "local (default: the number of CPUs; 0: run in this process)",
+    )
+    p.add_argument(
+        "--scheduler",
+        default=None,
+        metavar="tcp://HOST:PORT|local",
+        help="run on this Dask scheduler instead; 'local': start a Dask LocalCluster "
+        "of --workers processes with gapath's Dask settings, run on it, close it "
+        "(default: $GAPATH_SCHEDULER if set)",
+    )
+    p.add_argument(
+        "--no-retry-failed",
+        dest="retry_failed",
+        action="store_false",
+        help="do not run again the runs whose last attempt failed",
+    )
     p.add_argument("--quiet", action="store_true", help="no progress bar or report")
 
 
 def register(subparsers) -> None:
-    p = subparsers.add_parser("experiment", help="grids of runs: run, status, report, dense, ...",
-                              description="Run grids of GA runs on a process pool or a Dask "
-                                          "cluster, resumably; aggregate them into tables.")
+    p = subparsers.add_parser(
+        "experiment",
+        help="grids of runs: run, status, report, dense, ...",
+        description="Run grids of GA runs on a process pool or a Dask "
+        "cluster, resumably; aggregate them into tables.",
+    )
     sub = p.add_subparsers(dest="experiment_command", required=True, metavar="COMMAND")
 
     r = sub.add_parser("run", help="run (or resume) an experiment from a YAML/TOML spec")
     r.add_argument("spec", help="experiment spec (.yaml, .yml, .toml, .json) or a store directory")
-    r.add_argument("--out", required=False, default=None,
-                   help="store directory (default: the spec's directory when SPEC is a store)")
+    r.add_argument(
+        "--out",
+        required=False,
+        default=None,
+        help="store directory (default: the spec's directory when SPEC is a store)",
+    )
     add_executor_options(r)
-    r.add_argument("--force", action="store_true",
-                   help="run SPEC in a store of another experiment (one whose runs SPEC does "
-                        "not all include), replacing its experiment.json (its runs whose keys "
-                        "match are reused); a spec that only adds runs needs no --force")
+    r.add_argument(
+        "--force",
+        action="store_true",
+        help="run SPEC in a store of another experiment (one whose runs SPEC does "
+        "not all include), replacing its experiment.json (its runs whose keys "
+        "match are reused); a spec that only adds runs needs no --force",
+    )
     r.add_argument("--no-report", action="store_true", help="do not write the report at the end")
     r.add_argument("--no-plots", action="store_true", help="report without plots")
     r.set_defaults(func=run_command)
@@ -118,22 +144,26 @@ def _check_same_experiment(spec, out: Path, quiet: bool = False) -> None:
     saved, new = stored_spec.to_dict(), spec.to_dict()
     if canonical_json(saved) == canonical_json(new):
         return
-    differ = [k for k in sorted(set(saved) | set(new))
-              if canonical_json(saved.get(k)) != canonical_json(new.get(k))]
+    differ = [
+        k for k in sorted(set(saved) | set(new)) if canonical_json(saved.get(k)) != canonical_json(new.get(k))
+    ]
     old_keys = {run_key(r) for r in stored_spec.runs()}
     new_keys = {run_key(r) for r in spec.runs()}
     if old_keys <= new_keys:
         if not quiet:
-            print(f"gapath: extending the experiment {saved.get('name')!r} in {out} "
-                  f"({', '.join(differ)} changed): {len(new_keys - old_keys)} new runs",
-                  file=sys.stderr)
+            print(
+                f"gapath: extending the experiment {saved.get('name')!r} in {out} "
+                f"({', '.join(differ)} changed): {len(new_keys - old_keys)} new runs",
+                file=sys.stderr,
+            )
         return
     raise ConfigError(
         f"--out {str(out)!r} holds the experiment {saved.get('name')!r} of another spec "
         f"({', '.join(differ)} differ; {len(old_keys - new_keys)} of its {len(old_keys)} runs "
         f"are not in SPEC); give another --out, run 'gapath experiment run {out}' to resume "
         f"it, or add --force to replace its experiment.json (stored runs whose keys match are "
-        f"reused)")
+        f"reused)"
+    )
 
 
 def run_command(args) -> int:
@@ -142,24 +172,36 @@ def run_command(args) -> int:
 
     spec, out = _spec_and_out(args)
     try:
-        res = run_experiment(spec, out, workers=args.workers, scheduler=args.scheduler,
-                             progress=not args.quiet, retry_failed=args.retry_failed)
+        res = run_experiment(
+            spec,
+            out,
+            workers=args.workers,
+            scheduler=args.scheduler,
+            progress=not args.quiet,
+            retry_failed=args.retry_failed,
+        )
     except KeyboardInterrupt:
-        print(f"interrupted: finished runs are kept in {out}; run the same command to resume",
-              file=sys.stderr)
+        print(
+            f"interrupted: finished runs are kept in {out}; run the same command to resume", file=sys.stderr
+        )
         return 130
     if not args.quiet:
-        print(f"{res.ran} runs executed on {res.executor} in {res.seconds:.1f} s, "
-              f"{res.skipped} already done, {res.failed} failed; store: {out}")
+        print(
+            f"{res.ran} runs executed on {res.executor} in {res.seconds:.1f} s, "
+            f"{res.skipped} already done, {res.failed} failed; store: {out}"
+        )
         for key, err in res.failures[:5]:
             print(f"  failed {key[:10]}: {err}")
     if not args.no_report:
         rep = report(out, plots=not args.no_plots)
         if not args.quiet:
             print(f"wrote {out}/summary.md, summary.csv ({len(rep.rows)} configurations)")
-    if res.failed:                  # the runs ran and some failed: exit status 1
-        print(f"gapath: {res.failed} of {res.ran} runs failed; their errors are in "
-              f"{out}/runs/*.failed.json (run the same command to retry them)", file=sys.stderr)
+    if res.failed:  # the runs ran and some failed: exit status 1
+        print(
+            f"gapath: {res.failed} of {res.ran} runs failed; their errors are in "
+            f"{out}/runs/*.failed.json (run the same command to retry them)",
+            file=sys.stderr,
+        )
         return 1
     return 0
 
@@ -170,8 +212,10 @@ def status_command(args) -> int:
     store = ResultStore(args.dir)
     st = store.status()
     name = store.spec().to_dict()["name"]
-    print(f"{name}: {st['done']}/{st['total']} done, {st['failed']} failed, "
-          f"{st['pending']} pending" + (f", {st['extra']} stored runs not in the spec" if st["extra"] else ""))
+    print(
+        f"{name}: {st['done']}/{st['total']} done, {st['failed']} failed, "
+        f"{st['pending']} pending" + (f", {st['extra']} stored runs not in the spec" if st["extra"] else "")
+    )
     return 0
 
 

@@ -29,35 +29,64 @@ def register(subparsers) -> None:
     from gapath.planners.pareto import PLANNERS
 
     p = subparsers.add_parser(
-        "plan", help="plan one path: the shortest by A*, D* Lite, A*-PO or D*-PO (Lavin's cost "
-                     "layers with --layers), or hybrid A* / RRT / RRT* for a car-like robot")
+        "plan",
+        help="plan one path: the shortest by A*, D* Lite, A*-PO or D*-PO (Lavin's cost "
+        "layers with --layers), or hybrid A* / RRT / RRT* for a car-like robot",
+    )
     add_map_arguments(p)
     kinematic = add_planner_choices(p)
-    p.add_argument("--planner", choices=tuple(PLANNERS) + tuple(kinematic), default="dstar-po",
-                   help="astar / dstar-lite / astar-po / dstar-po: a shortest path, or with "
-                        "--layers a normalised weighted sum (astar, dstar-lite) or a Pareto "
-                        "selection (astar-po, dstar-po) of the length and the layers; "
-                        "hybrid-astar / rrt / rrt-star: continuous paths (see 'gapath "
-                        "simulate') (default: %(default)s)")
-    p.add_argument("--layers", default="",
-                   help="comma-separated cost layers used as objectives besides the length, "
-                        "among elevation, solar, risk (Lavin's); default none: the shortest path")
-    p.add_argument("--dem", metavar="FILE",
-                   help="elevation layer: raster (.npy or .npz) resampled to the grid; default: "
-                        "seeded fractal terrain")
-    p.add_argument("--dem-method", choices=("bilinear", "reflect"), default="bilinear",
-                   help="bilinear: stretch the DEM over the grid; reflect: one pixel per cell, "
-                        "tiled with reflection (default: %(default)s)")
-    p.add_argument("--terrain-seed", type=int, default=1,
-                   help="seed of the fractal terrain when no --dem is given (default: %(default)s)")
-    p.add_argument("--risk", type=cell, metavar="ROW,COL",
-                   help="risk layer: the maximum-risk cell (default: the centre of the grid)")
-    p.add_argument("--solar-rate", type=float, default=0.01,
-                   help="solar layer: rotation of the solar vector per path step, radians "
-                        "(default: %(default)s)")
-    p.add_argument("--priority", default=None,
-                   help="Pareto planners: objective name or 'sum' choosing among non-dominated "
-                        "open nodes (default: length)")
+    p.add_argument(
+        "--planner",
+        choices=tuple(PLANNERS) + tuple(kinematic),
+        default="dstar-po",
+        help="astar / dstar-lite / astar-po / dstar-po: a shortest path, or with "
+        "--layers a normalised weighted sum (astar, dstar-lite) or a Pareto "
+        "selection (astar-po, dstar-po) of the length and the layers; "
+        "hybrid-astar / rrt / rrt-star: continuous paths (see 'gapath "
+        "simulate') (default: %(default)s)",
+    )
+    p.add_argument(
+        "--layers",
+        default="",
+        help="comma-separated cost layers used as objectives besides the length, "
+        "among elevation, solar, risk (Lavin's); default none: the shortest path",
+    )
+    p.add_argument(
+        "--dem",
+        metavar="FILE",
+        help="elevation layer: raster (.npy or .npz) resampled to the grid; default: seeded fractal terrain",
+    )
+    p.add_argument(
+        "--dem-method",
+        choices=("bilinear", "reflect"),
+        default="bilinear",
+        help="bilinear: stretch the DEM over the grid; reflect: one pixel per cell, "
+        "tiled with reflection (default: %(default)s)",
+    )
+    p.add_argument(
+        "--terrain-seed",
+        type=int,
+        default=1,
+        help="seed of the fractal terrain when no --dem is given (default: %(default)s)",
+    )
+    p.add_argument(
+        "--risk",
+        type=cell,
+        metavar="ROW,COL",
+        help="risk layer: the maximum-risk cell (default: the centre of the grid)",
+    )
+    p.add_argument(
+        "--solar-rate",
+        type=float,
+        default=0.01,
+        help="solar layer: rotation of the solar vector per path step, radians (default: %(default)s)",
+    )
+    p.add_argument(
+        "--priority",
+        default=None,
+        help="Pareto planners: objective name or 'sum' choosing among non-dominated "
+        "open nodes (default: length)",
+    )
     p.add_argument("--out", default="gapath-plan", help="output directory (default: %(default)s)")
     p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
     p.add_argument("--quiet", action="store_true", help="no report")
@@ -85,19 +114,23 @@ def parse_layers(text, args=None) -> list[str]:
     layers = [s.strip() for s in str(text).split(",") if s.strip()]
     for name in layers:
         if name not in LAYERS:
-            raise ConfigError(f"--layers: unknown layer {name!r}; expected some of "
-                              f"{', '.join(LAYERS)}")
+            raise ConfigError(f"--layers: unknown layer {name!r}; expected some of {', '.join(LAYERS)}")
     if args is not None:
-        for flag, value, layer in (("--dem", getattr(args, "dem", None), "elevation"),
-                                   ("--risk", getattr(args, "risk", None), "risk")):
+        for flag, value, layer in (
+            ("--dem", getattr(args, "dem", None), "elevation"),
+            ("--risk", getattr(args, "risk", None), "risk"),
+        ):
             if value is not None and layer not in layers:
-                raise ConfigError(f"{flag} sets the {layer} layer, which is not planned on: "
-                                  f"add --layers {','.join(layers + [layer])}")
+                raise ConfigError(
+                    f"{flag} sets the {layer} layer, which is not planned on: "
+                    f"add --layers {','.join(layers + [layer])}"
+                )
     return layers
 
 
-def build_costmap(workspace, layers, *, dem=None, dem_method="bilinear", terrain_seed=1,
-                  risk=None, solar_rate=0.01):
+def build_costmap(
+    workspace, layers, *, dem=None, dem_method="bilinear", terrain_seed=1, risk=None, solar_rate=0.01
+):
     """The costmap ``gapath plan`` uses (see its options).
 
     Raises
@@ -133,11 +166,10 @@ def _warm_up(planner, objectives, layers, args, corner_cutting) -> float:
     t0 = time.perf_counter()
     tiny = Workspace(np.zeros((5, 5), bool), corner_cutting=corner_cutting, name="warm-up")
     try:
-        cm = build_costmap(tiny, layers, terrain_seed=args.terrain_seed,
-                           solar_rate=args.solar_rate)
+        cm = build_costmap(tiny, layers, terrain_seed=args.terrain_seed, solar_rate=args.solar_rate)
         plan(cm, planner, objectives, priority=args.priority)
     except GapathError:
-        pass            # a bad option is reported by the real run
+        pass  # a bad option is reported by the real run
     return time.perf_counter() - t0
 
 
@@ -150,8 +182,7 @@ def _warm_up_kinematic(planner) -> float:
 
     t0 = time.perf_counter()
     try:
-        plan_with(planner, Workspace(np.zeros((12, 12), bool), name="warm-up"),
-                  argparse.Namespace())
+        plan_with(planner, Workspace(np.zeros((12, 12), bool), name="warm-up"), argparse.Namespace())
     except GapathError:
         pass
     return time.perf_counter() - t0
@@ -166,13 +197,18 @@ def _plan_kinematic(args, choice) -> int:
     outcome = plan_with(args.planner, ws, args)
     write_plan(outcome, ws, args.out, plots=not args.no_plots)
     length = float(outcome.objectives["length"])
-    update_summary(args.out, {"compile_s": round(compile_s, 4),
-                              "scenario": choice.scenario_record(length)}, choice.settings())
+    update_summary(
+        args.out,
+        {"compile_s": round(compile_s, 4), "scenario": choice.scenario_record(length)},
+        choice.settings(),
+    )
     if not args.quiet:
-        print(f"{ws!r}\n{args.planner}: " + ", ".join(
-            f"{k}={v:.4g}" for k, v in outcome.objectives.items())
+        print(
+            f"{ws!r}\n{args.planner}: "
+            + ", ".join(f"{k}={v:.4g}" for k, v in outcome.objectives.items())
             + f" in {outcome.seconds * 1000:.1f} ms (numba warm-up {compile_s * 1000:.0f} ms "
-              f"not counted); wrote {args.out}")
+            f"not counted); wrote {args.out}"
+        )
         if choice.scenario is not None:
             print(choice.scenario_line(length, f"{args.planner} length"))
     return 0
@@ -191,8 +227,15 @@ def run(args) -> int:
     ws = choice.workspace
     if args.planner in PLANNER_CHOICES:
         return _plan_kinematic(args, choice)
-    cm = build_costmap(ws, layers, dem=args.dem, dem_method=args.dem_method,
-                       terrain_seed=args.terrain_seed, risk=args.risk, solar_rate=args.solar_rate)
+    cm = build_costmap(
+        ws,
+        layers,
+        dem=args.dem,
+        dem_method=args.dem_method,
+        terrain_seed=args.terrain_seed,
+        risk=args.risk,
+        solar_rate=args.solar_rate,
+    )
     objectives = ("length",) + tuple(layers)
     compile_s = _warm_up(args.planner, objectives, layers, args, ws.corner_cutting)
     t0 = time.perf_counter()
@@ -203,16 +246,24 @@ def run(args) -> int:
     front = PathFront(res.objectives, res.F[None, :], metrics, np.empty((1, 0)), [res.path])
     terrain = None
     if "elevation" in layers:
-        terrain = (f"{args.dem} ({args.dem_method})" if args.dem
-                   else f"fractal seed={args.terrain_seed}")
+        terrain = f"{args.dem} ({args.dem_method})" if args.dem else f"fractal seed={args.terrain_seed}"
     summary = {
-        "settings": dict(map=ws.name, shape=list(ws.shape), start=list(ws.start),
-                         goal=list(ws.goal), cell_size=ws.cell_size,
-                         planner=args.planner, objectives=list(objectives), layers=layers,
-                         priority=args.priority, terrain=terrain,
-                         risk_cells=[list(c) for c in cm.risk_cells],
-                         solar_rate=cm.solar_rate if "solar" in layers else None,
-                         algorithm=args.planner, **choice.settings()),
+        "settings": dict(
+            map=ws.name,
+            shape=list(ws.shape),
+            start=list(ws.start),
+            goal=list(ws.goal),
+            cell_size=ws.cell_size,
+            planner=args.planner,
+            objectives=list(objectives),
+            layers=layers,
+            priority=args.priority,
+            terrain=terrain,
+            risk_cells=[list(c) for c in cm.risk_cells],
+            solar_rate=cm.solar_rate if "solar" in layers else None,
+            algorithm=args.planner,
+            **choice.settings(),
+        ),
         "versions": versions(),
         "wall_time_s": round(seconds, 4),
         "compile_s": round(compile_s, 4),
@@ -228,10 +279,12 @@ def run(args) -> int:
     if not args.quiet:
         vals = ", ".join(f"{k}={v:.4f}" for k, v in res.values.items())
         what = "shortest path" if not layers else f"length and {', '.join(layers)}"
-        print(f"{ws!r}\n{choice.corner_line()}\n{args.planner} ({what}): {len(res.path)} cells, "
-              f"{vals}; {res.expansions} expansions in {seconds * 1000:.1f} ms (numba warm-up "
-              f"{compile_s * 1000:.0f} ms not counted)\nwrote {args.out}/front.csv, paths.json, "
-              f"summary.json" + ("" if args.no_plots else ", front.png, paths.png"))
+        print(
+            f"{ws!r}\n{choice.corner_line()}\n{args.planner} ({what}): {len(res.path)} cells, "
+            f"{vals}; {res.expansions} expansions in {seconds * 1000:.1f} ms (numba warm-up "
+            f"{compile_s * 1000:.0f} ms not counted)\nwrote {args.out}/front.csv, paths.json, "
+            f"summary.json" + ("" if args.no_plots else ", front.png, paths.png")
+        )
         if choice.scenario is not None:
             print(choice.scenario_line(length, f"{args.planner} length"))
     return 0

@@ -28,15 +28,21 @@ def register(subparsers) -> None:
     from gapath.planners.pareto import PLANNERS
 
     p = subparsers.add_parser(
-        "scen", help="check a grid planner against every optimum of a MovingAI .scen file")
+        "scen", help="check a grid planner against every optimum of a MovingAI .scen file"
+    )
     p.add_argument("file", metavar="FILE", help="MovingAI scenario file (.scen)")
-    p.add_argument("--planner", choices=tuple(PLANNERS), default="astar",
-                   help="grid planner, as in 'gapath plan' without --layers (default: "
-                        "%(default)s)")
-    p.add_argument("--limit", type=int, default=None, metavar="N",
-                   help="check only the first N scenarios (default: all)")
-    p.add_argument("--map", default=None, metavar="MAP",
-                   help="the map file (default: each line's map, next to FILE)")
+    p.add_argument(
+        "--planner",
+        choices=tuple(PLANNERS),
+        default="astar",
+        help="grid planner, as in 'gapath plan' without --layers (default: %(default)s)",
+    )
+    p.add_argument(
+        "--limit", type=int, default=None, metavar="N", help="check only the first N scenarios (default: all)"
+    )
+    p.add_argument(
+        "--map", default=None, metavar="MAP", help="the map file (default: each line's map, next to FILE)"
+    )
     p.add_argument("--quiet", action="store_true", help="print only the matched/total line")
     p.set_defaults(func=run)
 
@@ -81,9 +87,11 @@ def check_scenarios(scenarios, planner="astar", map_path=None, on_line=None):
         if occ is None:
             occ = maps[path] = load_occupancy(path)
         if occ.shape != (sc.height, sc.width):
-            raise ConfigError(f"{sc.source}, line {sc.line}: the scenario is for a {sc.width}x"
-                              f"{sc.height} map (width x height), {path} is "
-                              f"{occ.shape[1]}x{occ.shape[0]}")
+            raise ConfigError(
+                f"{sc.source}, line {sc.line}: the scenario is for a {sc.width}x"
+                f"{sc.height} map (width x height), {path} is "
+                f"{occ.shape[1]}x{occ.shape[0]}"
+            )
         if sc.start == sc.goal:
             length = 0.0
         else:
@@ -112,8 +120,13 @@ def run(args) -> int:
     scenarios = scenarios[: args.limit]
     import argparse
 
-    compile_s = _warm_up(args.planner, ("length",), [],
-                         argparse.Namespace(terrain_seed=1, solar_rate=0.01, priority=None), False)
+    compile_s = _warm_up(
+        args.planner,
+        ("length",),
+        [],
+        argparse.Namespace(terrain_seed=1, solar_rate=0.01, priority=None),
+        False,
+    )
     t0 = time.perf_counter()
     results = check_scenarios(scenarios, args.planner, args.map)
     seconds = time.perf_counter() - t0
@@ -121,11 +134,15 @@ def run(args) -> int:
     if not args.quiet:
         for sc, length in bad[:SHOWN]:
             found = "no path" if length is None else f"{length:.8g} ({length - sc.optimal:+.3g})"
-            print(f"  line {sc.line}: start {sc.start[0]},{sc.start[1]} goal "
-                  f"{sc.goal[0]},{sc.goal[1]} (ROW,COL): optimum {sc.optimal:.8g}, found {found}")
+            print(
+                f"  line {sc.line}: start {sc.start[0]},{sc.start[1]} goal "
+                f"{sc.goal[0]},{sc.goal[1]} (ROW,COL): optimum {sc.optimal:.8g}, found {found}"
+            )
         if len(bad) > SHOWN:
             print(f"  ... and {len(bad) - SHOWN} more")
-    print(f"{args.file}: {len(results) - len(bad)}/{len(results)} scenarios match the MovingAI "
-          f"optimum ({args.planner}, no corner cutting, tolerance 1e-5 relative; "
-          f"{seconds:.2f} s, numba warm-up {compile_s:.2f} s not counted)")
+    print(
+        f"{args.file}: {len(results) - len(bad)}/{len(results)} scenarios match the MovingAI "
+        f"optimum ({args.planner}, no corner cutting, tolerance 1e-5 relative; "
+        f"{seconds:.2f} s, numba warm-up {compile_s:.2f} s not counted)"
+    )
     return 0 if not bad else 1

@@ -50,8 +50,9 @@ class Planner:
         cells = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
         self.known[cells[:, 0], cells[:, 1]] = blocked
 
-    def plan(self, start, goal, *, blocked=None, cost=None,
-             max_length=None) -> np.ndarray:  # pragma: no cover
+    def plan(
+        self, start, goal, *, blocked=None, cost=None, max_length=None
+    ) -> np.ndarray:  # pragma: no cover
         raise NotImplementedError
 
 
@@ -78,8 +79,14 @@ class HybridAStarPlanner(Planner):
 
     def plan(self, start, goal, *, blocked=None, cost=None, max_length=None):
         local = len(goal) == 3 or max_length is not None
-        res = self.planner.plan(start, goal, blocked=blocked, cost=cost, max_length=max_length,
-                                max_expansions=self.local_max_expansions if local else None)
+        res = self.planner.plan(
+            start,
+            goal,
+            blocked=blocked,
+            cost=cost,
+            max_length=max_length,
+            max_expansions=self.local_max_expansions if local else None,
+        )
         self.last = res
         return np.asarray(res.poses)
 
@@ -101,8 +108,16 @@ class RRTPlanner(Planner):
         from gapath.planners.rrt import rrt
 
         ws = SimpleNamespace(occ=self.known, cell_size=self.cell_size)
-        res = rrt(ws, start[:2], goal[:2], seed=self.rng, radius=self.robot.radius,
-                  star=self.star, blocked=blocked, **self.settings)
+        res = rrt(
+            ws,
+            start[:2],
+            goal[:2],
+            seed=self.rng,
+            radius=self.robot.radius,
+            star=self.star,
+            blocked=blocked,
+            **self.settings,
+        )
         self.last = res
         return np.array(res.poses)
 
@@ -152,7 +167,7 @@ class AStarPlanner(_GridPlanner):
         occ = self._grid(blocked)
         s, g = self._cells(start, goal)
         occ = occ.copy()
-        occ[s] = False          # the robot's own cell (it is there)
+        occ[s] = False  # the robot's own cell (it is there)
         ws = Workspace(occ, s, g, cell_size=self.cell_size, corner_cutting=False)
         res = astar(ws)
         self.last = res

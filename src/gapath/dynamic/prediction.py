@@ -20,7 +20,7 @@ def _first_contact(d0x, d0y, dvx, dvy, radius, tmax):
     if a <= 0.0:
         return np.inf
     b = 2.0 * (d0x * dvx + d0y * dvy)
-    if b >= 0.0:                       # moving apart (both roots negative)
+    if b >= 0.0:  # moving apart (both roots negative)
         return np.inf
     disc = b * b - 4.0 * a * c
     if disc < 0.0:
@@ -254,8 +254,9 @@ def _track_contact(P, S, s0, v, dt, track, radius):
     return np.inf, dmin
 
 
-def path_contact(path, s0: float, speed: float, horizon: float, obstacle_position,
-                 obstacle_velocity, radius: float) -> tuple[float, float]:
+def path_contact(
+    path, s0: float, speed: float, horizon: float, obstacle_position, obstacle_velocity, radius: float
+) -> tuple[float, float]:
     """Predicted first contact between a robot following a path and a
     constant-velocity obstacle.
 
@@ -280,7 +281,16 @@ def path_contact(path, s0: float, speed: float, horizon: float, obstacle_positio
     P = np.ascontiguousarray(np.asarray(path, float)[:, :2])
     d = np.hypot(*np.diff(P, axis=0).T) if len(P) > 1 else np.zeros(0)
     S = np.concatenate([[0.0], np.cumsum(d)])
-    t, dm = _path_contact(P, S, float(s0), float(speed), float(horizon),
-                          float(obstacle_position[0]), float(obstacle_position[1]),
-                          float(obstacle_velocity[0]), float(obstacle_velocity[1]), float(radius))
+    t, dm = _path_contact(
+        P,
+        S,
+        float(s0),
+        float(speed),
+        float(horizon),
+        float(obstacle_position[0]),
+        float(obstacle_position[1]),
+        float(obstacle_velocity[0]),
+        float(obstacle_velocity[1]),
+        float(radius),
+    )
     return float(t), float(dm)

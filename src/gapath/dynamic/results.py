@@ -79,25 +79,32 @@ class SimResult:
     def summary(self) -> dict:
         """The scalar figures of the run (JSON-friendly)."""
         return {
-            "planner": self.planner, "seed": self.seed, "success": self.success,
-            "reason": self.reason, "time_s": round(self.time, 3),
-            "path_length": float(self.path_length), "global_length": self.global_length,
+            "planner": self.planner,
+            "seed": self.seed,
+            "success": self.success,
+            "reason": self.reason,
+            "time_s": round(self.time, 3),
+            "path_length": float(self.path_length),
+            "global_length": self.global_length,
             "direct_distance": self.direct_distance,
             "global_plan_seconds": self.global_plan_seconds,
             "replan_seconds": float(sum(self.replan_seconds)),
             "total_plan_seconds": self.total_plan_seconds,
-            "replans": self.n_replans, "halts": self.count("halt"),
+            "replans": self.n_replans,
+            "halts": self.count("halt"),
             "back_offs": self.count("back-off"),
         }
 
     def to_json(self) -> dict:
         """Summary, trajectory, events and paths as plain JSON data."""
+
         def _num(v):
             if isinstance(v, (np.floating, float)):
                 return float(v) if math.isfinite(v) else None
             if isinstance(v, np.integer):
                 return int(v)
             return v
+
         return {
             **self.summary(),
             "global_path": np.round(self.global_path, 5).tolist(),

@@ -89,8 +89,17 @@ class Simulation:
     (True, 'goal')
     """
 
-    def __init__(self, workspace, planner, robot: Robot | None = None, stationary=(),
-                 moving=(), settings: SimSettings | None = None, start=None, seed: int = 0):
+    def __init__(
+        self,
+        workspace,
+        planner,
+        robot: Robot | None = None,
+        stationary=(),
+        moving=(),
+        settings: SimSettings | None = None,
+        start=None,
+        seed: int = 0,
+    ):
         self.workspace = workspace
         self.planner = make_planner(planner) if isinstance(planner, str) else planner
         if not isinstance(self.planner, Planner):
@@ -100,8 +109,10 @@ class Simulation:
             raise ConfigError(f"robot must be a Robot, got {type(robot).__name__}")
         self.settings = SimSettings() if settings is None else settings
         self.stationary = [StationaryObstacle(o.cells.copy(), o.appear_at) for o in stationary]
-        self.moving = [MovingObstacle(o.position.copy(), o.velocity.copy(), o.radius, o.mode,
-                                      o.appear_at) for o in moving]
+        self.moving = [
+            MovingObstacle(o.position.copy(), o.velocity.copy(), o.radius, o.mode, o.appear_at)
+            for o in moving
+        ]
         h, w = workspace.shape
         for o in self.stationary:
             if ((o.cells < 0) | (o.cells >= (h, w))).any():
@@ -198,20 +209,28 @@ class Simulation:
         for k, o in enumerate(self.stationary):
             if not self.appeared[k] or self.detected[k]:
                 continue
-            for (r, c) in o.cells:
+            for r, c in o.cells:
                 if self._visible(x, y, c * cs, r * cs, 0.5 * cs):
                     self.detected[k] = True
                     new_cells.extend(o.cells.tolist())
-                    self._event(t, "detect", obstacle=f"stationary-{k}",
-                                distance=round(math.hypot(c * cs - x, r * cs - y), 3))
+                    self._event(
+                        t,
+                        "detect",
+                        obstacle=f"stationary-{k}",
+                        distance=round(math.hypot(c * cs - x, r * cs - y), 3),
+                    )
                     break
         for k, o in enumerate(self.moving):
             if not self.active[k]:
                 continue
             if self._visible(x, y, o.position[0], o.position[1], o.radius):
                 if k not in self.tracks or t - self.tracks[k][0] > self.settings.dt * 1.5:
-                    self._event(t, "detect", obstacle=f"moving-{k}",
-                                distance=round(float(np.hypot(*(o.position - (x, y)))), 3))
+                    self._event(
+                        t,
+                        "detect",
+                        obstacle=f"moving-{k}",
+                        distance=round(float(np.hypot(*(o.position - (x, y)))), 3),
+                    )
                 self.tracks[k] = (t, o.position.copy(), o.velocity.copy(), o.radius)
         for k in [k for k, tr in self.tracks.items() if t - tr[0] > self.settings.memory]:
             del self.tracks[k]
@@ -228,13 +247,13 @@ class Simulation:
             if st.predict_bounces and ts < t:
                 # the obstacle was last seen at ts: catch up with its model
                 m = int(round((t - ts) / st.dt))
-                tr = _predict_track(self.known, p[0], p[1], v[0], v[1], r / self.cs, self.cs, st.dt,
-                                    m, True)
+                tr = _predict_track(self.known, p[0], p[1], v[0], v[1], r / self.cs, self.cs, st.dt, m, True)
                 p = tr[-1]
             elif ts < t:
                 p = p + v * (t - ts)
-            track = _predict_track(self.known, p[0], p[1], v[0], v[1], r / self.cs, self.cs, st.dt, n,
-                                   bool(st.predict_bounces))
+            track = _predict_track(
+                self.known, p[0], p[1], v[0], v[1], r / self.cs, self.cs, st.dt, n, bool(st.predict_bounces)
+            )
             out.append((k, np.asarray(p, float), v, r, track))
         return out
 
@@ -272,9 +291,9 @@ class Simulation:
         h, w = self.workspace.shape
         mask = np.zeros((h, w), bool)
         grow = self.robot.radius + st.safety_margin
-        n = min(int(math.ceil(st.sweep_time / st.dt)), 10 ** 6)
-        for _, p, v, r, track in obstacles:
-            for q in track[: n + 1: 2]:
+        n = min(int(math.ceil(st.sweep_time / st.dt)), 10**6)
+        for _, _p, _v, r, track in obstacles:
+            for q in track[: n + 1 : 2]:
                 for cell in _disc_cells(q[0], q[1], r + grow, (h, w), self.cs):
                     mask[cell] = True
         x, y = self.pose[0], self.pose[1]
@@ -327,28 +346,30 @@ class Simulation:
             rest = self.path[j:]
             if first_blocked(occ_all, np.ascontiguousarray(rest[:, :2] / self.cs), r_chk, 0.1) >= 0:
                 continue
-            goal = (rejoin[0], rejoin[1], rejoin[2]) if isinstance(self.planner, HybridAStarPlanner) \
+            goal = (
+                (rejoin[0], rejoin[1], rejoin[2])
+                if isinstance(self.planner, HybridAStarPlanner)
                 else (rejoin[0], rejoin[1])
+            )
             limit = None if detour is None else float(self.S[j] - self.s) + detour
             local, dt, err = self._plan(cur, goal, blocked, cost, limit)
             spent += dt
             if local is not None:
                 total = float(_arc_lengths(local)[-1]) + float(self.S[-1] - self.S[j])
                 if best is None or total < best[0]:
-                    best = (total, np.vstack([local, rest[1:]]) if len(rest) > 1 else local,
-                            float(self.S[j]))
+                    best = (total, np.vstack([local, rest[1:]]) if len(rest) > 1 else local, float(self.S[j]))
         if best is not None:
             self.replan_seconds.append(spent)
-            self._event(t, "replan", reason=reason, scope="local", seconds=round(spent, 6),
-                        rejoin=round(best[2], 3))
+            self._event(
+                t, "replan", reason=reason, scope="local", seconds=round(spent, 6), rejoin=round(best[2], 3)
+            )
             return best[1]
         limit = None if detour is None else float(self.S[-1] - self.s) + detour
         new, dt, err = self._plan(cur, self.goal, blocked, cost, limit)
         spent += dt
         self.replan_seconds.append(spent)
         if new is None:
-            self._event(t, "replan-failed", reason=reason, error=str(err)[:200],
-                        seconds=round(spent, 6))
+            self._event(t, "replan-failed", reason=reason, error=str(err)[:200], seconds=round(spent, 6))
             return None
         self._event(t, "replan", reason=reason, scope="global", seconds=round(spent, 6))
         return new
@@ -363,7 +384,7 @@ class Simulation:
             if self.appeared[k] or t < o.appear_at:
                 continue
             near = False
-            for (r, c) in o.cells:
+            for r, c in o.cells:
                 dx = max(abs(x - c * cs) - 0.5 * cs, 0.0)
                 dy = max(abs(y - r * cs) - 0.5 * cs, 0.0)
                 if math.hypot(dx, dy) <= self.robot.radius + st.appear_clearance:
@@ -380,8 +401,7 @@ class Simulation:
         for k, o in enumerate(self.moving):
             if not self.active[k]:
                 if not self.gone[k] and t >= o.appear_at:
-                    gap = math.hypot(o.position[0] - x, o.position[1] - y) - o.radius - \
-                        self.robot.radius
+                    gap = math.hypot(o.position[0] - x, o.position[1] - y) - o.radius - self.robot.radius
                     if gap > 3.0 * st.appear_clearance:
                         self.active[k] = True
                         if o.appear_at > 0:
@@ -391,13 +411,16 @@ class Simulation:
             if o.mode == "pass":
                 o.position = p + v * dt
                 xc, yc = o.position / cs
-                if (xc < -0.5 - o.radius / cs or xc > w - 0.5 + o.radius / cs
-                        or yc < -0.5 - o.radius / cs or yc > h - 0.5 + o.radius / cs):
+                if (
+                    xc < -0.5 - o.radius / cs
+                    or xc > w - 0.5 + o.radius / cs
+                    or yc < -0.5 - o.radius / cs
+                    or yc > h - 0.5 + o.radius / cs
+                ):
                     self.active[k] = False
                     self.gone[k] = True
                 continue
-            qx, qy, vx, vy = _bounce_step(self.true_occ, p[0], p[1], v[0], v[1], o.radius / cs,
-                                          cs, dt)
+            qx, qy, vx, vy = _bounce_step(self.true_occ, p[0], p[1], v[0], v[1], o.radius / cs, cs, dt)
             o.position = np.array([qx, qy])
             o.velocity = np.array([vx, vy])
         return changed
@@ -452,22 +475,36 @@ class Simulation:
         self._step_world(0.0)
 
         def finish(success, reason, t, length, gpath, gsec):
-            return SimResult(success=success, reason=reason, time=t, path_length=length,
-                             direct_distance=direct, global_plan_seconds=gsec,
-                             replan_seconds=list(self.replan_seconds), global_path=gpath,
-                             trajectory=np.array(traj).reshape(-1, 5), events=self.events,
-                             paths=self.paths,
-                             obstacles=None if world is None else np.array(world, float).reshape(
-                                 len(world), len(self.moving), 2),
-                             planner=self.planner.name, seed=self.seed)
+            return SimResult(
+                success=success,
+                reason=reason,
+                time=t,
+                path_length=length,
+                direct_distance=direct,
+                global_plan_seconds=gsec,
+                replan_seconds=list(self.replan_seconds),
+                global_path=gpath,
+                trajectory=np.array(traj).reshape(-1, 5),
+                events=self.events,
+                paths=self.paths,
+                obstacles=None
+                if world is None
+                else np.array(world, float).reshape(len(world), len(self.moving), 2),
+                planner=self.planner.name,
+                seed=self.seed,
+            )
 
         self._traj = traj
 
         def record(t, v):
             traj.append((t, self.pose[0], self.pose[1], self.pose[2], v))
             if world is not None:
-                world.append([o.position.copy() if self.active[k] else (np.nan, np.nan)
-                              for k, o in enumerate(self.moving)])
+                world.append(
+                    [
+                        o.position.copy() if self.active[k] else (np.nan, np.nan)
+                        for k, o in enumerate(self.moving)
+                    ]
+                )
 
         # global planning on the known static map
         gpath, gsec, err = self._plan(self.start, self.goal)
@@ -480,7 +517,7 @@ class Simulation:
 
         t = 0.0
         length = 0.0
-        mode = "go"                 # go | halt | back
+        mode = "go"  # go | halt | back
         blocked_since = None
         last_retry = -math.inf
         last_mover_replan = -math.inf
@@ -491,8 +528,9 @@ class Simulation:
         for tick in range(1, n_ticks + 1):
             t = tick * st.dt
             # 1. world
-            self._prev_pos = [o.position.copy() if self.active[k] else None
-                              for k, o in enumerate(self.moving)]
+            self._prev_pos = [
+                o.position.copy() if self.active[k] else None for k, o in enumerate(self.moving)
+            ]
             self._step_world(t)
             # 2. sense
             new_cells = self._sense(t)
@@ -505,8 +543,11 @@ class Simulation:
             i0 = max(0, int(np.searchsorted(self.S, self.s, side="right")) - 1)
             rest = np.ascontiguousarray(self.path[i0:, :2] / cs)
             rest = np.vstack([[self.pose[0] / cs, self.pose[1] / cs], rest[1:]]) if len(rest) > 1 else rest
-            hit = first_blocked(self.known, np.ascontiguousarray(rest), r_chk, 0.1) \
-                if (new_cells or blocked_since is not None) else -1
+            hit = (
+                first_blocked(self.known, np.ascontiguousarray(rest), r_chk, 0.1)
+                if (new_cells or blocked_since is not None)
+                else -1
+            )
             if hit >= 0 and (blocked_since is None or t - last_retry >= st.retry_interval):
                 s_block = self.S[min(i0 + max(hit, 1), len(self.S) - 1)]
                 cost = self._cost_layer() if isinstance(self.planner, HybridAStarPlanner) else None
@@ -536,14 +577,19 @@ class Simulation:
                 if tc < math.inf:
                     if k not in predicted:
                         predicted.add(k)
-                        self._event(t, "predict", obstacle=f"moving-{k}", t_collision=round(tc, 3),
-                                    gap=round(gap, 3))
-                    if (gap >= st.replan_distance and tc >= st.halt_time
-                            and t - last_mover_replan >= st.replan_cooldown):
+                        self._event(
+                            t, "predict", obstacle=f"moving-{k}", t_collision=round(tc, 3), gap=round(gap, 3)
+                        )
+                    if (
+                        gap >= st.replan_distance
+                        and tc >= st.halt_time
+                        and t - last_mover_replan >= st.replan_cooldown
+                    ):
                         last_mover_replan = t
                         sweep = self._sweep(obstacles)
-                        cost = self._cost_layer(sweep) if isinstance(
-                            self.planner, HybridAStarPlanner) else None
+                        cost = (
+                            self._cost_layer(sweep) if isinstance(self.planner, HybridAStarPlanner) else None
+                        )
                         s_c = min(self.s + rb.speed * tc, self.S[-1])
                         new = self.replan(t, f"moving-{k}", s_c, sweep, cost, st.detour_limit)
                         if new is not None:
@@ -556,8 +602,9 @@ class Simulation:
                                 tc = tc2
                     # halt near the threat; once halted, resume only with some hysteresis
                     waiting = mode != "go" and blocked_since is None
-                    near = (gap < st.replan_distance + (0.5 if waiting else 0.0)
-                            or tc < st.halt_time + (1.0 if waiting else 0.0))
+                    near = gap < st.replan_distance + (0.5 if waiting else 0.0) or tc < st.halt_time + (
+                        1.0 if waiting else 0.0
+                    )
                     if tc < math.inf and near:
                         # halt and wait, or back off if waiting would be hit too
                         # (or, if every option is hit, the one hit latest)
@@ -590,9 +637,10 @@ class Simulation:
             if what is not None:
                 self._event(t, "collision", obstacle=what)
                 return finish(False, "collision", t, length, gpath, gsec)
-            if (self.s >= self.S[-1] - 1e-9 and
-                    math.hypot(self.pose[0] - self.goal[0], self.pose[1] - self.goal[1])
-                    <= st.goal_tolerance):
+            if (
+                self.s >= self.S[-1] - 1e-9
+                and math.hypot(self.pose[0] - self.goal[0], self.pose[1] - self.goal[1]) <= st.goal_tolerance
+            ):
                 self._event(t, "goal")
                 return finish(True, "goal", t, length, gpath, gsec)
             if self.s >= self.S[-1] - 1e-9 and blocked_since is None:
@@ -604,7 +652,15 @@ class Simulation:
         return finish(False, "timeout", t, length, gpath, gsec)
 
 
-def simulate(workspace, planner="hybrid-astar", robot=None, stationary=(), moving=(),
-             settings=None, start=None, seed: int = 0) -> SimResult:
+def simulate(
+    workspace,
+    planner="hybrid-astar",
+    robot=None,
+    stationary=(),
+    moving=(),
+    settings=None,
+    start=None,
+    seed: int = 0,
+) -> SimResult:
     """Run one :class:`Simulation` (same parameters) and return its result."""
     return Simulation(workspace, planner, robot, stationary, moving, settings, start, seed).run()

@@ -62,7 +62,7 @@ class MovingObstacle:
             raise ConfigError(f"mode must be one of {MOVING_MODES}, got {self.mode!r}")
 
     @classmethod
-    def from_heading(cls, position, speed: float, heading: float, **kwargs) -> "MovingObstacle":
+    def from_heading(cls, position, speed: float, heading: float, **kwargs) -> MovingObstacle:
         """An obstacle moving at ``speed`` along ``heading`` (radians)."""
         return cls(position, (speed * math.cos(heading), speed * math.sin(heading)), **kwargs)
 
@@ -200,9 +200,19 @@ class SimSettings:
             v = getattr(self, name)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v > 0):
                 raise ConfigError(f"{name} must be > 0, got {v!r}")
-        for name in ("safety_margin", "replan_distance", "halt_time", "sweep_time",
-                     "replan_cooldown", "rejoin_margin", "detour_limit", "trail_length", "memory", "blocked_patience",
-                     "appear_clearance"):
+        for name in (
+            "safety_margin",
+            "replan_distance",
+            "halt_time",
+            "sweep_time",
+            "replan_cooldown",
+            "rejoin_margin",
+            "detour_limit",
+            "trail_length",
+            "memory",
+            "blocked_patience",
+            "appear_clearance",
+        ):
             v = getattr(self, name)
             if not (isinstance(v, (int, float)) and math.isfinite(v) and v >= 0):
                 raise ConfigError(f"{name} must be >= 0, got {v!r}")

@@ -13,8 +13,12 @@ from gapath.encodings.mixed import MixedEncoding
 from gapath.errors import ConfigError
 
 #: Encoding classes by name (Ahmed & Deb's four schemes, section 2).
-ENCODINGS = {"integer": IntegerEncoding, "binary": BinaryEncoding, "mixed": MixedEncoding,
-             "absolute": AbsoluteEncoding}
+ENCODINGS = {
+    "integer": IntegerEncoding,
+    "binary": BinaryEncoding,
+    "mixed": MixedEncoding,
+    "absolute": AbsoluteEncoding,
+}
 
 
 def make_encoding(name: str, frame: Frame):
@@ -28,10 +32,19 @@ def make_encoding(name: str, frame: Frame):
     try:
         cls = ENCODINGS[name]
     except KeyError:
-        raise ConfigError(
-            f"unknown encoding {name!r}; expected one of {', '.join(ENCODINGS)}") from None
+        raise ConfigError(f"unknown encoding {name!r}; expected one of {', '.join(ENCODINGS)}") from None
     return cls(frame)
 
 
-__all__ = ["ENCODINGS", "AbsoluteEncoding", "BinaryEncoding", "Frame", "IntegerEncoding",
-           "MixedEncoding", "expand_profiles", "make_encoding", "profiles_of_paths", "split_paths"]
+__all__ = [
+    "ENCODINGS",
+    "AbsoluteEncoding",
+    "BinaryEncoding",
+    "Frame",
+    "IntegerEncoding",
+    "MixedEncoding",
+    "expand_profiles",
+    "make_encoding",
+    "profiles_of_paths",
+    "split_paths",
+]

@@ -30,8 +30,17 @@ import math
 import numba
 import numpy as np
 
-from gapath.planners._grid import DC, DR, NOT_HELD, STEP, move_mask, octile, open_decrease, \
-    open_pop, open_push
+from gapath.planners._grid import (
+    DC,
+    DR,
+    NOT_HELD,
+    STEP,
+    move_mask,
+    octile,
+    open_decrease,
+    open_pop,
+    open_push,
+)
 
 _UNSEEN = 0
 _CLOSED = -1
@@ -132,9 +141,9 @@ def goal_heuristics(occ, extra, t, corner_cutting, forward=False):
                     if which == 0:
                         nd = d + STEP[k]
                     elif forward:
-                        nd = d + extra[v]                # the step u -> v enters v
+                        nd = d + extra[v]  # the step u -> v enters v
                     else:
-                        nd = d + extra[u]                # the step v -> u enters u
+                        nd = d + extra[u]  # the step v -> u enters u
                     if nd < dist[v]:
                         dist[v] = nd
                         heapq.heappush(heap, (nd, v))
@@ -168,8 +177,35 @@ def _landmark_h(v, t, tr, tc, w, ha, b, pmin, hlen, hext, flen, fext):
 
 
 @numba.njit(cache=True)
-def _segment(occ, h, w, extra, s, t, a, b, corner_cutting, fgenes, gy, gx, beta, mmin,
-             hlen, hext, goal_h, pmin, flen, fext, state, g, came, heap, touched, mcache, buf):
+def _segment(
+    occ,
+    h,
+    w,
+    extra,
+    s,
+    t,
+    a,
+    b,
+    corner_cutting,
+    fgenes,
+    gy,
+    gx,
+    beta,
+    mmin,
+    hlen,
+    hext,
+    goal_h,
+    pmin,
+    flen,
+    fext,
+    state,
+    g,
+    came,
+    heap,
+    touched,
+    mcache,
+    buf,
+):
     """A* from cell ``s`` to cell ``t``; a step into ``v`` by move ``k`` costs
     ``a * STEP[k] * m(v) + b * extra[v]``, ``m(v) = exp(beta * (2 f(v) - 1))``
     for the bilinear field ``f`` of ``fgenes`` (``gy > 0``), else 1.
@@ -225,8 +261,7 @@ def _segment(occ, h, w, extra, s, t, a, b, corner_cutting, fgenes, gy, gx, beta,
             vc = uc + DC[k]
             if use_field:
                 if sv == _UNSEEN:
-                    mcache[v] = math.exp(beta * (2.0 * _field_value(fgenes, gy, gx, h, w, vr, vc)
-                                                 - 1.0))
+                    mcache[v] = math.exp(beta * (2.0 * _field_value(fgenes, gy, gx, h, w, vr, vc) - 1.0))
                 step = a * STEP[k] * mcache[v] + b * extra[v]
             else:
                 step = a * STEP[k] + b * extra[v]
@@ -311,8 +346,15 @@ def _store(cur, m, i, flat, offsets, keys):
 
 @numba.njit(cache=True)
 def _scratch(n):
-    return (np.zeros(n, np.int64), np.empty(n), np.empty(n, np.uint8), np.empty(3 * n),
-            np.empty(n, np.int64), np.empty(n), np.empty(n, np.int64))
+    return (
+        np.zeros(n, np.int64),
+        np.empty(n),
+        np.empty(n, np.uint8),
+        np.empty(3 * n),
+        np.empty(n, np.int64),
+        np.empty(n),
+        np.empty(n, np.int64),
+    )
 
 
 @numba.njit(cache=True)
@@ -323,8 +365,9 @@ def _via_cell(u, v, h, w, snap):
 
 
 @numba.njit(cache=True)
-def decode_via(X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext,
-               pmin, flen, fext):
+def decode_via(
+    X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext, pmin, flen, fext
+):
     """Paths of via-point genomes ``X`` (N, 3 K + 1): genes ``2k, 2k + 1``
     place via point ``k`` (row and column fractions, snapped to the start's
     component), genes ``2K .. 3K`` weight the ``K + 1`` segments.
@@ -352,16 +395,42 @@ def decode_via(X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi,
             if nxt == prev:
                 continue
             a, b = _weights(X[i, 2 * n_via + k], lam_lo, lam_hi)
-            cnt = _segment(flat_occ, h, w, extra, prev, nxt, a, b, corner_cutting, dummy, 0, 0,
-                           0.0, 1.0, hlen, hext, nxt == t, pmin, flen, fext, state, g, came, heap, touched,
-                           mcache, buf)
+            cnt = _segment(
+                flat_occ,
+                h,
+                w,
+                extra,
+                prev,
+                nxt,
+                a,
+                b,
+                corner_cutting,
+                dummy,
+                0,
+                0,
+                0.0,
+                1.0,
+                hlen,
+                hext,
+                nxt == t,
+                pmin,
+                flen,
+                fext,
+                state,
+                g,
+                came,
+                heap,
+                touched,
+                mcache,
+                buf,
+            )
             for j in range(1, cnt):
                 m = _append(buf[j], cur, pos, m)
             prev = nxt
         for j in range(m):
             pos[cur[j]] = -1
         flat = _store(cur, m, i, flat, offsets, keys)
-    return flat[:offsets[n]], offsets, keys
+    return flat[: offsets[n]], offsets, keys
 
 
 @numba.njit(cache=True)
@@ -386,10 +455,37 @@ def decode_field(X, gy, gx, beta, occ, extra, s, t, corner_cutting, lam_lo, lam_
             gmin = min(gmin, genes[j])
         a, b = _weights(X[i, nf], lam_lo, lam_hi)
         mmin = math.exp(beta * (2.0 * gmin - 1.0))
-        cnt = _segment(flat_occ, h, w, extra, s, t, a, b, corner_cutting, genes, gy, gx, beta,
-                       mmin, hlen, hext, True, 0.0, hlen, hext, state, g, came, heap, touched, mcache, buf)
+        cnt = _segment(
+            flat_occ,
+            h,
+            w,
+            extra,
+            s,
+            t,
+            a,
+            b,
+            corner_cutting,
+            genes,
+            gy,
+            gx,
+            beta,
+            mmin,
+            hlen,
+            hext,
+            True,
+            0.0,
+            hlen,
+            hext,
+            state,
+            g,
+            came,
+            heap,
+            touched,
+            mcache,
+            buf,
+        )
         flat = _store(buf, cnt, i, flat, offsets, keys)
-    return flat[:offsets[n]], offsets, keys
+    return flat[: offsets[n]], offsets, keys
 
 
 @numba.njit(cache=True)
@@ -406,16 +502,57 @@ def weighted_paths(occ, extra, s, t, corner_cutting, genes, lam_lo, lam_hi, hlen
     dummy = np.zeros(1)
     for i in range(n):
         a, b = _weights(genes[i], lam_lo, lam_hi)
-        cnt = _segment(flat_occ, h, w, extra, s, t, a, b, corner_cutting, dummy, 0, 0, 0.0, 1.0,
-                       hlen, hext, True, 0.0, hlen, hext, state, g, came, heap, touched, mcache,
-                       buf)
+        cnt = _segment(
+            flat_occ,
+            h,
+            w,
+            extra,
+            s,
+            t,
+            a,
+            b,
+            corner_cutting,
+            dummy,
+            0,
+            0,
+            0.0,
+            1.0,
+            hlen,
+            hext,
+            True,
+            0.0,
+            hlen,
+            hext,
+            state,
+            g,
+            came,
+            heap,
+            touched,
+            mcache,
+            buf,
+        )
         flat = _store(buf, cnt, i, flat, offsets, keys)
-    return flat[:offsets[n]], offsets, keys
+    return flat[: offsets[n]], offsets, keys
 
 
 @numba.njit(cache=True)
-def fit_segment_weights(cells, offsets, via_idx, occ, extra, corner_cutting, candidates,
-                        lam_lo, lam_hi, t, hlen, hext, pmin, flen, fext):
+def fit_segment_weights(
+    cells,
+    offsets,
+    via_idx,
+    occ,
+    extra,
+    corner_cutting,
+    candidates,
+    lam_lo,
+    lam_hi,
+    t,
+    hlen,
+    hext,
+    pmin,
+    flen,
+    fext,
+):
     """For each path ``i`` (cells ``cells[offsets[i]:offsets[i+1]]``) and each
     of its segments between consecutive via indices ``via_idx[i]`` (positions
     on the path, first 0, last the goal), the candidate weight gene whose
@@ -444,10 +581,35 @@ def fit_segment_weights(cells, offsets, via_idx, occ, extra, corner_cutting, can
             best_dl = 1 << 60
             for q in range(candidates.shape[0]):
                 a, b = _weights(candidates[q], lam_lo, lam_hi)
-                cnt = _segment(flat_occ, h, w, extra, cells[base + p0], cells[base + p1], a, b,
-                               corner_cutting, dummy, 0, 0, 0.0, 1.0, hlen, hext,
-                               cells[base + p1] == t, pmin, flen, fext, state, g, came, heap, touched,
-                               mcache, buf)
+                cnt = _segment(
+                    flat_occ,
+                    h,
+                    w,
+                    extra,
+                    cells[base + p0],
+                    cells[base + p1],
+                    a,
+                    b,
+                    corner_cutting,
+                    dummy,
+                    0,
+                    0,
+                    0.0,
+                    1.0,
+                    hlen,
+                    hext,
+                    cells[base + p1] == t,
+                    pmin,
+                    flen,
+                    fext,
+                    state,
+                    g,
+                    came,
+                    heap,
+                    touched,
+                    mcache,
+                    buf,
+                )
                 miss = 0
                 for j in range(cnt):
                     if mark[buf[j]] == 0:
@@ -499,9 +661,9 @@ def gather(flat_a, off_a, flat_b, off_b, src, idx):
     for i in range(n):
         j = idx[i]
         if src[i] == 0:
-            flat[offsets[i]:offsets[i + 1]] = flat_a[off_a[j]:off_a[j + 1]]
+            flat[offsets[i] : offsets[i + 1]] = flat_a[off_a[j] : off_a[j + 1]]
         else:
-            flat[offsets[i]:offsets[i + 1]] = flat_b[off_b[j]:off_b[j + 1]]
+            flat[offsets[i] : offsets[i + 1]] = flat_b[off_b[j] : off_b[j + 1]]
     return flat, offsets
 
 

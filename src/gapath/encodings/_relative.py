@@ -30,7 +30,6 @@ def _linear_draw(current, edge, u):
     return current + m * (1 if edge > current else -1)
 
 
-
 def relative_moves(frame, entries, exits, encoding: str) -> np.ndarray:
     """Signed moves ``(N, n_cols - 1)`` (up positive) of column profiles.
 
@@ -56,7 +55,8 @@ def relative_moves(frame, entries, exits, encoding: str) -> np.ndarray:
         i, k = bad[0]
         raise ConfigError(
             f"path {i} is not representable in the {encoding} encoding at column {k}: "
-            f"it enters at row {entries[i, k]} where the encoding enters at row {expected[i, k]}")
+            f"it enters at row {entries[i, k]} where the encoding enters at row {expected[i, k]}"
+        )
     return (prev - exits)[:, :-1].astype(np.int64)
 
 

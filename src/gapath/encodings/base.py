@@ -22,11 +22,15 @@ Column profile
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numba
 import numpy as np
 
 from gapath.errors import ConfigError
+
+if TYPE_CHECKING:
+    import gapath.workspace
 
 
 @dataclass(frozen=True, eq=False)
@@ -41,7 +45,7 @@ class Frame:
         (transpose first, then mirror the columns).
     """
 
-    workspace: object
+    workspace: gapath.workspace.Workspace
     occ: np.ndarray
     potential: np.ndarray
     start: tuple[int, int]
@@ -50,7 +54,7 @@ class Frame:
     flip: bool
 
     @classmethod
-    def of(cls, workspace) -> "Frame":
+    def of(cls, workspace) -> Frame:
         occ, pot = workspace.occ, workspace.potential
         (sr, sc), (gr, gc) = workspace.start, workspace.goal
         transpose = sc == gc
@@ -62,8 +66,15 @@ class Frame:
             w = occ.shape[1]
             occ, pot = occ[:, ::-1], pot[:, ::-1]
             sc, gc = w - 1 - sc, w - 1 - gc
-        return cls(workspace, np.ascontiguousarray(occ), np.ascontiguousarray(pot),
-                   (sr, sc), (gr, gc), transpose, flip)
+        return cls(
+            workspace,
+            np.ascontiguousarray(occ),
+            np.ascontiguousarray(pot),
+            (sr, sc),
+            (gr, gc),
+            transpose,
+            flip,
+        )
 
     @property
     def height(self) -> int:
@@ -102,8 +113,9 @@ class Frame:
         from gapath.objectives import evaluate_profiles
 
         ws = self.workspace
-        return evaluate_profiles(entries, exits, self.col0, self.occ, self.potential,
-                                 ws.cell_size, ws.corner_cutting)
+        return evaluate_profiles(
+            entries, exits, self.col0, self.occ, self.potential, ws.cell_size, ws.corner_cutting
+        )
 
 
 @numba.njit(cache=True)

@@ -66,8 +66,8 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from gapath.encodings.base import Frame, profiles_of_paths
 from gapath.encodings._relative import _linear_draw
+from gapath.encodings.base import Frame, profiles_of_paths
 from gapath.errors import ConfigError
 
 
@@ -237,8 +237,12 @@ class BinaryEncoding:
             i, k = np.argwhere(bad)[0]
             raise ConfigError(
                 f"path {i} is not representable in the binary encoding at column {k}: "
-                + ("a diagonal step followed by vertical steps the other way"
-                   if 0 < k < n_cols - 1 else "the start or end differs from the encoding's rule"))
+                + (
+                    "a diagonal step followed by vertical steps the other way"
+                    if 0 < k < n_cols - 1
+                    else "the start or end differs from the encoding's rule"
+                )
+            )
         up = np.where(diagonal, step < 0, t <= r)
         a = up
         c = np.where(diagonal, up, ~up)
@@ -251,8 +255,7 @@ class BinaryEncoding:
             return ((v[..., None] >> shifts) & 1).astype(bool)
 
         genes = np.concatenate([a[..., None], c[..., None], bits(y)], axis=2)
-        return np.concatenate([bits(np.abs(d0)), genes.reshape(n, -1),
-                               up0[:, None], up0[:, None]], axis=1)
+        return np.concatenate([bits(np.abs(d0)), genes.reshape(n, -1), up0[:, None], up0[:, None]], axis=1)
 
     def edge_fix(self, X, random_state: np.random.Generator) -> np.ndarray:
         """Ahmed & Deb's edge-fixing: a boolean copy of ``X`` in which every

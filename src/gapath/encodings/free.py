@@ -75,8 +75,10 @@ def default_n_via(shape) -> int:
 def default_field_shape(shape) -> tuple[int, int]:
     """Default control grid ``(gy, gx)`` of the cost field for ``shape``."""
     h, w = shape
-    return (min(int(np.clip(round(h / 6), 4, 12)), max(h, 2)),
-            min(int(np.clip(round(w / 6), 4, 12)), max(w, 2)))
+    return (
+        min(int(np.clip(round(h / 6), 4, 12)), max(h, 2)),
+        min(int(np.clip(round(w / 6), 4, 12)), max(w, 2)),
+    )
 
 
 def _check_int(value, name: str, lo: int) -> int:
@@ -154,6 +156,9 @@ class FreeEncoding:
         On a bad ``extra`` layer or ``lam_range``.
     """
 
+    name: str
+    n_var: int
+
     name = "free"
     vtype = float
 
@@ -172,15 +177,18 @@ class FreeEncoding:
             raise NoPathError(
                 f"no feasible path from start {workspace.start} to goal {workspace.goal} in "
                 f"{workspace.name!r} ({h}x{w}, 8-connected, corner cutting {rule}; "
-                f"{int(comp.sum())} {'cell is' if int(comp.sum()) == 1 else 'cells are'} reachable from the start)")
+                f"{int(comp.sum())} {'cell is' if int(comp.sum()) == 1 else 'cells are'} reachable from the start)"
+            )
         self.n_reachable = int(comp.sum())
         self._snap = K.snap_table(comp, h, w)
         if extra is None:
             extra = workspace.potential
         extra = np.asarray(extra, dtype=np.float64)
         if extra.shape != (h, w) or not np.isfinite(extra).all() or (extra < 0).any():
-            raise ConfigError(f"the cell cost of a free-path encoding must be a finite, "
-                              f"non-negative ({h}, {w}) array, got shape {extra.shape}")
+            raise ConfigError(
+                f"the cell cost of a free-path encoding must be a finite, "
+                f"non-negative ({h}, {w}) array, got shape {extra.shape}"
+            )
         self._extra = np.ascontiguousarray(extra.ravel())
         # exact costs-to-go to the goal (heuristics of searches that end there)
         self._hlen, self._hext = K.goal_heuristics(occ, self._extra, self._t, self._cc)
@@ -225,8 +233,7 @@ class FreeEncoding:
             return flat, offsets, keys
         c = self._cache
         if len(miss) == 0:
-            flat, offsets = K.gather(c.flat, c.offsets, c.flat, c.offsets,
-                                     np.zeros(len(X), np.int64), idx)
+            flat, offsets = K.gather(c.flat, c.offsets, c.flat, c.offsets, np.zeros(len(X), np.int64), idx)
             return flat, offsets, c.keys[idx]
         mflat, moff, mkeys = self._decode_kernel(X[miss])
         src = (idx < 0).astype(np.int64)
@@ -274,10 +281,11 @@ class FreeEncoding:
         ``genes`` with a neutral field (what a genome of the field encoding
         with all control genes 0.5 decodes to)."""
         genes = np.ascontiguousarray(np.atleast_1d(np.asarray(genes, dtype=np.float64)))
-        flat, offsets, _ = K.weighted_paths(self._occ, self._extra, self._s, self._t, self._cc,
-                                            genes, *self.lam_range, self._hlen, self._hext)
+        flat, offsets, _ = K.weighted_paths(
+            self._occ, self._extra, self._s, self._t, self._cc, genes, *self.lam_range, self._hlen, self._hext
+        )
         P, L = K.to_padded(flat, offsets, self.shape[1])
-        return [P[i, :L[i]].copy() for i in range(len(L))]
+        return [P[i, : L[i]].copy() for i in range(len(L))]
 
     def _flat_paths(self, paths):
         h, w = self.shape
@@ -285,8 +293,9 @@ class FreeEncoding:
         for i, p in enumerate(paths):
             p = np.asarray(p, dtype=np.int64).reshape(-1, 2)
             if len(p) < 2 or tuple(p[0]) != self.workspace.start or tuple(p[-1]) != self.workspace.goal:
-                raise ConfigError(f"path {i} does not run from start {self.workspace.start} "
-                                  f"to goal {self.workspace.goal}")
+                raise ConfigError(
+                    f"path {i} does not run from start {self.workspace.start} to goal {self.workspace.goal}"
+                )
             if (p < 0).any() or (p[:, 0] >= h).any() or (p[:, 1] >= w).any():
                 raise ConfigError(f"path {i} leaves the {h}x{w} grid")
             if (np.abs(np.diff(p, axis=0)).max(axis=1) != 1).any():
@@ -298,10 +307,22 @@ class FreeEncoding:
         return flat, offsets
 
     def _fit(self, flat, offsets, via_idx):
-        return K.fit_segment_weights(flat, offsets, np.ascontiguousarray(via_idx, np.int64),
-                                     self._occ, self._extra, self._cc, FIT_CANDIDATES,
-                                     *self.lam_range, self._t, self._hlen, self._hext, self._pmin,
-                                     self._flen, self._fext)
+        return K.fit_segment_weights(
+            flat,
+            offsets,
+            np.ascontiguousarray(via_idx, np.int64),
+            self._occ,
+            self._extra,
+            self._cc,
+            FIT_CANDIDATES,
+            *self.lam_range,
+            self._t,
+            self._hlen,
+            self._hext,
+            self._pmin,
+            self._flen,
+            self._fext,
+        )
 
 
 class ViaPointEncoding(FreeEncoding):
@@ -331,9 +352,22 @@ class ViaPointEncoding(FreeEncoding):
         self._setup_bounds()
 
     def _decode_kernel(self, X):
-        return K.decode_via(X, self.n_via, self._occ, self._extra, self._snap, self._s, self._t,
-                            self._cc, *self.lam_range, self._hlen, self._hext, self._pmin,
-                            self._flen, self._fext)
+        return K.decode_via(
+            X,
+            self.n_via,
+            self._occ,
+            self._extra,
+            self._snap,
+            self._s,
+            self._t,
+            self._cc,
+            *self.lam_range,
+            self._hlen,
+            self._hext,
+            self._pmin,
+            self._flen,
+            self._fext,
+        )
 
     def encode(self, paths, weights=None) -> np.ndarray:
         """Genomes of paths (workspace cells, start to goal).
@@ -357,12 +391,12 @@ class ViaPointEncoding(FreeEncoding):
         frac = np.arange(k + 2) / (k + 1)
         via_idx = np.rint(frac[None, :] * (lengths[:, None] - 1)).astype(np.int64)
         cells = flat[offsets[:-1, None] + via_idx[:, 1:-1]]
-        X[:, 0:2 * k:2] = (cells // w + 0.5) / h
-        X[:, 1:2 * k:2] = (cells % w + 0.5) / w
+        X[:, 0 : 2 * k : 2] = (cells // w + 0.5) / h
+        X[:, 1 : 2 * k : 2] = (cells % w + 0.5) / w
         if weights is None:
-            X[:, 2 * k:] = self._fit(flat, offsets, via_idx)
+            X[:, 2 * k :] = self._fit(flat, offsets, via_idx)
         else:
-            X[:, 2 * k:] = np.asarray(weights, dtype=float).reshape(-1, 1)
+            X[:, 2 * k :] = np.asarray(weights, dtype=float).reshape(-1, 1)
         return X
 
     def __repr__(self) -> str:
@@ -391,8 +425,7 @@ class FieldEncoding(FreeEncoding):
 
     name = "field"
 
-    def __init__(self, workspace, field_shape=None, beta=math.log(4.0), extra=None,
-                 lam_range=LAM_RANGE):
+    def __init__(self, workspace, field_shape=None, beta=math.log(4.0), extra=None, lam_range=LAM_RANGE):
         h, w = workspace.shape
         if field_shape is None:
             field_shape = default_field_shape((h, w))
@@ -403,8 +436,10 @@ class FieldEncoding(FreeEncoding):
         gy = _check_int(gy, "field_shape rows", 2)
         gx = _check_int(gx, "field_shape cols", 2)
         if gy > max(h, 2) or gx > max(w, 2):
-            raise ConfigError(f"field_shape {(gy, gx)} is finer than the {h}x{w} map: at most "
-                              f"one control point per cell on each axis")
+            raise ConfigError(
+                f"field_shape {(gy, gx)} is finer than the {h}x{w} map: at most "
+                f"one control point per cell on each axis"
+            )
         try:
             beta = float(beta)
         except (TypeError, ValueError):
@@ -419,8 +454,20 @@ class FieldEncoding(FreeEncoding):
 
     def _decode_kernel(self, X):
         gy, gx = self.field_shape
-        return K.decode_field(X, gy, gx, self.beta, self._occ, self._extra, self._s, self._t,
-                              self._cc, *self.lam_range, self._hlen, self._hext)
+        return K.decode_field(
+            X,
+            gy,
+            gx,
+            self.beta,
+            self._occ,
+            self._extra,
+            self._s,
+            self._t,
+            self._cc,
+            *self.lam_range,
+            self._hlen,
+            self._hext,
+        )
 
     def encode(self, paths, weights=None) -> np.ndarray:
         """Genomes of paths: a neutral field (control genes 0.5) and the
@@ -466,17 +513,28 @@ def make_free_encoding(name: str, workspace, **options):
     try:
         cls = FREE_ENCODINGS[name]
     except (KeyError, TypeError):
-        raise ConfigError(f"unknown encoding {name!r} for free paths; expected one of "
-                          f"{', '.join(FREE_ENCODINGS)}") from None
+        raise ConfigError(
+            f"unknown encoding {name!r} for free paths; expected one of {', '.join(FREE_ENCODINGS)}"
+        ) from None
     import inspect
 
-    allowed = set(inspect.signature(cls.__init__).parameters) - {"self", "workspace"}
+    allowed = set(inspect.signature(cls).parameters) - {"workspace"}
     unknown = sorted(set(options) - allowed)
     if unknown:
-        raise ConfigError(f"option {unknown[0]!r} does not apply to the {name!r} encoding; "
-                          f"its options are {', '.join(sorted(allowed))}")
+        raise ConfigError(
+            f"option {unknown[0]!r} does not apply to the {name!r} encoding; "
+            f"its options are {', '.join(sorted(allowed))}"
+        )
     return cls(workspace, **options)
 
 
-__all__ = ["DEFAULT_FREE_ENCODING", "FREE_ENCODINGS", "FieldEncoding", "FreeEncoding",
-           "ViaPointEncoding", "default_field_shape", "default_n_via", "make_free_encoding"]
+__all__ = [
+    "DEFAULT_FREE_ENCODING",
+    "FREE_ENCODINGS",
+    "FieldEncoding",
+    "FreeEncoding",
+    "ViaPointEncoding",
+    "default_field_shape",
+    "default_n_via",
+    "make_free_encoding",
+]

@@ -89,8 +89,9 @@ class MixedEncoding:
         self.n_bits = self.n_genes
         self.n_var = 2 * self.n_genes
         self.xl = np.zeros(self.n_var, dtype=np.int64)
-        self.xu = np.concatenate([np.ones(self.n_genes, np.int64),
-                                  np.full(self.n_genes, frame.height, np.int64)])
+        self.xu = np.concatenate(
+            [np.ones(self.n_genes, np.int64), np.full(self.n_genes, frame.height, np.int64)]
+        )
 
     def split(self, X) -> tuple[np.ndarray, np.ndarray]:
         """Bits (bool) and integers (int64, clipped to ``[0, H]``) of ``X``,

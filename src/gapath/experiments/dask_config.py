@@ -32,8 +32,14 @@ from pathlib import Path
 
 from gapath.errors import ConfigError
 
-__all__ = ["DASK_CONFIG", "DASK_CONFIG_FILE", "LOCAL_SCHEDULER", "check_dask_config",
-           "load_dask_config", "local_client"]
+__all__ = [
+    "DASK_CONFIG",
+    "DASK_CONFIG_FILE",
+    "LOCAL_SCHEDULER",
+    "check_dask_config",
+    "load_dask_config",
+    "local_client",
+]
 
 #: gapath's Dask settings (dotted keys of ``distributed/distributed.yaml``),
 #: as given to ``dask.config.set``; the same as :data:`DASK_CONFIG_FILE`.
@@ -70,8 +76,9 @@ def _defaults() -> dict:
     try:
         import distributed  # noqa: F401 - registers distributed.yaml's defaults
     except ImportError:
-        raise ConfigError("Dask settings need the 'distributed' package "
-                          "(pip install 'dask[distributed]')") from None
+        raise ConfigError(
+            "Dask settings need the 'distributed' package (pip install 'dask[distributed]')"
+        ) from None
     return dask.config.merge(*dask.config.defaults)
 
 
@@ -105,8 +112,10 @@ def check_dask_config(config: dict, source: str = "Dask config") -> dict:
         try:
             default = dask.config.get(key, config=defaults)
         except KeyError:
-            raise ConfigError(f"{source}: {key}: not a Dask setting (no such key in "
-                              "distributed's distributed.yaml or dask's dask.yaml)") from None
+            raise ConfigError(
+                f"{source}: {key}: not a Dask setting (no such key in "
+                "distributed's distributed.yaml or dask's dask.yaml)"
+            ) from None
         if isinstance(default, bool):
             if not isinstance(value, bool):
                 raise ConfigError(f"{source}: {key}: expected true or false, got {value!r}")
@@ -192,9 +201,15 @@ def local_client(workers: int | None = None, *, config: dict | None = None, time
     with dask.config.set(config):
         # no dashboard; the scheduler's small HTTP server (health, metrics) on a
         # random loopback port rather than on every interface's 8787
-        client = Client(n_workers=workers, threads_per_worker=1, processes=True,
-                        host="127.0.0.1", dashboard_address=None, timeout=timeout,
-                        scheduler_kwargs={"dashboard_address": "127.0.0.1:0"})
+        client = Client(
+            n_workers=workers,
+            threads_per_worker=1,
+            processes=True,
+            host="127.0.0.1",
+            dashboard_address=None,
+            timeout=timeout,
+            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
+        )
     try:
         client.wait_for_workers(workers, timeout=timeout)
     except BaseException:

@@ -53,9 +53,21 @@ import numpy as np
 
 from gapath.experiments.spec import ExperimentSpec
 
-__all__ = ["LARGE", "MAP_SEED", "P0S", "PAPER_LARGE", "PAPER_TABLE1", "dense_report",
-           "large_spec", "map_seed_of", "p0_for_obstacles", "paper_row", "register_experiment",
-           "table1_spec", "unsuccessful_runs"]
+__all__ = [
+    "LARGE",
+    "MAP_SEED",
+    "P0S",
+    "PAPER_LARGE",
+    "PAPER_TABLE1",
+    "dense_report",
+    "large_spec",
+    "map_seed_of",
+    "p0_for_obstacles",
+    "paper_row",
+    "register_experiment",
+    "table1_spec",
+    "unsuccessful_runs",
+]
 
 #: Obstacle probabilities of Table 1.
 P0S = (0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0)
@@ -97,16 +109,20 @@ _PAPER = """grid,p0,obstacles,success_pct,median_generations,mean_min_path_lengt
 #: success_pct, median_generations, mean_min_path_length}}``. (The 16x16
 #: p0 = 0.8 row reads 286 obstacles, probably a misprint.)
 PAPER_TABLE1 = {
-    (int(r["grid"]), float(r["p0"])): {"obstacles": int(r["obstacles"]),
-                                        "success_pct": float(r["success_pct"]),
-                                        "median_generations": float(r["median_generations"]),
-                                        "mean_min_path_length": float(r["mean_min_path_length"])}
+    (int(r["grid"]), float(r["p0"])): {
+        "obstacles": int(r["obstacles"]),
+        "success_pct": float(r["success_pct"]),
+        "median_generations": float(r["median_generations"]),
+        "mean_min_path_length": float(r["mean_min_path_length"]),
+    }
     for r in csv.DictReader(io.StringIO(_PAPER))
 }
 
 #: The paper's larger grids: obstacle counts and outcomes (pop 500, 500 gen).
-PAPER_LARGE = {64: {"obstacles": 791, "outcome": "feasible paths in 80 % of runs"},
-               128: {"obstacles": 4979, "outcome": "a feasible path found"}}
+PAPER_LARGE = {
+    64: {"obstacles": 791, "outcome": "feasible paths in 80 % of runs"},
+    128: {"obstacles": 4979, "outcome": "a feasible path found"},
+}
 
 #: The larger grids as run here: side -> p0 (from :func:`p0_for_obstacles`).
 LARGE = {64: 0.200, 128: 0.309}
@@ -132,8 +148,10 @@ def p0_for_obstacles(n: int, target: int, samples: int = 2000, decimals: int = 3
     """
     from gapath.workspace import random_monotone_path
 
-    cells = [len(random_monotone_path((n, n), (n - 1, 0), (0, n - 1), np.random.default_rng(s)))
-             for s in range(samples)]
+    cells = [
+        len(random_monotone_path((n, n), (n - 1, 0), (0, n - 1), np.random.default_rng(s)))
+        for s in range(samples)
+    ]
     return round(target / (n * n - float(np.mean(cells))), decimals)
 
 
@@ -145,10 +163,19 @@ def _map_seed(map_seed):
     return int(map_seed)
 
 
-def table1_spec(grids=(8, 16, 32), p0s=P0S, runs: int = 100, *, pop_size: int = 200,
-                n_gen: int = 500, engine: str = "auto", first_seed: int = 1,
-                name: str = "dense-table1", seed_from: str = "none",
-                map_seed: int | str = MAP_SEED) -> ExperimentSpec:
+def table1_spec(
+    grids=(8, 16, 32),
+    p0s=P0S,
+    runs: int = 100,
+    *,
+    pop_size: int = 200,
+    n_gen: int = 500,
+    engine: str = "auto",
+    first_seed: int = 1,
+    name: str = "dense-table1",
+    seed_from: str = "none",
+    map_seed: int | str = MAP_SEED,
+) -> ExperimentSpec:
     """The Table 1 experiment: ``grids x p0s`` rows, each one map
     ``dense_workspace(grid, p0, map_seed)`` solved by ``runs`` seeded GA runs
     (seeds ``first_seed, ...``), NSGA-II with ``pop_size`` for at most
@@ -178,17 +205,27 @@ def table1_spec(grids=(8, 16, 32), p0s=P0S, runs: int = 100, *, pop_size: int = 
     return ExperimentSpec(
         name=name,
         description="Ahmed & Deb 2013, Table 1: dense random obstacles, stop at the first "
-                    f"feasible path; {per} (gapath.experiments.dense).",
-        maps=maps, encodings=["integer"], engines=[engine],
-        settings=dict(objectives="length,vulnerability", pop_size=pop_size, n_gen=n_gen,
-                      seed_from=seed_from),
+        f"feasible path; {per} (gapath.experiments.dense).",
+        maps=maps,
+        encodings=["integer"],
+        engines=[engine],
+        settings=dict(objectives="length,vulnerability", pop_size=pop_size, n_gen=n_gen, seed_from=seed_from),
         seeds={"start": first_seed, "count": runs},
-        options={"stop_at_first_feasible": True})
+        options={"stop_at_first_feasible": True},
+    )
 
 
-def large_spec(sizes=(64, 128), runs: int = 10, *, pop_size: int = 500, n_gen: int = 500,
-               engine: str = "auto", first_seed: int = 1, name: str = "dense-large",
-               map_seed: int | str = MAP_SEED) -> ExperimentSpec:
+def large_spec(
+    sizes=(64, 128),
+    runs: int = 10,
+    *,
+    pop_size: int = 500,
+    n_gen: int = 500,
+    engine: str = "auto",
+    first_seed: int = 1,
+    name: str = "dense-large",
+    map_seed: int | str = MAP_SEED,
+) -> ExperimentSpec:
     """The larger grids: ``sizes`` from :data:`LARGE` (p0 for the paper's
     obstacle counts), one map each (``map_seed``; ``"run"``: a new map per
     run), ``runs`` GA runs, population ``pop_size``, at most ``n_gen``
@@ -204,12 +241,14 @@ def large_spec(sizes=(64, 128), runs: int = 10, *, pop_size: int = 500, n_gen: i
     return ExperimentSpec(
         name=name,
         description="Ahmed & Deb 2013, section 6: 64x64 (791 obstacles) and 128x128 (4,979 "
-                    "obstacles), population 500, stop at the first feasible path.",
-        maps=maps, encodings=["integer"], engines=[engine],
-        settings=dict(objectives="length,vulnerability", pop_size=pop_size, n_gen=n_gen,
-                      seed_from="none"),
+        "obstacles), population 500, stop at the first feasible path.",
+        maps=maps,
+        encodings=["integer"],
+        engines=[engine],
+        settings=dict(objectives="length,vulnerability", pop_size=pop_size, n_gen=n_gen, seed_from="none"),
         seeds={"start": first_seed, "count": runs},
-        options={"stop_at_first_feasible": True})
+        options={"stop_at_first_feasible": True},
+    )
 
 
 def map_seed_of(store_dir):
@@ -217,14 +256,17 @@ def map_seed_of(store_dir):
     run has its own map; None for a store of mixed or non-dense maps)."""
     from gapath.experiments.store import ResultStore
 
-    seeds = {m["dense"]["seed"] if isinstance(m, dict) and "dense" in m else None
-             for m in ResultStore(store_dir).spec().to_dict()["maps"]}
+    seeds = {
+        m["dense"]["seed"] if isinstance(m, dict) and "dense" in m else None
+        for m in ResultStore(store_dir).spec().to_dict()["maps"]
+    }
     return seeds.pop() if len(seeds) == 1 else None
 
 
 # ---------------------------------------------------------------------------
 # the report
 # ---------------------------------------------------------------------------
+
 
 def _widened_spec(store) -> ExperimentSpec:
     """The store's spec with every stored seed (see :func:`_rows`)."""
@@ -249,15 +291,24 @@ def _rows(store_dir) -> list[dict]:
     out = []
     for conf, row in zip(spec.configurations(), rows):
         d = conf["map"]["dense"]
-        out.append({"grid": d["n"], "p0": d["p0"], "runs": row["done"], "failed": row["failed"],
-                    "obstacles_mean": row["obstacles_mean"], "success_pct": row["success_pct"],
-                    "median_generations": row.get("first_feasible_gen_median"),
-                    "generations_q1": row.get("first_feasible_gen_q1"),
-                    "generations_q3": row.get("first_feasible_gen_q3"),
-                    "mean_min_path_length": row.get("min_length_mean"),
-                    "best_min_path_length": row.get("min_length_best"),
-                    "pop_size": conf["settings"]["pop_size"], "n_gen": conf["settings"]["n_gen"],
-                    "engine": conf["engine"]})
+        out.append(
+            {
+                "grid": d["n"],
+                "p0": d["p0"],
+                "runs": row["done"],
+                "failed": row["failed"],
+                "obstacles_mean": row["obstacles_mean"],
+                "success_pct": row["success_pct"],
+                "median_generations": row.get("first_feasible_gen_median"),
+                "generations_q1": row.get("first_feasible_gen_q1"),
+                "generations_q3": row.get("first_feasible_gen_q3"),
+                "mean_min_path_length": row.get("min_length_mean"),
+                "best_min_path_length": row.get("min_length_best"),
+                "pop_size": conf["settings"]["pop_size"],
+                "n_gen": conf["settings"]["n_gen"],
+                "engine": conf["engine"],
+            }
+        )
     return out
 
 
@@ -279,8 +330,7 @@ def _timing(store_dir) -> dict:
     from gapath.experiments.store import ResultStore
 
     store = ResultStore(store_dir)
-    secs = [r.get("runtime", {}).get("seconds") or 0.0
-            for r in store.results(_widened_spec(store).runs())]
+    secs = [r.get("runtime", {}).get("seconds") or 0.0 for r in store.results(_widened_spec(store).runs())]
     return {"runs": len(secs), "seconds": float(np.sum(secs))}
 
 
@@ -308,15 +358,27 @@ def _with_paper(rows: list[dict]) -> list[dict]:
 
 def _below(rows: list[dict]) -> list[dict]:
     """The rows whose success is below the paper's."""
-    return [r for r in rows if r.get("paper_success_pct") is not None
-            and r["success_pct"] is not None and r["success_pct"] < r["paper_success_pct"]]
+    return [
+        r
+        for r in rows
+        if r.get("paper_success_pct") is not None
+        and r["success_pct"] is not None
+        and r["success_pct"] < r["paper_success_pct"]
+    ]
 
 
 def _below_text(rows: list[dict]) -> str:
     below = _below(rows)
-    return (f"{len(below)} of {len(rows)} rows are below the paper's success rate"
-            + (": " + ", ".join(f"{r['grid']}x{r['grid']} p0 {r['p0']:g} ({_f(r['success_pct'], 3)} "
-                                f"vs {_f(r['paper_success_pct'], 3)})" for r in below) if below else ""))
+    return f"{len(below)} of {len(rows)} rows are below the paper's success rate" + (
+        ": "
+        + ", ".join(
+            f"{r['grid']}x{r['grid']} p0 {r['p0']:g} ({_f(r['success_pct'], 3)} "
+            f"vs {_f(r['paper_success_pct'], 3)})"
+            for r in below
+        )
+        if below
+        else ""
+    )
 
 
 def _miss_lines(misses: dict) -> list[str]:
@@ -338,18 +400,32 @@ def _free_path_note(rows) -> str:
         paper = paper_row(r["grid"], r["p0"])
         if r["p0"] == 1.0 and paper and r["obstacles_mean"] is not None:
             n = r["grid"]
-            notes.append(f"{n}x{n}: {n * n - paper['obstacles']} in the paper, "
-                         f"{_f(n * n - r['obstacles_mean'], 3)} here")
+            notes.append(
+                f"{n}x{n}: {n * n - paper['obstacles']} in the paper, "
+                f"{_f(n * n - r['obstacles_mean'], 3)} here"
+            )
     if not notes:
         return ""
-    return (" At p0 = 1 only the random path kept free is free, and ours (a random walk of -2 to "
-            "2 rows per column) has more cells than the paper's (" + "; ".join(notes) + "), so "
-            "our lengths are longer there.")
+    return (
+        " At p0 = 1 only the random path kept free is free, and ours (a random walk of -2 to "
+        "2 rows per column) has more cells than the paper's (" + "; ".join(notes) + "), so "
+        "our lengths are longer there."
+    )
 
 
-def dense_report(table1_dir, results_dir, large_dir=None, *, seeded_dir=None, other_map_dirs=(),
-                 per_run_dir=None, large_per_run_dir=None, basename: str = "dense",
-                 wall_seconds: dict | None = None, workers=None) -> dict:
+def dense_report(
+    table1_dir,
+    results_dir,
+    large_dir=None,
+    *,
+    seeded_dir=None,
+    other_map_dirs=(),
+    per_run_dir=None,
+    large_per_run_dir=None,
+    basename: str = "dense",
+    wall_seconds: dict | None = None,
+    workers=None,
+) -> dict:
     """Write ``<basename>.md``, ``.csv`` and ``.png`` into ``results_dir``:
     our Table 1 beside the paper's, its rows on other maps, and the larger
     grids.
@@ -400,8 +476,11 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, seeded_dir=None, ot
         for row in t1:
             s_row = seeded.get((row["grid"], row["p0"]))
             if s_row:
-                row.update(seeded_success_pct=s_row["success_pct"], seeded_runs=s_row["runs"],
-                           seeded_median_generations=s_row["median_generations"])
+                row.update(
+                    seeded_success_pct=s_row["success_pct"],
+                    seeded_runs=s_row["runs"],
+                    seeded_median_generations=s_row["median_generations"],
+                )
     other_dirs = {map_seed_of(d): d for d in other_map_dirs if _exists(d)}
     other_dirs.pop(main_seed, None)
     others = {m: _with_paper(_rows(d)) for m, d in other_dirs.items()}
@@ -411,94 +490,164 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, seeded_dir=None, ot
     misses = unsuccessful_runs(table1_dir)
 
     # CSV: every part, full precision
-    cols = ["part", "map_seed", "grid", "p0", "runs", "failed", "obstacles_mean", "paper_obstacles",
-            "success_pct", "paper_success_pct", "median_generations", "generations_q1",
-            "generations_q3", "paper_median_generations", "mean_min_path_length",
-            "paper_mean_min_path_length", "best_min_path_length", "pop_size", "n_gen", "engine",
-            "seeded_success_pct", "seeded_median_generations", "seeded_runs"]
+    cols = [
+        "part",
+        "map_seed",
+        "grid",
+        "p0",
+        "runs",
+        "failed",
+        "obstacles_mean",
+        "paper_obstacles",
+        "success_pct",
+        "paper_success_pct",
+        "median_generations",
+        "generations_q1",
+        "generations_q3",
+        "paper_median_generations",
+        "mean_min_path_length",
+        "paper_mean_min_path_length",
+        "best_min_path_length",
+        "pop_size",
+        "n_gen",
+        "engine",
+        "seeded_success_pct",
+        "seeded_median_generations",
+        "seeded_runs",
+    ]
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(cols)
     parts = [("table1", main_seed, t1)] + [("table1-other-map", m, rows) for m, rows in others.items()]
-    parts += [("table1-per-run-maps", "run", per_run), ("large", map_seed_of(large_dir) if large else None,
-              large), ("large-per-run-maps", "run", large_per_run)]
+    parts += [
+        ("table1-per-run-maps", "run", per_run),
+        ("large", map_seed_of(large_dir) if large else None, large),
+        ("large-per-run-maps", "run", large_per_run),
+    ]
     for part, mseed, rows in parts:
         for row in rows:
             r = dict(row, part=part, map_seed=mseed)
             if part.startswith("large"):
                 r["paper_obstacles"] = PAPER_LARGE.get(row["grid"], {}).get("obstacles")
-            w.writerow(["" if r.get(c) is None else (repr(r[c]) if isinstance(r[c], float) else r[c])
-                        for c in cols])
+            w.writerow(
+                ["" if r.get(c) is None else (repr(r[c]) if isinstance(r[c], float) else r[c]) for c in cols]
+            )
 
     # Markdown
     spec = _saved_spec(table1_dir)
     settings = spec["settings"]
     counts = sorted({row["runs"] for row in t1}) or [0]
     runs_per_row = (f"{counts[0]}" if len(counts) == 1 else f"{counts[0]} to {counts[-1]}") + (
-        "" if counts[0] >= 100 else " (the protocol asks for 100; see the runs column)")
+        "" if counts[0] >= 100 else " (the protocol asks for 100; see the runs column)"
+    )
     single = main_seed != "run"
     if single:
-        maps_text = (f"each row is one map, `dense_workspace(grid, p0, {main_seed})` (the same map "
-                     f"seed for every row, so the maps of a grid share their free path and nest "
-                     f"as p0 grows), solved by {runs_per_row} GA runs (GA seeds "
-                     f"{spec['seeds'][0]}, {spec['seeds'][1] if len(spec['seeds']) > 1 else ''}, ...)")
+        maps_text = (
+            f"each row is one map, `dense_workspace(grid, p0, {main_seed})` (the same map "
+            f"seed for every row, so the maps of a grid share their free path and nest "
+            f"as p0 grows), solved by {runs_per_row} GA runs (GA seeds "
+            f"{spec['seeds'][0]}, {spec['seeds'][1] if len(spec['seeds']) > 1 else ''}, ...)"
+        )
     else:
-        maps_text = (f"{runs_per_row} runs per row, each on its own `dense_workspace(grid, p0, seed)` "
-                     "(map seed = run seed)")
-    head = ["grid", "p0", "obstacles (paper)", "success % (paper)",
-            "median gen. [q1, q3] (paper)", "mean min length (paper)", "shortest of all runs", "runs"]
+        maps_text = (
+            f"{runs_per_row} runs per row, each on its own `dense_workspace(grid, p0, seed)` "
+            "(map seed = run seed)"
+        )
+    head = [
+        "grid",
+        "p0",
+        "obstacles (paper)",
+        "success % (paper)",
+        "median gen. [q1, q3] (paper)",
+        "mean min length (paper)",
+        "shortest of all runs",
+        "runs",
+    ]
     if seeded:
         head.append("SEEDED success %, median gen.")
     body = []
     for row in t1:
-        body.append([f"{row['grid']}x{row['grid']}", f"{row['p0']:g}",
-                     f"{_f(row['obstacles_mean'], 4)} ({row.get('paper_obstacles', '-')})",
-                     f"{_f(row['success_pct'], 3)} ({_f(row.get('paper_success_pct'), 3)})",
-                     f"{_gens(row)} ({_f(row.get('paper_median_generations'))})",
-                     f"{_f(row['mean_min_path_length'], 4)} ({_f(row.get('paper_mean_min_path_length'), 4)})",
-                     _f(row["best_min_path_length"], 4), _runs_cell(row)])
+        body.append(
+            [
+                f"{row['grid']}x{row['grid']}",
+                f"{row['p0']:g}",
+                f"{_f(row['obstacles_mean'], 4)} ({row.get('paper_obstacles', '-')})",
+                f"{_f(row['success_pct'], 3)} ({_f(row.get('paper_success_pct'), 3)})",
+                f"{_gens(row)} ({_f(row.get('paper_median_generations'))})",
+                f"{_f(row['mean_min_path_length'], 4)} ({_f(row.get('paper_mean_min_path_length'), 4)})",
+                _f(row["best_min_path_length"], 4),
+                _runs_cell(row),
+            ]
+        )
         if seeded:
-            body[-1].append("-" if row.get("seeded_success_pct") is None else
-                            f"{_f(row['seeded_success_pct'], 3)}, {_f(row['seeded_median_generations'])}")
-    text = ["# Dense obstacles: Ahmed & Deb (2013), Table 1, reproduced", "",
-            "Generated by `gapath experiment dense` (module `gapath.experiments.dense`). "
-            f"Integer encoding, objectives length and vulnerability (penalty), population "
-            f"{settings.get('pop_size')}, at most {settings.get('n_gen')} generations, stopped "
-            f"at the first feasible path; {maps_text}; all-random initial population "
-            f"(`seed_from=\"none\"`); engine `{t1[0]['engine'] if t1 else '-'}`.", ""]
+            body[-1].append(
+                "-"
+                if row.get("seeded_success_pct") is None
+                else f"{_f(row['seeded_success_pct'], 3)}, {_f(row['seeded_median_generations'])}"
+            )
+    text = [
+        "# Dense obstacles: Ahmed & Deb (2013), Table 1, reproduced",
+        "",
+        "Generated by `gapath experiment dense` (module `gapath.experiments.dense`). "
+        f"Integer encoding, objectives length and vulnerability (penalty), population "
+        f"{settings.get('pop_size')}, at most {settings.get('n_gen')} generations, stopped "
+        f"at the first feasible path; {maps_text}; all-random initial population "
+        f'(`seed_from="none"`); engine `{t1[0]["engine"] if t1 else "-"}`.',
+        "",
+    ]
     if single:
-        text += ["Why one map per row: the paper takes \"100 runs\" \"for each problem\", gives "
-                 "one integer obstacle count per row (a map's, not a mean), repeats the same "
-                 "minimum lengths down the rows of a grid (one random path, more obstacles around "
-                 "it as p0 grows), and says of its 64x64 case, one map, that \"feasible paths are "
-                 "found in 80 % runs\". The map seed was fixed (the experiment's first seed) "
-                 "before any run was made. A few maps trap this GA, so which map a row gets "
-                 "matters: see the rows on other maps and with a new map for every run below.", ""]
-    text += ["Ours first, the paper's in parentheses. Success: a feasible path within the "
-             "generation limit. Generations: median over the successful runs of the first "
-             "generation whose population holds a feasible path, counted as pymoo does (the "
-             "initial population is generation 1; the paper does not say how it counts), with "
-             "quartiles. Mean min length: the shortest feasible path at that generation, "
-             "averaged over the successful runs; shortest of all runs: its minimum. The paper's "
-             "lengths are near-optimal values repeated across rows (9.90 = 7 sqrt 2, "
-             "10.49 = 6 sqrt 2 + 2, 11.07 = 5 sqrt 2 + 4 on 8x8), below the shortest feasible "
-             "path of a population at its first feasible generation: the paper probably "
-             "measured them otherwise (e.g. after optimising further); we report ours as "
-             "defined here." + _free_path_note(t1) + " Obstacles: "
-             + ("the map's count." if single else "mean over the runs.") + (
-                 " SEEDED (last column, not the paper's protocol): the same runs with the "
-                 "initial population seeded from planners (`seed_from=\"weighted\"`: the "
-                 "shortest, the safest and weighted-sum optimal monotone paths)." if seeded else ""),
-             "", markdown_table(head, body), "",
-             "## Runs without a feasible path", "",
-             _below_text(t1) + ". "
-             + (f"The GA seeds of the runs that found no feasible path, per row (rerun one with "
-                f"`gapath.solve(gapath.dense_workspace(grid, p0, {main_seed}), pop_size=200, "
-                "seed=seed, seed_from=\"none\")`):" if single else
-                "The seeds (= map seeds) of the runs that found no feasible path, per row "
-                "(rerun one with `gapath.dense_workspace(grid, p0, seed)` and "
-                "`gapath.solve(..., pop_size=200, seed=seed, seed_from=\"none\")`):"), "",
-             *_miss_lines(misses), ""]
+        text += [
+            'Why one map per row: the paper takes "100 runs" "for each problem", gives '
+            "one integer obstacle count per row (a map's, not a mean), repeats the same "
+            "minimum lengths down the rows of a grid (one random path, more obstacles around "
+            'it as p0 grows), and says of its 64x64 case, one map, that "feasible paths are '
+            "found in 80 % runs\". The map seed was fixed (the experiment's first seed) "
+            "before any run was made. A few maps trap this GA, so which map a row gets "
+            "matters: see the rows on other maps and with a new map for every run below.",
+            "",
+        ]
+    text += [
+        "Ours first, the paper's in parentheses. Success: a feasible path within the "
+        "generation limit. Generations: median over the successful runs of the first "
+        "generation whose population holds a feasible path, counted as pymoo does (the "
+        "initial population is generation 1; the paper does not say how it counts), with "
+        "quartiles. Mean min length: the shortest feasible path at that generation, "
+        "averaged over the successful runs; shortest of all runs: its minimum. The paper's "
+        "lengths are near-optimal values repeated across rows (9.90 = 7 sqrt 2, "
+        "10.49 = 6 sqrt 2 + 2, 11.07 = 5 sqrt 2 + 4 on 8x8), below the shortest feasible "
+        "path of a population at its first feasible generation: the paper probably "
+        "measured them otherwise (e.g. after optimising further); we report ours as "
+        "defined here."
+        + _free_path_note(t1)
+        + " Obstacles: "
+        + ("the map's count." if single else "mean over the runs.")
+        + (
+            " SEEDED (last column, not the paper's protocol): the same runs with the "
+            'initial population seeded from planners (`seed_from="weighted"`: the '
+            "shortest, the safest and weighted-sum optimal monotone paths)."
+            if seeded
+            else ""
+        ),
+        "",
+        markdown_table(head, body),
+        "",
+        "## Runs without a feasible path",
+        "",
+        _below_text(t1)
+        + ". "
+        + (
+            f"The GA seeds of the runs that found no feasible path, per row (rerun one with "
+            f"`gapath.solve(gapath.dense_workspace(grid, p0, {main_seed}), pop_size=200, "
+            'seed=seed, seed_from="none")`):'
+            if single
+            else "The seeds (= map seeds) of the runs that found no feasible path, per row "
+            "(rerun one with `gapath.dense_workspace(grid, p0, seed)` and "
+            '`gapath.solve(..., pop_size=200, seed=seed, seed_from="none")`):'
+        ),
+        "",
+        *_miss_lines(misses),
+        "",
+    ]
     if others:
         seeds_all = [main_seed, *sorted(others)]
         by = {m: {(r["grid"], r["p0"]): r for r in rows} for m, rows in others.items()}
@@ -512,54 +661,115 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, seeded_dir=None, ot
             ok = sum(v is not None and paper is not None and v >= paper for v in vals)
             n = sum(v is not None for v in vals)
             met += ok == n
-            body.append([f"{row['grid']}x{row['grid']}", f"{row['p0']:g}", _f(paper, 3),
-                         *["-" if v is None else _f(v, 3) for v in vals], f"{ok} of {n}"])
+            body.append(
+                [
+                    f"{row['grid']}x{row['grid']}",
+                    f"{row['p0']:g}",
+                    _f(paper, 3),
+                    *["-" if v is None else _f(v, 3) for v in vals],
+                    f"{ok} of {n}",
+                ]
+            )
         per_map = {m: len(t1) - len(_below(list(by[m].values()))) for m in seeds_all}
-        text += ["## The same rows on other maps", "",
-                 f"Success % of {runs_per_row} GA runs per row on the maps `dense_workspace(grid, "
-                 f"p0, map seed)` for map seeds {', '.join(map(str, seeds_all))} (the main table "
-                 "is map " + str(main_seed) + "). Rows at or above the paper per map: "
-                 + ", ".join(f"map {m} {per_map[m]} of {len(by[m])}" for m in seeds_all)
-                 + f". Rows at or above the paper on every map: {met} of {len(t1)}.", "",
-                 markdown_table(head, body), ""]
+        text += [
+            "## The same rows on other maps",
+            "",
+            f"Success % of {runs_per_row} GA runs per row on the maps `dense_workspace(grid, "
+            f"p0, map seed)` for map seeds {', '.join(map(str, seeds_all))} (the main table "
+            "is map "
+            + str(main_seed)
+            + "). Rows at or above the paper per map: "
+            + ", ".join(f"map {m} {per_map[m]} of {len(by[m])}" for m in seeds_all)
+            + f". Rows at or above the paper on every map: {met} of {len(t1)}.",
+            "",
+            markdown_table(head, body),
+            "",
+        ]
     if per_run:
-        head = ["grid", "p0", "obstacles, mean (paper)", "success % (paper)",
-                "median gen. [q1, q3] (paper)", "mean min length", "runs"]
-        body = [[f"{r['grid']}x{r['grid']}", f"{r['p0']:g}",
-                 f"{_f(r['obstacles_mean'], 4)} ({r.get('paper_obstacles', '-')})",
-                 f"{_f(r['success_pct'], 3)} ({_f(r.get('paper_success_pct'), 3)})",
-                 f"{_gens(r)} ({_f(r.get('paper_median_generations'))})",
-                 _f(r["mean_min_path_length"], 4), _runs_cell(r)] for r in per_run]
-        text += ["## A new map for every run", "",
-                 "The same protocol with one GA run on each of 100 maps per row (map seed = GA "
-                 "seed = 1..100): the success rate expected over random maps of our generator, "
-                 "not over runs on one map. " + _below_text(per_run) + ". The map seeds of the "
-                 "runs without a feasible path (`benchmarks/dense_hard_maps.py` reruns them with "
-                 "more generations and other GA seeds, and tries other random-path generators: "
-                 "see `dense_hard_maps.md`):", "", markdown_table(head, body), "",
-                 *_miss_lines(unsuccessful_runs(per_run_dir)), ""]
+        head = [
+            "grid",
+            "p0",
+            "obstacles, mean (paper)",
+            "success % (paper)",
+            "median gen. [q1, q3] (paper)",
+            "mean min length",
+            "runs",
+        ]
+        body = [
+            [
+                f"{r['grid']}x{r['grid']}",
+                f"{r['p0']:g}",
+                f"{_f(r['obstacles_mean'], 4)} ({r.get('paper_obstacles', '-')})",
+                f"{_f(r['success_pct'], 3)} ({_f(r.get('paper_success_pct'), 3)})",
+                f"{_gens(r)} ({_f(r.get('paper_median_generations'))})",
+                _f(r["mean_min_path_length"], 4),
+                _runs_cell(r),
+            ]
+            for r in per_run
+        ]
+        text += [
+            "## A new map for every run",
+            "",
+            "The same protocol with one GA run on each of 100 maps per row (map seed = GA "
+            "seed = 1..100): the success rate expected over random maps of our generator, "
+            "not over runs on one map. " + _below_text(per_run) + ". The map seeds of the "
+            "runs without a feasible path (`benchmarks/dense_hard_maps.py` reruns them with "
+            "more generations and other GA seeds, and tries other random-path generators: "
+            "see `dense_hard_maps.md`):",
+            "",
+            markdown_table(head, body),
+            "",
+            *_miss_lines(unsuccessful_runs(per_run_dir)),
+            "",
+        ]
     if large or large_per_run:
-        head = ["grid", "p0", "map seed", "obstacles (paper)", "success %", "median gen. [q1, q3]",
-                "mean min length", "runs", "paper"]
+        head = [
+            "grid",
+            "p0",
+            "map seed",
+            "obstacles (paper)",
+            "success %",
+            "median gen. [q1, q3]",
+            "mean min length",
+            "runs",
+            "paper",
+        ]
         body = []
-        for mseed, rows in ((map_seed_of(large_dir) if large else None, large),
-                            ("new per run", large_per_run)):
+        for mseed, rows in (
+            (map_seed_of(large_dir) if large else None, large),
+            ("new per run", large_per_run),
+        ):
             for row in rows:
                 paper = PAPER_LARGE.get(row["grid"], {})
-                body.append([f"{row['grid']}x{row['grid']}", f"{row['p0']:g}", str(mseed),
-                             f"{_f(row['obstacles_mean'], 5)} ({paper.get('obstacles', '-')})",
-                             _f(row["success_pct"], 3), _gens(row), _f(row["mean_min_path_length"], 5),
-                             _runs_cell(row), paper.get("outcome", "-")])
+                body.append(
+                    [
+                        f"{row['grid']}x{row['grid']}",
+                        f"{row['p0']:g}",
+                        str(mseed),
+                        f"{_f(row['obstacles_mean'], 5)} ({paper.get('obstacles', '-')})",
+                        _f(row["success_pct"], 3),
+                        _gens(row),
+                        _f(row["mean_min_path_length"], 5),
+                        _runs_cell(row),
+                        paper.get("outcome", "-"),
+                    ]
+                )
         ref = (large or large_per_run)[0]
-        text += [f"## Larger grids (population {ref['pop_size']})", "",
-                 f"At most {ref['n_gen']} generations, population {ref['pop_size']}, "
-                 "stopped at the first feasible path; one map per grid solved by several GA "
-                 "runs, as the paper's 64x64 case (rows \"new per run\": a new map for every "
-                 "run). `dense_workspace` takes a probability: "
-                 "p0 = target / (n^2 - E[path cells]) with the mean length of the generator's "
-                 "random path measured over 2,000 seeds (`p0_for_obstacles`): 139.1 cells on "
-                 "64x64 (p0 = 0.200, 791 obstacles expected), 287.1 on 128x128 (p0 = 0.309, "
-                 "4,974 expected).", "", markdown_table(head, body), ""]
+        text += [
+            f"## Larger grids (population {ref['pop_size']})",
+            "",
+            f"At most {ref['n_gen']} generations, population {ref['pop_size']}, "
+            "stopped at the first feasible path; one map per grid solved by several GA "
+            'runs, as the paper\'s 64x64 case (rows "new per run": a new map for every '
+            "run). `dense_workspace` takes a probability: "
+            "p0 = target / (n^2 - E[path cells]) with the mean length of the generator's "
+            "random path measured over 2,000 seeds (`p0_for_obstacles`): 139.1 cells on "
+            "64x64 (p0 = 0.200, 791 obstacles expected), 287.1 on 128x128 (p0 = 0.309, "
+            "4,974 expected).",
+            "",
+            markdown_table(head, body),
+            "",
+        ]
     timing = {"table1": table1_dir}
     if seeded:
         timing["table1-seeded"] = seeded_dir
@@ -575,19 +785,36 @@ def dense_report(table1_dir, results_dir, large_dir=None, *, seeded_dir=None, ot
         t = _timing(d)
         line = f"- {part}: {t['runs']} runs, {t['seconds']:.0f} s of optimisation in total"
         if wall_seconds and wall_seconds.get(part) is not None:
-            line += (f"; wall time of the last invocation {wall_seconds[part]:.0f} s"
-                     + (f" with {workers} workers" if workers else ""))
+            line += f"; wall time of the last invocation {wall_seconds[part]:.0f} s" + (
+                f" with {workers} workers" if workers else ""
+            )
         lines.append(line + ".")
-    text += ["## Cost", "", "Measured on a shared 2-core machine (other jobs running: times "
-             "are indicative).", "", *lines, ""]
+    text += [
+        "## Cost",
+        "",
+        "Measured on a shared 2-core machine (other jobs running: times are indicative).",
+        "",
+        *lines,
+        "",
+    ]
     files = []
     results_dir.mkdir(parents=True, exist_ok=True)
-    for suffix, data in ((".md", "\n".join(text)), (".csv", buf.getvalue()),
-                         (".png", png_bytes(_plot(t1, per_run, others)))):
+    for suffix, data in (
+        (".md", "\n".join(text)),
+        (".csv", buf.getvalue()),
+        (".png", png_bytes(_plot(t1, per_run, others))),
+    ):
         atomic_write(results_dir / f"{basename}{suffix}", data)
         files.append(results_dir / f"{basename}{suffix}")
-    return {"table1": t1, "other_maps": others, "per_run": per_run, "large": large,
-            "large_per_run": large_per_run, "unsuccessful": misses, "files": files}
+    return {
+        "table1": t1,
+        "other_maps": others,
+        "per_run": per_run,
+        "large": large,
+        "large_per_run": large_per_run,
+        "unsuccessful": misses,
+        "files": files,
+    }
 
 
 def _saved_spec(store_dir) -> dict:
@@ -607,26 +834,64 @@ def _plot(rows, per_run=(), others=None):
         p0 = [r["p0"] for r in rr]
         color = f"C{i}"
         a1.plot(p0, [r["success_pct"] for r in rr], "o-", color=color, label=f"{g}x{g} gapath")
-        a2.plot(p0, [np.nan if r["median_generations"] is None else r["median_generations"] for r in rr],
-                "o-", color=color, label=f"{g}x{g} gapath")
+        a2.plot(
+            p0,
+            [np.nan if r["median_generations"] is None else r["median_generations"] for r in rr],
+            "o-",
+            color=color,
+            label=f"{g}x{g} gapath",
+        )
         if others:
-            band = [[r["success_pct"]] + [o["success_pct"] for rows_m in others.values()
-                                           for o in rows_m if o["grid"] == g and o["p0"] == r["p0"]]
-                    for r in rr]
-            a1.fill_between(p0, [min(b) for b in band], [max(b) for b in band], color=color,
-                            alpha=0.12, lw=0,
-                            label=f"{g}x{g} gapath, min-max over {len(others) + 1} maps")
+            band = [
+                [r["success_pct"]]
+                + [
+                    o["success_pct"]
+                    for rows_m in others.values()
+                    for o in rows_m
+                    if o["grid"] == g and o["p0"] == r["p0"]
+                ]
+                for r in rr
+            ]
+            a1.fill_between(
+                p0,
+                [min(b) for b in band],
+                [max(b) for b in band],
+                color=color,
+                alpha=0.12,
+                lw=0,
+                label=f"{g}x{g} gapath, min-max over {len(others) + 1} maps",
+            )
         pr = [r for r in per_run if r["grid"] == g]
         if pr:
-            a1.plot([r["p0"] for r in pr], [r["success_pct"] for r in pr], ":", color=color,
-                    alpha=0.8, label=f"{g}x{g} gapath, new map per run")
+            a1.plot(
+                [r["p0"] for r in pr],
+                [r["success_pct"] for r in pr],
+                ":",
+                color=color,
+                alpha=0.8,
+                label=f"{g}x{g} gapath, new map per run",
+            )
         paper = [(r["p0"], paper_row(g, r["p0"])) for r in rr]
         paper = [(p, q) for p, q in paper if q]
         if paper:
-            a1.plot([p for p, _ in paper], [q["success_pct"] for _, q in paper], "s--", color=color,
-                    alpha=0.6, mfc="none", label=f"{g}x{g} paper")
-            a2.plot([p for p, _ in paper], [q["median_generations"] for _, q in paper], "s--",
-                    color=color, alpha=0.6, mfc="none", label=f"{g}x{g} paper")
+            a1.plot(
+                [p for p, _ in paper],
+                [q["success_pct"] for _, q in paper],
+                "s--",
+                color=color,
+                alpha=0.6,
+                mfc="none",
+                label=f"{g}x{g} paper",
+            )
+            a2.plot(
+                [p for p, _ in paper],
+                [q["median_generations"] for _, q in paper],
+                "s--",
+                color=color,
+                alpha=0.6,
+                mfc="none",
+                label=f"{g}x{g} paper",
+            )
     a1.set_xlabel("p0")
     a1.set_ylabel("success %")
     a1.set_ylim(-5, 105)
@@ -645,8 +910,16 @@ def _plot(rows, per_run=(), others=None):
 # ---------------------------------------------------------------------------
 
 #: ``--quick``: small grids, a few runs per row (the test suite runs it).
-QUICK = dict(grids=(8, 16), p0s=(0.3, 0.7), runs=2, n_gen=40, large_sizes=(64,),
-             large_runs=1, large_pop=40, large_gen=5)
+QUICK = dict(
+    grids=(8, 16),
+    p0s=(0.3, 0.7),
+    runs=2,
+    n_gen=40,
+    large_sizes=(64,),
+    large_runs=1,
+    large_pop=40,
+    large_gen=5,
+)
 
 
 def _seed_list(text: str) -> list[int]:
@@ -663,11 +936,15 @@ def _seed_list(text: str) -> list[int]:
             else:
                 out.append(int(part))
         except ValueError:
-            raise SystemExit(f"gapath experiment dense: --map-seeds: expected non-negative integers "
-                             f"or ranges like 1,2,5-7, got {text!r}") from None
+            raise SystemExit(
+                f"gapath experiment dense: --map-seeds: expected non-negative integers "
+                f"or ranges like 1,2,5-7, got {text!r}"
+            ) from None
     if not out or min(out) < 0:
-        raise SystemExit(f"gapath experiment dense: --map-seeds: expected non-negative integers "
-                         f"or ranges like 1,2,5-7, got {text!r}")
+        raise SystemExit(
+            f"gapath experiment dense: --map-seeds: expected non-negative integers "
+            f"or ranges like 1,2,5-7, got {text!r}"
+        )
     return list(dict.fromkeys(out))
 
 
@@ -675,32 +952,52 @@ def register_experiment(subparsers) -> None:
     from gapath.commands.experiment import add_executor_options
 
     p = subparsers.add_parser("dense", help="Ahmed & Deb's dense-obstacle experiment (Table 1)")
-    p.add_argument("--out", required=True,
-                   help="store directory (DIR/table1-map<S>, DIR/large-map<S>, ...)")
-    p.add_argument("--quick", action="store_true",
-                   help=f"a few runs on small grids ({QUICK['grids']}, p0 {QUICK['p0s']}, "
-                        f"{QUICK['runs']} runs per row, at most {QUICK['n_gen']} generations)")
-    p.add_argument("--results", default=None,
-                   help="where dense.md/.csv/.png go (default: docs/results; with --quick: --out)")
-    p.add_argument("--runs", type=int, default=None,
-                   help="GA runs per Table 1 row (default: 100)")
+    p.add_argument("--out", required=True, help="store directory (DIR/table1-map<S>, DIR/large-map<S>, ...)")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help=f"a few runs on small grids ({QUICK['grids']}, p0 {QUICK['p0s']}, "
+        f"{QUICK['runs']} runs per row, at most {QUICK['n_gen']} generations)",
+    )
+    p.add_argument(
+        "--results",
+        default=None,
+        help="where dense.md/.csv/.png go (default: docs/results; with --quick: --out)",
+    )
+    p.add_argument("--runs", type=int, default=None, help="GA runs per Table 1 row (default: 100)")
     p.add_argument("--grids", default=None, help="comma-separated grid sides (default: 8,16,32)")
     p.add_argument("--p0", default=None, help="comma-separated p0 values (default: 0.1,...,1.0)")
-    p.add_argument("--map-seeds", default=str(MAP_SEED),
-                   help=f"map seeds of the rows, e.g. 1,2,3 or 1-5 (default: {MAP_SEED}): the first "
-                        "gives the main table, the others a table of every row's success per map")
-    p.add_argument("--per-run-maps", action="store_true",
-                   help="also run every row with a new map per run (map seed = run seed; "
-                        "DIR/table1-per-run-maps, DIR/large-per-run-maps)")
-    p.add_argument("--large-runs", type=int, default=None,
-                   help="GA runs on the 64x64 and 128x128 maps (default: 10, as the paper; 0 "
-                        "skips them)")
-    p.add_argument("--seeded", action="store_true",
-                   help="also run the main table with the initial population seeded from "
-                        "planners (seed_from=weighted; DIR/table1-map<S>-seeded), reported beside "
-                        "the paper's protocol and marked SEEDED")
-    p.add_argument("--engine", choices=("auto", "paper", "fast"), default="auto",
-                   help="GA engine (default: fast when available, else paper)")
+    p.add_argument(
+        "--map-seeds",
+        default=str(MAP_SEED),
+        help=f"map seeds of the rows, e.g. 1,2,3 or 1-5 (default: {MAP_SEED}): the first "
+        "gives the main table, the others a table of every row's success per map",
+    )
+    p.add_argument(
+        "--per-run-maps",
+        action="store_true",
+        help="also run every row with a new map per run (map seed = run seed; "
+        "DIR/table1-per-run-maps, DIR/large-per-run-maps)",
+    )
+    p.add_argument(
+        "--large-runs",
+        type=int,
+        default=None,
+        help="GA runs on the 64x64 and 128x128 maps (default: 10, as the paper; 0 skips them)",
+    )
+    p.add_argument(
+        "--seeded",
+        action="store_true",
+        help="also run the main table with the initial population seeded from "
+        "planners (seed_from=weighted; DIR/table1-map<S>-seeded), reported beside "
+        "the paper's protocol and marked SEEDED",
+    )
+    p.add_argument(
+        "--engine",
+        choices=("auto", "paper", "fast"),
+        default="auto",
+        help="GA engine (default: fast when available, else paper)",
+    )
     add_executor_options(p)
     p.set_defaults(func=run)
 
@@ -709,8 +1006,11 @@ def run(args) -> int:
     from gapath.experiments.runner import run_experiment
 
     quick = args.quick
-    grids = tuple(int(g) for g in args.grids.split(",")) if args.grids else (
-        QUICK["grids"] if quick else (8, 16, 32))
+    grids = (
+        tuple(int(g) for g in args.grids.split(","))
+        if args.grids
+        else (QUICK["grids"] if quick else (8, 16, 32))
+    )
     p0s = tuple(float(p) for p in args.p0.split(",")) if args.p0 else (QUICK["p0s"] if quick else P0S)
     runs = args.runs or (QUICK["runs"] if quick else 100)
     n_gen = QUICK["n_gen"] if quick else 500
@@ -719,29 +1019,81 @@ def run(args) -> int:
     large_runs = args.large_runs if args.large_runs is not None else (QUICK["large_runs"] if quick else 10)
     out = Path(args.out)
     sfx = "-quick" if quick else ""
-    jobs = [(f"table1-map{m}", table1_spec(grids, p0s, runs, n_gen=n_gen, engine=args.engine,
-                                           map_seed=m, name=f"dense-table1-map{m}{sfx}"))
-            for m in map_seeds]
+    jobs = [
+        (
+            f"table1-map{m}",
+            table1_spec(
+                grids,
+                p0s,
+                runs,
+                n_gen=n_gen,
+                engine=args.engine,
+                map_seed=m,
+                name=f"dense-table1-map{m}{sfx}",
+            ),
+        )
+        for m in map_seeds
+    ]
     if args.seeded:
-        jobs.append((f"table1-map{main}-seeded",
-                     table1_spec(grids, p0s, runs, n_gen=n_gen, engine=args.engine, map_seed=main,
-                                 seed_from="weighted", name=f"dense-table1-map{main}-seeded{sfx}")))
+        jobs.append(
+            (
+                f"table1-map{main}-seeded",
+                table1_spec(
+                    grids,
+                    p0s,
+                    runs,
+                    n_gen=n_gen,
+                    engine=args.engine,
+                    map_seed=main,
+                    seed_from="weighted",
+                    name=f"dense-table1-map{main}-seeded{sfx}",
+                ),
+            )
+        )
     if args.per_run_maps:
-        jobs.append(("table1-per-run-maps",
-                     table1_spec(grids, p0s, runs, n_gen=n_gen, engine=args.engine, map_seed="run",
-                                 name=f"dense-table1-per-run-maps{sfx}")))
+        jobs.append(
+            (
+                "table1-per-run-maps",
+                table1_spec(
+                    grids,
+                    p0s,
+                    runs,
+                    n_gen=n_gen,
+                    engine=args.engine,
+                    map_seed="run",
+                    name=f"dense-table1-per-run-maps{sfx}",
+                ),
+            )
+        )
     if large_runs > 0:
-        lkw = dict(pop_size=QUICK["large_pop"] if quick else 500,
-                   n_gen=QUICK["large_gen"] if quick else 500, engine=args.engine)
+        lkw = dict(
+            pop_size=QUICK["large_pop"] if quick else 500,
+            n_gen=QUICK["large_gen"] if quick else 500,
+            engine=args.engine,
+        )
         sizes = QUICK["large_sizes"] if quick else (64, 128)
-        jobs.append((f"large-map{main}", large_spec(sizes, large_runs, map_seed=main,
-                                                    name=f"dense-large-map{main}{sfx}", **lkw)))
+        jobs.append(
+            (
+                f"large-map{main}",
+                large_spec(sizes, large_runs, map_seed=main, name=f"dense-large-map{main}{sfx}", **lkw),
+            )
+        )
         if args.per_run_maps:
-            jobs.append(("large-per-run-maps", large_spec(sizes, large_runs, map_seed="run",
-                                                          name=f"dense-large-per-run-maps{sfx}", **lkw)))
+            jobs.append(
+                (
+                    "large-per-run-maps",
+                    large_spec(
+                        sizes, large_runs, map_seed="run", name=f"dense-large-per-run-maps{sfx}", **lkw
+                    ),
+                )
+            )
     wall = {}
-    kw = dict(workers=args.workers, scheduler=args.scheduler, progress=not args.quiet,
-              retry_failed=args.retry_failed)
+    kw = dict(
+        workers=args.workers,
+        scheduler=args.scheduler,
+        progress=not args.quiet,
+        retry_failed=args.retry_failed,
+    )
     failed = 0
     try:
         for name, spec in jobs:
@@ -754,16 +1106,23 @@ def run(args) -> int:
         print(f"interrupted: finished runs are kept in {out}; run the same command to resume")
         return 130
     results = Path(args.results) if args.results else (out if quick else Path("docs/results"))
-    wall = {k.replace(f"-map{main}", "") if k in (f"table1-map{main}", f"table1-map{main}-seeded",
-                                                   f"large-map{main}") else k: v
-            for k, v in wall.items()}
-    rep = dense_report(out / f"table1-map{main}", results,
-                       out / f"large-map{main}" if large_runs > 0 else None,
-                       seeded_dir=out / f"table1-map{main}-seeded",
-                       other_map_dirs=[out / f"table1-map{m}" for m in map_seeds[1:]],
-                       per_run_dir=out / "table1-per-run-maps",
-                       large_per_run_dir=out / "large-per-run-maps" if large_runs > 0 else None,
-                       wall_seconds=wall, workers=args.workers)
+    wall = {
+        k.replace(f"-map{main}", "")
+        if k in (f"table1-map{main}", f"table1-map{main}-seeded", f"large-map{main}")
+        else k: v
+        for k, v in wall.items()
+    }
+    rep = dense_report(
+        out / f"table1-map{main}",
+        results,
+        out / f"large-map{main}" if large_runs > 0 else None,
+        seeded_dir=out / f"table1-map{main}-seeded",
+        other_map_dirs=[out / f"table1-map{m}" for m in map_seeds[1:]],
+        per_run_dir=out / "table1-per-run-maps",
+        large_per_run_dir=out / "large-per-run-maps" if large_runs > 0 else None,
+        wall_seconds=wall,
+        workers=args.workers,
+    )
     if not args.quiet:
         print("wrote " + ", ".join(str(f) for f in rep["files"]))
     return 0 if failed == 0 else 1

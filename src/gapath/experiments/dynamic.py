@@ -44,16 +44,30 @@ import numpy as np
 from gapath.errors import ConfigError
 from gapath.results import dumps
 
-__all__ = ["DynamicStudy", "LABELS", "PLANNER_ORDER", "SCENARIO_ORDER", "SEED_TABLES", "register_experiment",
-           "run", "run_fov", "write_outputs"]
+__all__ = [
+    "DynamicStudy",
+    "LABELS",
+    "PLANNER_ORDER",
+    "SCENARIO_ORDER",
+    "SEED_TABLES",
+    "register_experiment",
+    "run",
+    "run_fov",
+    "write_outputs",
+]
 
 #: Planners of the study, in table order.
 PLANNER_ORDER = ("hybrid-astar", "rrt", "rrt-star", "astar", "dstar-lite")
 #: Scenarios of the study.
 SCENARIO_ORDER = ("maze", "warehouse")
 #: Display names.
-LABELS = {"hybrid-astar": "NO-MOPP (hybrid A*)", "rrt": "RRT", "rrt-star": "RRT*",
-          "astar": "A* (grid)", "dstar-lite": "D* Lite (grid)"}
+LABELS = {
+    "hybrid-astar": "NO-MOPP (hybrid A*)",
+    "rrt": "RRT",
+    "rrt-star": "RRT*",
+    "astar": "A* (grid)",
+    "dstar-lite": "D* Lite (grid)",
+}
 
 #: NO-MOPP's Tables I-IV (MATLAB 2021a, 100 runs): path length mean (m),
 #: execution time (s), direct distance (m).
@@ -107,8 +121,9 @@ class DynamicStudy:
 
     def jsonl(self) -> str:
         """One JSON line per table row, with the issue's :func:`targets`."""
-        return "".join(dumps({"benchmark": "dynamic_study", **r, "targets": targets(r)}) + "\n"
-                       for r in self.table)
+        return "".join(
+            dumps({"benchmark": "dynamic_study", **r, "targets": targets(r)}) + "\n" for r in self.table
+        )
 
     def to_markdown(self) -> str:
         return _markdown(self)
@@ -169,9 +184,19 @@ def aggregate(rows, scenario, planner, direct, optimum) -> dict:
     }
 
 
-def run(n_runs: int = 100, *, scenarios=SCENARIO_ORDER, planners=PLANNER_ORDER, seed: int = 0,
-        map_seed: int = 0, robot=None, settings=None, obstacles: dict | None = None,
-        progress=None, example_run: int | None = None) -> DynamicStudy:
+def run(
+    n_runs: int = 100,
+    *,
+    scenarios=SCENARIO_ORDER,
+    planners=PLANNER_ORDER,
+    seed: int = 0,
+    map_seed: int = 0,
+    robot=None,
+    settings=None,
+    obstacles: dict | None = None,
+    progress=None,
+    example_run: int | None = None,
+) -> DynamicStudy:
     """Simulate ``n_runs`` runs per scenario and planner.
 
     Parameters
@@ -215,7 +240,7 @@ def run(n_runs: int = 100, *, scenarios=SCENARIO_ORDER, planners=PLANNER_ORDER, 
     if n < 1:
         raise ConfigError(f"n_runs must be a positive integer, got {n_runs!r}")
     for p in planners:
-        make_planner(p)                                   # validates the name
+        make_planner(p)  # validates the name
     robot = Robot() if robot is None else robot
     settings = SimSettings() if settings is None else settings
     obstacles = dict(obstacles or {})
@@ -230,14 +255,14 @@ def run(n_runs: int = 100, *, scenarios=SCENARIO_ORDER, planners=PLANNER_ORDER, 
         optimum = astar(ws.replace(corner_cutting=False)).length
         # warm-up: load or compile every kernel before any timing
         for p in planners:
-            simulate(ws, make_planner(p), robot, first.stationary, first.moving,
-                     settings, first.start, seed)
+            simulate(ws, make_planner(p), robot, first.stationary, first.moving, settings, first.start, seed)
         results = {}
         for i in range(n):
             sc = first if i == 0 else make_scenario(ws, seed + i, **obstacles)
             for p in planners:
-                res = simulate(ws, make_planner(p), robot, sc.stationary, sc.moving, settings,
-                               sc.start, seed + i)
+                res = simulate(
+                    ws, make_planner(p), robot, sc.stationary, sc.moving, settings, sc.start, seed + i
+                )
                 row = {"scenario": scen, "obstacle_seed": seed + i, **res.summary()}
                 rows.append(row)
                 results[(i, p)] = (sc, res)
@@ -255,23 +280,38 @@ def run(n_runs: int = 100, *, scenarios=SCENARIO_ORDER, planners=PLANNER_ORDER, 
                     pick = i
                     break
         pick = min(max(int(pick), 0), n - 1)
-        examples[scen] = (results[(pick, planners[0])][0],
-                          {p: results[(pick, p)][1] for p in planners})
-    study = DynamicStudy(rows=rows, table=table, examples=examples,
-                         seconds=time.perf_counter() - t_start,
-                         settings={"n_runs": n, "scenarios": list(map(str, scenarios)),
-                                   "planners": list(planners), "seed": seed, "map_seed": map_seed,
-                                   "robot": _robot_dict(robot), "sim": _settings_dict(settings),
-                                   "obstacles": obstacles})
+        examples[scen] = (results[(pick, planners[0])][0], {p: results[(pick, p)][1] for p in planners})
+    study = DynamicStudy(
+        rows=rows,
+        table=table,
+        examples=examples,
+        seconds=time.perf_counter() - t_start,
+        settings={
+            "n_runs": n,
+            "scenarios": list(map(str, scenarios)),
+            "planners": list(planners),
+            "seed": seed,
+            "map_seed": map_seed,
+            "robot": _robot_dict(robot),
+            "sim": _settings_dict(settings),
+            "obstacles": obstacles,
+        },
+    )
     return study
 
 
 def _robot_dict(robot) -> dict:
     c = robot.car
-    return {"wheelbase": c.wheelbase, "max_steer_deg": round(math.degrees(c.max_steer), 2),
-            "min_turning_radius": round(c.min_turning_radius, 4), "speed": c.speed,
-            "radius": c.radius, "sensor_range": robot.sensor_range, "fov_deg": robot.fov,
-            "line_of_sight": robot.line_of_sight}
+    return {
+        "wheelbase": c.wheelbase,
+        "max_steer_deg": round(math.degrees(c.max_steer), 2),
+        "min_turning_radius": round(c.min_turning_radius, 4),
+        "speed": c.speed,
+        "radius": c.radius,
+        "sensor_range": robot.sensor_range,
+        "fov_deg": robot.fov,
+        "line_of_sight": robot.line_of_sight,
+    }
 
 
 def _settings_dict(settings) -> dict:
@@ -312,7 +352,8 @@ def _markdown(study: DynamicStudy) -> str:
         f"disc footprint of radius {rb['radius']} m; sensor range {rb['sensor_range']} m, field "
         f"of view +-{rb['fov_deg']:g} degrees, line of sight blocked by walls.",
         "* Dynamic obstacles per run (`gapath.scenarios.dynamic_obstacles`): "
-        + _obstacle_text(s["obstacles"]) + ".",
+        + _obstacle_text(s["obstacles"])
+        + ".",
         f"* Simulation (`gapath.dynamic`): tick {s['sim']['dt']} s, prediction horizon "
         f"{s['sim']['horizon']} s, safety margin {s['sim']['safety_margin']} m, replanning "
         f"threshold {s['sim']['replan_distance']} m (halt below it or when a collision is less "
@@ -335,13 +376,17 @@ def _markdown(study: DynamicStudy) -> str:
         rows = [r for r in study.table if r["scenario"] == scen]
         if not rows:
             continue
-        lines += [f"## {scen}", "",
-                  f"Straight-line distance {_fmt(rows[0]['direct_distance'])} m; grid optimum "
-                  f"(8-connected A*, no corner cutting) {_fmt(rows[0]['grid_optimum'])} m.", "",
-                  "| planner | success % | coll. / blocked / timeout | path length mean (m) | "
-                  "length / direct | global plan length (m) | global plan ms (median / mean) | "
-                  "total plan ms (median / mean) | replans | halts | sim time (s) |",
-                  "|---|---|---|---|---|---|---|---|---|---|---|"]
+        lines += [
+            f"## {scen}",
+            "",
+            f"Straight-line distance {_fmt(rows[0]['direct_distance'])} m; grid optimum "
+            f"(8-connected A*, no corner cutting) {_fmt(rows[0]['grid_optimum'])} m.",
+            "",
+            "| planner | success % | coll. / blocked / timeout | path length mean (m) | "
+            "length / direct | global plan length (m) | global plan ms (median / mean) | "
+            "total plan ms (median / mean) | replans | halts | sim time (s) |",
+            "|---|---|---|---|---|---|---|---|---|---|---|",
+        ]
         for r in rows:
             lines.append(
                 f"| {LABELS.get(r['planner'], r['planner'])} | {_fmt(r['success_pct'], 0)} | "
@@ -350,13 +395,17 @@ def _markdown(study: DynamicStudy) -> str:
                 f"{_fmt(r['global_length_mean'])} | {_fmt(r['global_plan_ms_median'], 1)} / "
                 f"{_fmt(r['global_plan_ms_mean'], 1)} | {_fmt(r['total_plan_ms_median'], 1)} / "
                 f"{_fmt(r['total_plan_ms_mean'], 1)} | {_fmt(r['replans_mean'], 1)} | "
-                f"{_fmt(r['halts_mean'], 1)} | {_fmt(r['sim_time_mean_s'], 1)} |")
+                f"{_fmt(r['halts_mean'], 1)} | {_fmt(r['sim_time_mean_s'], 1)} |"
+            )
         seeds = [t for t in SEED_TABLES if t[0] == scen]
         if seeds:
-            lines += ["", f"The seeds on their {scen} (MATLAB 2021a, 100 runs, success "
-                      f"{SEED_SUCCESS_PCT:g} %):", "",
-                      "| NO-MOPP row | path length mean (m) | length / direct | execution time (s) |",
-                      "|---|---|---|---|"]
+            lines += [
+                "",
+                f"The seeds on their {scen} (MATLAB 2021a, 100 runs, success {SEED_SUCCESS_PCT:g} %):",
+                "",
+                "| NO-MOPP row | path length mean (m) | length / direct | execution time (s) |",
+                "|---|---|---|---|",
+            ]
             for _, name, length, secs, direct in seeds:
                 lines.append(f"| {name} | {length:.2f} | {length / direct:.3f} | {secs:.3f} |")
         lines.append("")
@@ -368,14 +417,17 @@ def _obstacle_text(o: dict) -> str:
     nc = o.get("n_crossers", 2)
     nw = o.get("n_wanderers", 2)
     lo, hi = o.get("speed_range", (0.3, 0.7))
-    return (f"{ns} stationary obstacles of 1-2 cells appearing on the reference path before the "
-            f"robot can see them, {nc} moving obstacles timed to cross the robot's reference path "
-            f"and {nw} wandering ones, all bouncing, radius {o.get('obstacle_radius', 0.4)} m, "
-            f"speeds {lo}-{hi} m/s")
+    return (
+        f"{ns} stationary obstacles of 1-2 cells appearing on the reference path before the "
+        f"robot can see them, {nc} moving obstacles timed to cross the robot's reference path "
+        f"and {nw} wandering ones, all bouncing, radius {o.get('obstacle_radius', 0.4)} m, "
+        f"speeds {lo}-{hi} m/s"
+    )
 
 
-def write_outputs(study: DynamicStudy, out_dir, *, gif: bool = True, png: bool = True,
-                  stem: str = "dynamic", fov_rows=None) -> list[Path]:
+def write_outputs(
+    study: DynamicStudy, out_dir, *, gif: bool = True, png: bool = True, stem: str = "dynamic", fov_rows=None
+) -> list[Path]:
     """Write ``<stem>.md``, ``<stem>.csv``, ``<stem>.jsonl``, one
     ``<stem>_<scenario>.gif`` per scenario and ``<stem>_paths.png`` into
     ``out_dir`` (with ``fov_rows`` from :func:`run_fov`, a field-of-view
@@ -392,12 +444,16 @@ def write_outputs(study: DynamicStudy, out_dir, *, gif: bool = True, png: bool =
     if gif:
         names += [f"{stem}_{scen}.gif" for scen in study.examples]
     if names:
-        md += "## Pictures\n\n" + "".join(
-            f"![{n}]({n})\n\n" for n in names) + (
-            "The still picture shows the distance driven by every planner in one run per "
-            "scenario (the same obstacles); the animations show NO-MOPP in that run: robot "
-            "(red arrow), current plan (dotted), dynamic stationary obstacles (purple, once "
-            "they have appeared) and moving obstacles (green).\n")
+        md += (
+            "## Pictures\n\n"
+            + "".join(f"![{n}]({n})\n\n" for n in names)
+            + (
+                "The still picture shows the distance driven by every planner in one run per "
+                "scenario (the same obstacles); the animations show NO-MOPP in that run: robot "
+                "(red arrow), current plan (dotted), dynamic stationary obstacles (purple, once "
+                "they have appeared) and moving obstacles (green).\n"
+            )
+        )
     table_csv = study.to_csv()
     jsonl = study.jsonl()
     if fov_rows:
@@ -406,10 +462,8 @@ def write_outputs(study: DynamicStudy, out_dir, *, gif: bool = True, png: bool =
         w.writeheader()
         w.writerows(fov_rows)
         table_csv += "\n" + buf.getvalue()
-        jsonl += "".join(dumps({"benchmark": "dynamic_study_fov", **r}) + "\n"
-                         for r in fov_rows)
-    for name, data in ((f"{stem}.md", md), (f"{stem}.csv", table_csv),
-                       (f"{stem}.jsonl", jsonl)):
+        jsonl += "".join(dumps({"benchmark": "dynamic_study_fov", **r}) + "\n" for r in fov_rows)
+    for name, data in ((f"{stem}.md", md), (f"{stem}.csv", table_csv), (f"{stem}.jsonl", jsonl)):
         atomic_write(out / name, data)
         written.append(out / name)
     if png and study.examples:
@@ -435,8 +489,9 @@ def _paths_png(study, path) -> Path:
     fig, axes = plt.subplots(1, k, figsize=(7.2 * k, 5.2))
     axes = np.atleast_1d(axes)
     for ax, (scen, (sc, results)) in zip(axes, study.examples.items()):
-        plot_paths(sc.workspace, results, sc.stationary, ax=ax,
-                   title=f"{scen}: run with obstacle seed {sc.seed}")
+        plot_paths(
+            sc.workspace, results, sc.stationary, ax=ax, title=f"{scen}: run with obstacle seed {sc.seed}"
+        )
     fig.tight_layout()
     buf = io.BytesIO()
     fig.savefig(buf, format="png", dpi=90)
@@ -449,9 +504,20 @@ def _paths_png(study, path) -> Path:
 # field of view (the paper's +-45, +-90 and +-180 degree sensors)
 # ---------------------------------------------------------------------------
 
-def run_fov(n_runs: int = 100, *, fovs=(45.0, 90.0, 180.0), planner: str = "hybrid-astar",
-            scenarios=SCENARIO_ORDER, seed: int = 0, map_seed: int = 0, robot=None,
-            settings=None, obstacles: dict | None = None, progress=None) -> list[dict]:
+
+def run_fov(
+    n_runs: int = 100,
+    *,
+    fovs=(45.0, 90.0, 180.0),
+    planner: str = "hybrid-astar",
+    scenarios=SCENARIO_ORDER,
+    seed: int = 0,
+    map_seed: int = 0,
+    robot=None,
+    settings=None,
+    obstacles: dict | None = None,
+    progress=None,
+) -> list[dict]:
     """The study's table rows for one planner with sensors of several fields
     of view (half-angles in degrees); each row gets a ``fov_deg`` column."""
     from dataclasses import replace
@@ -461,9 +527,17 @@ def run_fov(n_runs: int = 100, *, fovs=(45.0, 90.0, 180.0), planner: str = "hybr
     base = Robot() if robot is None else robot
     rows = []
     for fov in fovs:
-        st = run(n_runs, scenarios=scenarios, planners=(planner,), seed=seed, map_seed=map_seed,
-                 robot=replace(base, fov=float(fov)), settings=settings, obstacles=obstacles,
-                 progress=progress)
+        st = run(
+            n_runs,
+            scenarios=scenarios,
+            planners=(planner,),
+            seed=seed,
+            map_seed=map_seed,
+            robot=replace(base, fov=float(fov)),
+            settings=settings,
+            obstacles=obstacles,
+            progress=progress,
+        )
         rows += [{"fov_deg": float(fov), **r} for r in st.table]
     return rows
 
@@ -472,17 +546,22 @@ def fov_markdown(rows) -> str:
     """A markdown section for :func:`run_fov`'s rows."""
     if not rows:
         return ""
-    lines = ["## Field of view (NO-MOPP)", "",
-             "The same runs with sensors of +-45, +-90 and +-180 degrees (the paper's three "
-             "sensor views).", "",
-             "| scenario | field of view | success % | coll. / blocked / timeout | path length "
-             "mean (m) | total plan ms (median) | halts |",
-             "|---|---|---|---|---|---|---|"]
+    lines = [
+        "## Field of view (NO-MOPP)",
+        "",
+        "The same runs with sensors of +-45, +-90 and +-180 degrees (the paper's three sensor views).",
+        "",
+        "| scenario | field of view | success % | coll. / blocked / timeout | path length "
+        "mean (m) | total plan ms (median) | halts |",
+        "|---|---|---|---|---|---|---|",
+    ]
     for r in sorted(rows, key=lambda r: (r["scenario"], r["fov_deg"])):
-        lines.append(f"| {r['scenario']} | +-{r['fov_deg']:g} | {_fmt(r['success_pct'], 0)} | "
-                     f"{r['collisions']} / {r['blocked']} / {r['timeouts']} | "
-                     f"{_fmt(r['path_length_mean'])} | {_fmt(r['total_plan_ms_median'], 1)} | "
-                     f"{_fmt(r['halts_mean'], 1)} |")
+        lines.append(
+            f"| {r['scenario']} | +-{r['fov_deg']:g} | {_fmt(r['success_pct'], 0)} | "
+            f"{r['collisions']} / {r['blocked']} / {r['timeouts']} | "
+            f"{_fmt(r['path_length_mean'])} | {_fmt(r['total_plan_ms_median'], 1)} | "
+            f"{_fmt(r['halts_mean'], 1)} |"
+        )
     return "\n".join(lines) + "\n\n"
 
 
@@ -490,29 +569,41 @@ def fov_markdown(rows) -> str:
 # gapath experiment dynamic
 # ---------------------------------------------------------------------------
 
+
 def register_experiment(subparsers) -> None:
     """``gapath experiment dynamic``: the study, written to ``--out``."""
     p = subparsers.add_parser(
-        "dynamic", help="NO-MOPP's dynamic-environment study (its Tables I-IV)",
+        "dynamic",
+        help="NO-MOPP's dynamic-environment study (its Tables I-IV)",
         description="Hybrid A* (NO-MOPP), RRT, RRT*, A* and D* Lite among appearing and moving "
-                    "obstacles on the complex maze and the warehouse; writes dynamic.md/.csv/"
-                    ".jsonl, a picture of the paths and one animation per scenario.")
-    p.add_argument("--runs", type=int, default=None, help="runs per scenario and planner "
-                                                          "(default: 100; 5 with --quick)")
+        "obstacles on the complex maze and the warehouse; writes dynamic.md/.csv/"
+        ".jsonl, a picture of the paths and one animation per scenario.",
+    )
+    p.add_argument(
+        "--runs", type=int, default=None, help="runs per scenario and planner (default: 100; 5 with --quick)"
+    )
     p.add_argument("--quick", action="store_true", help="5 runs per row, no field-of-view study")
-    p.add_argument("--out", default="gapath-dynamic",
-                   help="output directory (default: %(default)s; docs/results holds the "
-                        "committed results)")
-    p.add_argument("--planners", default=",".join(PLANNER_ORDER),
-                   help="comma-separated planners (default: %(default)s)")
-    p.add_argument("--scenarios", default=",".join(SCENARIO_ORDER),
-                   help="comma-separated scenarios or map files (default: %(default)s)")
+    p.add_argument(
+        "--out",
+        default="gapath-dynamic",
+        help="output directory (default: %(default)s; docs/results holds the committed results)",
+    )
+    p.add_argument(
+        "--planners", default=",".join(PLANNER_ORDER), help="comma-separated planners (default: %(default)s)"
+    )
+    p.add_argument(
+        "--scenarios",
+        default=",".join(SCENARIO_ORDER),
+        help="comma-separated scenarios or map files (default: %(default)s)",
+    )
     p.add_argument("--seed", type=int, default=0, help="first obstacle seed (default: 0)")
     p.add_argument("--map-seed", type=int, default=0, help="seed of the maps (default: 0)")
-    p.add_argument("--fov", type=float, default=180.0,
-                   help="sensor half-angle, degrees (default: %(default)s)")
-    p.add_argument("--fov-study", action="store_true",
-                   help="also run NO-MOPP with +-45, +-90 and +-180 degree sensors")
+    p.add_argument(
+        "--fov", type=float, default=180.0, help="sensor half-angle, degrees (default: %(default)s)"
+    )
+    p.add_argument(
+        "--fov-study", action="store_true", help="also run NO-MOPP with +-45, +-90 and +-180 degree sensors"
+    )
     p.add_argument("--no-gif", action="store_true", help="skip the animations")
     p.add_argument("--quiet", action="store_true")
     p.set_defaults(func=run_command)
@@ -536,8 +627,15 @@ def run_command(args) -> int:
         if not args.quiet and (done[0] % 10 == 0 or done[0] == total):
             print(f"\r{done[0]}/{total} runs", end="", file=sys.stderr, flush=True)
 
-    study = run(n, scenarios=scenarios, planners=planners, seed=args.seed,
-                map_seed=args.map_seed, robot=robot, progress=progress)
+    study = run(
+        n,
+        scenarios=scenarios,
+        planners=planners,
+        seed=args.seed,
+        map_seed=args.map_seed,
+        robot=robot,
+        progress=progress,
+    )
     fov_rows = []
     if args.fov_study and not args.quick:
         fov_rows = run_fov(n, scenarios=scenarios, seed=args.seed, map_seed=args.map_seed)

@@ -33,8 +33,17 @@ PROTOCOLS = {"seeds": "none", "seeded": "weighted"}
 QUICK = dict(runs=2, pop_size=40, n_gen=15)
 
 
-def run(workspace=None, *, runs=10, pop_size=500, n_gen=500, seed=1, encodings=ENCODING_ORDER,
-        protocols=tuple(PROTOCOLS), progress=None) -> dict:
+def run(
+    workspace=None,
+    *,
+    runs=10,
+    pop_size=500,
+    n_gen=500,
+    seed=1,
+    encodings=ENCODING_ORDER,
+    protocols=tuple(PROTOCOLS),
+    progress=None,
+) -> dict:
     """Run the comparison.
 
     Returns
@@ -51,19 +60,35 @@ def run(workspace=None, *, runs=10, pop_size=500, n_gen=500, seed=1, encodings=E
     for protocol in protocols:
         for enc in encodings:
             t0 = time.perf_counter()
-            m = multirun(ws, runs=runs, seed=seed, encoding=enc, pop_size=pop_size, n_gen=n_gen,
-                         seed_from=PROTOCOLS[protocol])
+            m = multirun(
+                ws,
+                runs=runs,
+                seed=seed,
+                encoding=enc,
+                pop_size=pop_size,
+                n_gen=n_gen,
+                seed_from=PROTOCOLS[protocol],
+            )
             per_run = np.array([hv_ratio(r.front.F, exact.F) for r in m.runs])
             q1, med, q3 = np.percentile(per_run, [25, 50, 75])
-            rows.append(dict(
-                protocol=protocol, encoding=enc, runs=runs, pop_size=pop_size, n_gen=n_gen,
-                merged_hv_ratio=round(float(hv_ratio(m.front.F, exact.F)), 6),
-                merged_exact_points_found=round(float(coverage(m.front.F, exact.F)), 4),
-                merged_front_size=len(m.front),
-                run_hv_median=round(float(med), 6), run_hv_q1=round(float(q1), 6),
-                run_hv_q3=round(float(q3), 6), run_hv_min=round(float(per_run.min()), 6),
-                run_hv_max=round(float(per_run.max()), 6),
-                seconds=round(time.perf_counter() - t0, 2)))
+            rows.append(
+                dict(
+                    protocol=protocol,
+                    encoding=enc,
+                    runs=runs,
+                    pop_size=pop_size,
+                    n_gen=n_gen,
+                    merged_hv_ratio=round(float(hv_ratio(m.front.F, exact.F)), 6),
+                    merged_exact_points_found=round(float(coverage(m.front.F, exact.F)), 4),
+                    merged_front_size=len(m.front),
+                    run_hv_median=round(float(med), 6),
+                    run_hv_q1=round(float(q1), 6),
+                    run_hv_q3=round(float(q3), 6),
+                    run_hv_min=round(float(per_run.min()), 6),
+                    run_hv_max=round(float(per_run.max()), 6),
+                    seconds=round(time.perf_counter() - t0, 2),
+                )
+            )
             fronts[(protocol, enc)] = m.front.F
             if progress:
                 progress(rows[-1])
@@ -92,12 +117,16 @@ def _markdown(result) -> str:
             f"| {r['protocol']} | {r['encoding']} | {r['merged_hv_ratio']:.4f} | "
             f"{r['merged_exact_points_found']:.0%} | {r['merged_front_size']} | "
             f"{r['run_hv_median']:.4f} [{r['run_hv_q1']:.4f}, {r['run_hv_q3']:.4f}] | "
-            f"{r['run_hv_min']:.4f}..{r['run_hv_max']:.4f} | {r['seconds']} |")
-    lines += ["", "The paper (Fig. 3, no numbers published): the integer coding's merged front "
-              "dominates the mixed coding's, which is better than the binary coding's.", ""]
+            f"{r['run_hv_min']:.4f}..{r['run_hv_max']:.4f} | {r['seconds']} |"
+        )
+    lines += [
+        "",
+        "The paper (Fig. 3, no numbers published): the integer coding's merged front "
+        "dominates the mixed coding's, which is better than the binary coding's.",
+        "",
+    ]
     for protocol in dict.fromkeys(r["protocol"] for r in rows):
-        ranked = sorted((r for r in rows if r["protocol"] == protocol),
-                        key=lambda r: -r["merged_hv_ratio"])
+        ranked = sorted((r for r in rows if r["protocol"] == protocol), key=lambda r: -r["merged_hv_ratio"])
         order = " > ".join(f"{r['encoding']} ({r['merged_hv_ratio']:.4f})" for r in ranked)
         lines.append(f"- `{protocol}`: by merged hypervolume ratio, {order}.")
     return "\n".join(lines) + "\n"
@@ -140,18 +169,24 @@ def register_experiment(subparsers) -> None:
     p.add_argument("--runs", type=int, default=10)
     p.add_argument("--pop", type=int, default=500)
     p.add_argument("--gen", type=int, default=500)
-    p.add_argument("--quick", action="store_true", help=f"{QUICK['runs']} runs x pop {QUICK['pop_size']} x {QUICK['n_gen']} generations")
-    p.add_argument("--out", default="gapath-encodings",
-                   help="output directory (default: %(default)s; docs/results holds the "
-                        "committed results)")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help=f"{QUICK['runs']} runs x pop {QUICK['pop_size']} x {QUICK['n_gen']} generations",
+    )
+    p.add_argument(
+        "--out",
+        default="gapath-encodings",
+        help="output directory (default: %(default)s; docs/results holds the committed results)",
+    )
     p.set_defaults(func=_cli)
 
 
 def _cli(args) -> int:
-    runs, pop, gen = ((QUICK["runs"], QUICK["pop_size"], QUICK["n_gen"]) if args.quick
-                      else (args.runs, args.pop, args.gen))
-    result = run(runs=runs, pop_size=pop, n_gen=gen,
-                 progress=lambda r: print(dumps(r), flush=True))
+    runs, pop, gen = (
+        (QUICK["runs"], QUICK["pop_size"], QUICK["n_gen"]) if args.quick else (args.runs, args.pop, args.gen)
+    )
+    result = run(runs=runs, pop_size=pop, n_gen=gen, progress=lambda r: print(dumps(r), flush=True))
     for f in write_outputs(result, args.out):
         print(f"wrote {f}")
     return 0

@@ -49,9 +49,20 @@ import numpy as np
 from gapath.errors import ConfigError, NoPathError
 
 __all__ = [
-    "mars_workspace", "mars_costmap", "study_workspace", "run_workspace", "mars_study",
-    "MarsStudy", "PAPER_TABLE_I", "OBJECTIVES", "PLANNERS", "summary_rows", "study_stats",
-    "write_results", "QUICK", "FULL",
+    "mars_workspace",
+    "mars_costmap",
+    "study_workspace",
+    "run_workspace",
+    "mars_study",
+    "MarsStudy",
+    "PAPER_TABLE_I",
+    "OBJECTIVES",
+    "PLANNERS",
+    "summary_rows",
+    "study_stats",
+    "write_results",
+    "QUICK",
+    "FULL",
 ]
 
 #: Settings of ``--quick`` (tests, smoke runs).
@@ -137,8 +148,8 @@ def mars_workspace(seed: int, size: int = 100, coverage: float = 0.23):
         raise ConfigError(f"coverage must be in [0, 0.9], got {coverage!r}")
     start, goal = (size - 1, 0), (0, size - 1)
     keep = np.zeros((size, size), bool)
-    keep[size - 3:, :3] = True
-    keep[:3, size - 3:] = True
+    keep[size - 3 :, :3] = True
+    keep[:3, size - 3 :] = True
     target = int(np.ceil(coverage * size * size))
     for attempt in range(1000):
         rng = np.random.default_rng([int(seed), attempt])
@@ -148,7 +159,7 @@ def mars_workspace(seed: int, size: int = 100, coverage: float = 0.23):
             side = int(rng.integers(lo, min(hi, size) + 1))
             r = int(rng.integers(0, size - side + 1))
             c = int(rng.integers(0, size - side + 1))
-            occ[r:r + side, c:c + side] = True
+            occ[r : r + side, c : c + side] = True
             occ &= ~keep
         ws = Workspace(occ, start, goal, name=f"mars-{size}x{size}-s{seed}")
         try:
@@ -187,7 +198,7 @@ def mars_costmap(workspace, seed: int, *, dem=None, solar_rate: float = 1.0):
         elevation = elevation_from_dem(dem, (h, w), method="reflect", offset=offset)
         terrain = f"mars_dtm reflect offset={offset}"
     else:
-        fseed = int(rng.integers(2 ** 31))
+        fseed = int(rng.integers(2**31))
         elevation = fractal_terrain((h, w), seed=fseed)
         terrain = f"fractal seed={fseed}"
     free = np.argwhere(~workspace.occ)
@@ -227,9 +238,17 @@ def study_workspace(index: int, *, seed: int = 2015, size: int = 100, dem=None):
     return ws, mars_costmap(ws, ws_seed, dem=dem)
 
 
-def run_workspace(index: int, *, seed: int = 2015, size: int = 100, dem=None,
-                  ga_pop: int = 100, ga_gen: int = 150, ga_seed: int = 1,
-                  ga_seed_from: str = "weighted") -> dict:
+def run_workspace(
+    index: int,
+    *,
+    seed: int = 2015,
+    size: int = 100,
+    dem=None,
+    ga_pop: int = 100,
+    ga_gen: int = 150,
+    ga_seed: int = 1,
+    ga_seed_from: str = "weighted",
+) -> dict:
     """Run every planner of the study on workspace ``index``.
 
     ``ga_seed_from`` is the GA's initial population: ``"weighted"`` (the
@@ -254,24 +273,43 @@ def run_workspace(index: int, *, seed: int = 2015, size: int = 100, dem=None,
     from gapath.problems import GridPathProblem
 
     ws, cm = study_workspace(index, seed=seed, size=size, dem=dem)
-    rec = {"index": int(index), "workspace": ws.name, "terrain": cm.terrain,
-           "risk_cell": list(cm.risk_cells[0]), "obstacle_share": ws.n_obstacles / ws.occ.size}
+    rec = {
+        "index": int(index),
+        "workspace": ws.name,
+        "terrain": cm.terrain,
+        "risk_cell": list(cm.risk_cells[0]),
+        "obstacle_share": ws.n_obstacles / ws.occ.size,
+    }
     for label, name in PLANNERS.items():
         t0, c0 = time.perf_counter(), time.process_time()
         res = plan(cm, name, OBJECTIVES)
-        rec[label] = {"F": res.F.tolist(), "seconds": time.perf_counter() - t0,
-                      "cpu_seconds": time.process_time() - c0,
-                      "expansions": res.expansions, "cells": len(res.path)}
+        rec[label] = {
+            "F": res.F.tolist(),
+            "seconds": time.perf_counter() - t0,
+            "cpu_seconds": time.process_time() - c0,
+            "expansions": res.expansions,
+            "cells": len(res.path),
+        }
     problem = GridPathProblem(ws, objectives=OBJECTIVES, costmap=cm)
     t0, c0 = time.perf_counter(), time.process_time()
     sampling = None if ga_seed_from == "none" else PlannerSampling(ga_seed_from)
-    res = minimize(problem, paper_nsga2(ga_pop, tiebreak=None, sampling=sampling), ("n_gen", ga_gen),
-                   seed=ga_seed, copy_algorithm=False)
+    res = minimize(
+        problem,
+        paper_nsga2(ga_pop, tiebreak=None, sampling=sampling),
+        ("n_gen", ga_gen),
+        seed=ga_seed,
+        copy_algorithm=False,
+    )
     front = path_front(problem, res.pop.get("X"))
     seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
     F = np.asarray(front.F, float)
-    ga = {"front_size": len(front), "seconds": seconds, "cpu_seconds": cpu,
-          "evaluations": int(res.algorithm.evaluator.n_eval), "front": F.tolist()}
+    ga = {
+        "front_size": len(front),
+        "seconds": seconds,
+        "cpu_seconds": cpu,
+        "evaluations": int(res.algorithm.evaluator.n_eval),
+        "front": F.tolist(),
+    }
     if len(front):
         ga["F"] = F[front.knee()].tolist()
         ga["F_mean"] = F.mean(axis=0).tolist()
@@ -339,9 +377,18 @@ def summary_rows(records) -> list[dict]:
     return rows
 
 
-def mars_study(n_workspaces: int = 100, *, seed: int = 2015, size: int = 100, dem=None,
-               ga_pop: int = 100, ga_gen: int = 150, ga_seed: int = 1,
-               ga_seed_from: str = "weighted", on_record=None) -> MarsStudy:
+def mars_study(
+    n_workspaces: int = 100,
+    *,
+    seed: int = 2015,
+    size: int = 100,
+    dem=None,
+    ga_pop: int = 100,
+    ga_gen: int = 150,
+    ga_seed: int = 1,
+    ga_seed_from: str = "weighted",
+    on_record=None,
+) -> MarsStudy:
     """Run the study on ``n_workspaces`` workspaces (indices ``0 ..
     n_workspaces - 1``); ``on_record(record)`` is called after each.
 
@@ -359,25 +406,40 @@ def mars_study(n_workspaces: int = 100, *, seed: int = 2015, size: int = 100, de
     if int(n_workspaces) <= 0:
         raise ConfigError(f"n_workspaces must be positive, got {n_workspaces!r}")
     if ga_seed_from not in SEED_SOURCES:
-        raise ConfigError(f"ga_seed_from must be one of {', '.join(SEED_SOURCES)}, "
-                          f"got {ga_seed_from!r}")
+        raise ConfigError(f"ga_seed_from must be one of {', '.join(SEED_SOURCES)}, got {ga_seed_from!r}")
     if isinstance(dem, str) and dem == "fractal":
         terrain = "fractal"
     else:
-        dem = _default_dem() if dem is None else dem    # looked up once, not per workspace
+        dem = _default_dem() if dem is None else dem  # looked up once, not per workspace
         terrain = FALLBACK_TERRAIN if dem is None else "mars_dtm reflect"
         dem = "fractal" if dem is None else dem
-    settings = dict(n_workspaces=int(n_workspaces), seed=int(seed), size=int(size),
-                    ga_pop=int(ga_pop), ga_gen=int(ga_gen), ga_seed=int(ga_seed),
-                    ga_seed_from=str(ga_seed_from),
-                    solar_rate=1.0, coverage=0.23, objectives=list(OBJECTIVES),
-                    terrain=terrain)
+    settings = dict(
+        n_workspaces=int(n_workspaces),
+        seed=int(seed),
+        size=int(size),
+        ga_pop=int(ga_pop),
+        ga_gen=int(ga_gen),
+        ga_seed=int(ga_seed),
+        ga_seed_from=str(ga_seed_from),
+        solar_rate=1.0,
+        coverage=0.23,
+        objectives=list(OBJECTIVES),
+        terrain=terrain,
+    )
     _warm_up()
     t0 = time.perf_counter()
     records = []
     for i in range(int(n_workspaces)):
-        rec = run_workspace(i, seed=seed, size=size, dem=dem, ga_pop=ga_pop, ga_gen=ga_gen,
-                            ga_seed=ga_seed, ga_seed_from=ga_seed_from)
+        rec = run_workspace(
+            i,
+            seed=seed,
+            size=size,
+            dem=dem,
+            ga_pop=ga_pop,
+            ga_gen=ga_gen,
+            ga_seed=ga_seed,
+            ga_seed_from=ga_seed_from,
+        )
         records.append(rec)
         if on_record is not None:
             on_record(rec)
@@ -390,6 +452,7 @@ def mars_study(n_workspaces: int = 100, *, seed: int = 2015, size: int = 100, de
 # statistics and the report
 # ---------------------------------------------------------------------------
 
+
 def study_stats(records) -> dict:
     """Figures beside the table: D*-PO against the GA front and against A*,
     and the planners' time distribution (ms)."""
@@ -398,23 +461,25 @@ def study_stats(records) -> dict:
         return out
     out["dstar_po_dominated_by_ga"] = int(sum(r["dstar_po_dominated_by_ga"] for r in records))
     out["mean_share_of_ga_front_dominated_by_dstar_po"] = float(
-        np.mean([r["dstar_po_dominates_ga"] for r in records]))
+        np.mean([r["dstar_po_dominates_ga"] for r in records])
+    )
     out["ga_front_size_mean"] = float(np.mean([r["GA"]["front_size"] for r in records]))
     out["ga_feasible_fronts"] = int(sum(r["GA"]["front_size"] > 0 for r in records))
     po = np.array([r["D*-PO"]["F"] for r in records])
     for label in ("A*", "D*"):
         other = np.array([r[label]["F"] for r in records])
-        out[f"dstar_po_better_than_{label}"] = [int(np.sum(po[:, j] < other[:, j] - 1e-12))
-                                                for j in range(4)]
-        out[f"dstar_po_worse_than_{label}"] = [int(np.sum(po[:, j] > other[:, j] + 1e-12))
-                                               for j in range(4)]
+        out[f"dstar_po_better_than_{label}"] = [int(np.sum(po[:, j] < other[:, j] - 1e-12)) for j in range(4)]
+        out[f"dstar_po_worse_than_{label}"] = [int(np.sum(po[:, j] > other[:, j] + 1e-12)) for j in range(4)]
         out[f"dstar_po_dominates_{label}"] = int(sum(_dominates(a, b) for a, b in zip(po, other)))
         out[f"{label}_dominates_dstar_po"] = int(sum(_dominates(b, a) for a, b in zip(po, other)))
     for label in ("A*", "D*", "D*-PO", "GA"):
         for key, name in (("seconds", "time_ms"), ("cpu_seconds", "cpu_ms")):
             t = np.array([r[label].get(key, np.nan) for r in records]) * 1000
-            out[f"{name}_{label}"] = {"median": float(np.median(t)), "mean": float(t.mean()),
-                                      "max": float(t.max())}
+            out[f"{name}_{label}"] = {
+                "median": float(np.median(t)),
+                "mean": float(t.mean()),
+                "max": float(t.max()),
+            }
     return out
 
 
@@ -426,8 +491,9 @@ def _csv(rows) -> str:
     w = csv.DictWriter(buf, fieldnames=list(rows[0]), lineterminator="\n")
     w.writeheader()
     for row in rows:
-        w.writerow({k: ("" if v is None else (f"{v:.6g}" if isinstance(v, float) else v))
-                    for k, v in row.items()})
+        w.writerow(
+            {k: ("" if v is None else (f"{v:.6g}" if isinstance(v, float) else v)) for k, v in row.items()}
+        )
     return buf.getvalue()
 
 
@@ -435,12 +501,19 @@ def _terrain_text(settings: dict) -> str:
     """What the elevation was, in words, from ``settings["terrain"]``."""
     terrain = settings.get("terrain", "")
     if terrain.startswith("mars_dtm"):
-        return ("elevation windows of the HiRISE Mars DTM tiled with reflection (one pixel per "
-                "cell) and normalised to [0, 1] per window")
-    why = ("the Mars DTM `dem/mars_dtm.npy` was not found" if terrain == FALLBACK_TERRAIN
-           else "`--terrain fractal`")
-    return (f"**seeded fractal terrain** as elevation, one per workspace, normalised to [0, 1] "
-            f"(not the HiRISE Mars DTM: {why})")
+        return (
+            "elevation windows of the HiRISE Mars DTM tiled with reflection (one pixel per "
+            "cell) and normalised to [0, 1] per window"
+        )
+    why = (
+        "the Mars DTM `dem/mars_dtm.npy` was not found"
+        if terrain == FALLBACK_TERRAIN
+        else "`--terrain fractal`"
+    )
+    return (
+        f"**seeded fractal terrain** as elevation, one per workspace, normalised to [0, 1] "
+        f"(not the HiRISE Mars DTM: {why})"
+    )
 
 
 def _markdown(study: MarsStudy, stats: dict) -> str:
@@ -460,9 +533,12 @@ def _markdown(study: MarsStudy, stats: dict) -> str:
         "objectives); D*-PO = D* Lite with Pareto selection of the open node, priority length; "
         f"GA = paper_nsga2 (pop {st['ga_pop']}, {st['ga_gen']} generations, no smoothness "
         "tie-break, seed 1, first population "
-        + ("all random" if st.get("ga_seed_from", "none") == "none" else
-           f"seeded from planners (`{st['ga_seed_from']}`: the monotone paths optimal for each "
-           "objective and for weighted sums)")
+        + (
+            "all random"
+            if st.get("ga_seed_from", "none") == "none"
+            else f"seeded from planners (`{st['ga_seed_from']}`: the monotone paths optimal for each "
+            "objective and for weighted sums)"
+        )
         + ") on GridPathProblem with the four layer objectives, column-monotone "
         "paths; its row is the knee point of each front. Times per workspace: wall-clock mean and "
         "CPU (process time) median, on 2 cores shared with other jobs (wall times are inflated "
@@ -474,8 +550,14 @@ def _markdown(study: MarsStudy, stats: dict) -> str:
     ]
     for r in study.rows:
         paper = [r[k] for k in ("paper_F1", "paper_F2", "paper_F3", "paper_F4", "paper_time_s")]
-        cells = [f"{r['F1_length']:.2f}", f"{r['F2_elevation']:.3f}", f"{r['F3_solar']:.2f}",
-                 f"{r['F4_risk']:.4f}", f"{r['time_mean_s']:.4f}", f"{r['cpu_median_s']:.4f}"]
+        cells = [
+            f"{r['F1_length']:.2f}",
+            f"{r['F2_elevation']:.3f}",
+            f"{r['F3_solar']:.2f}",
+            f"{r['F4_risk']:.4f}",
+            f"{r['time_mean_s']:.4f}",
+            f"{r['cpu_median_s']:.4f}",
+        ]
         cells += ["-" if v is None else f"{v:g}" for v in paper]
         lines.append(f"| {r['algorithm']} | " + " | ".join(cells) + " |")
     n = stats["n"]
@@ -493,9 +575,11 @@ def _markdown(study: MarsStudy, stats: dict) -> str:
     for label in ("A*", "D*"):
         better = ", ".join(f"{o} {b}" for o, b in zip(obj, stats[f"dstar_po_better_than_{label}"]))
         worse = ", ".join(f"{o} {b}" for o, b in zip(obj, stats[f"dstar_po_worse_than_{label}"]))
-        lines.append(f"* vs {label}: D*-PO better on {better}; worse on {worse} (of {n}); "
-                     f"D*-PO dominates {label} on {stats[f'dstar_po_dominates_{label}']}, "
-                     f"{label} dominates D*-PO on {stats[f'{label}_dominates_dstar_po']}.")
+        lines.append(
+            f"* vs {label}: D*-PO better on {better}; worse on {worse} (of {n}); "
+            f"D*-PO dominates {label} on {stats[f'dstar_po_dominates_{label}']}, "
+            f"{label} dominates D*-PO on {stats[f'{label}_dominates_dstar_po']}."
+        )
     t, c = stats["time_ms_D*-PO"], stats["cpu_ms_D*-PO"]
     lines += [
         f"* D*-PO planning time per workspace (plan from scratch, objectives recomputed): "
@@ -552,6 +636,7 @@ def record_line(rec: dict) -> dict:
 # gapath experiment mars
 # ---------------------------------------------------------------------------
 
+
 def register_experiment(subparsers) -> None:
     p = subparsers.add_parser("mars", help="Lavin's Mars rover study (Table I): A*, D*, D*-PO, GA")
     add_arguments(p)
@@ -560,28 +645,41 @@ def register_experiment(subparsers) -> None:
 
 def add_arguments(p) -> None:
     """The options of ``gapath experiment mars`` and ``benchmarks/mars_study.py``."""
-    p.add_argument("--quick", action="store_true",
-                   help=f"{QUICK['n_workspaces']} workspaces, GA pop {QUICK['ga_pop']} x "
-                        f"{QUICK['ga_gen']} generations")
-    p.add_argument("--n", type=int, default=None,
-                   help=f"workspaces (default: {FULL['n_workspaces']}; --quick: "
-                        f"{QUICK['n_workspaces']})")
+    p.add_argument(
+        "--quick",
+        action="store_true",
+        help=f"{QUICK['n_workspaces']} workspaces, GA pop {QUICK['ga_pop']} x {QUICK['ga_gen']} generations",
+    )
+    p.add_argument(
+        "--n",
+        type=int,
+        default=None,
+        help=f"workspaces (default: {FULL['n_workspaces']}; --quick: {QUICK['n_workspaces']})",
+    )
     p.add_argument("--seed", type=int, default=2015, help="workspace seed (default: %(default)s)")
     p.add_argument("--size", type=int, default=100, help="grid side (default: %(default)s)")
-    p.add_argument("--ga-pop", type=int, default=None,
-                   help=f"GA population (default: {FULL['ga_pop']})")
-    p.add_argument("--ga-gen", type=int, default=None,
-                   help=f"GA generations (default: {FULL['ga_gen']})")
-    p.add_argument("--ga-seed-from", default="weighted",
-                   help="the GA's first population: weighted (default, as gapath solve), exact, "
-                        "astar or none (all random)")
-    p.add_argument("--terrain", choices=("auto", "mars", "fractal"), default="auto",
-                   help="elevation source: the Mars DTM (mars; an error when it is not found), "
-                        "seeded fractal terrain (fractal), or the DTM when found and fractal "
-                        "terrain otherwise, said so in the output (auto) (default: %(default)s)")
-    p.add_argument("--out", default=None,
-                   help="where mars.md and mars.csv go (default: gapath-mars; --quick: "
-                        "gapath-mars-quick; docs/results holds the committed results)")
+    p.add_argument("--ga-pop", type=int, default=None, help=f"GA population (default: {FULL['ga_pop']})")
+    p.add_argument("--ga-gen", type=int, default=None, help=f"GA generations (default: {FULL['ga_gen']})")
+    p.add_argument(
+        "--ga-seed-from",
+        default="weighted",
+        help="the GA's first population: weighted (default, as gapath solve), exact, "
+        "astar or none (all random)",
+    )
+    p.add_argument(
+        "--terrain",
+        choices=("auto", "mars", "fractal"),
+        default="auto",
+        help="elevation source: the Mars DTM (mars; an error when it is not found), "
+        "seeded fractal terrain (fractal), or the DTM when found and fractal "
+        "terrain otherwise, said so in the output (auto) (default: %(default)s)",
+    )
+    p.add_argument(
+        "--out",
+        default=None,
+        help="where mars.md and mars.csv go (default: gapath-mars; --quick: "
+        "gapath-mars-quick; docs/results holds the committed results)",
+    )
     p.add_argument("--jsonl", default=None, help="also append the JSON lines to this file")
     p.add_argument("--quiet", action="store_true", help="no JSON lines on stdout")
 
@@ -612,26 +710,35 @@ def run(args) -> int:
     if args.terrain != "fractal":
         path = find_mars_dtm()
         if path is None and args.terrain == "mars":
-            raise ConfigError("--terrain mars: the Mars DTM dem/mars_dtm.npy was not found (looked "
-                              "in $GAPATH_SHARED_DATA and in shared/data beside the gapath "
-                              "sources); set GAPATH_SHARED_DATA to the data folder, or use "
-                              "--terrain fractal")
+            raise ConfigError(
+                "--terrain mars: the Mars DTM dem/mars_dtm.npy was not found (looked "
+                "in $GAPATH_SHARED_DATA and in shared/data beside the gapath "
+                "sources); set GAPATH_SHARED_DATA to the data folder, or use "
+                "--terrain fractal"
+            )
         if path is None:
             import sys
 
-            print("gapath: the Mars DTM dem/mars_dtm.npy was not found; the study uses seeded "
-                  "fractal terrain (labelled so in mars.md; --terrain mars makes this an error)",
-                  file=sys.stderr)
+            print(
+                "gapath: the Mars DTM dem/mars_dtm.npy was not found; the study uses seeded "
+                "fractal terrain (labelled so in mars.md; --terrain mars makes this an error)",
+                file=sys.stderr,
+            )
     try:
-        study = mars_study(cfg["n_workspaces"], seed=args.seed, size=args.size, dem=dem,
-                           ga_pop=cfg["ga_pop"], ga_gen=cfg["ga_gen"],
-                           ga_seed_from=args.ga_seed_from,
-                           on_record=lambda r: emit({"kind": "mars_workspace", **record_line(r)}))
+        study = mars_study(
+            cfg["n_workspaces"],
+            seed=args.seed,
+            size=args.size,
+            dem=dem,
+            ga_pop=cfg["ga_pop"],
+            ga_gen=cfg["ga_gen"],
+            ga_seed_from=args.ga_seed_from,
+            on_record=lambda r: emit({"kind": "mars_workspace", **record_line(r)}),
+        )
         files = write_results(study, out)
         for row in study.rows:
             emit({"kind": "mars_table", **study.settings, **row})
-        emit({"kind": "mars_stats", **study.settings, **study_stats(study.records),
-              "seconds": study.seconds})
+        emit({"kind": "mars_stats", **study.settings, **study_stats(study.records), "seconds": study.seconds})
     finally:
         if sink is not None:
             sink.close()

@@ -66,8 +66,9 @@ def merge_fronts(fronts) -> PathFront:
     F = np.concatenate([f.F.reshape(-1, len(objectives)) for f in fronts])
     metrics = np.concatenate([f.metrics.reshape(-1, 4) for f in fronts])
     n_var = max((f.X.shape[1] for f in fronts if f.X.ndim == 2), default=0)
-    X = np.concatenate([f.X.reshape(len(f.F), -1) if f.X.size else np.zeros((len(f.F), n_var))
-                        for f in fronts])
+    X = np.concatenate(
+        [f.X.reshape(len(f.F), -1) if f.X.size else np.zeros((len(f.F), n_var)) for f in fronts]
+    )
     paths = [p for f in fronts for p in f.paths]
     keep = select_front(F, metrics)
     return PathFront(objectives, F[keep], metrics[keep], X[keep], [paths[i] for i in keep])

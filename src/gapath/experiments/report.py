@@ -41,8 +41,15 @@ from gapath.experiments.store import ResultStore
 __all__ = ["Report", "aggregate", "configuration_rows", "report"]
 
 #: Indicators summarised by median and quartiles (when present in the runs).
-QUARTILE_FIELDS = ("n_gen", "first_feasible_gen", "min_length", "front_size", "n_eval",
-                   "hv_ratio", "igd_plus")
+QUARTILE_FIELDS = (
+    "n_gen",
+    "first_feasible_gen",
+    "min_length",
+    "front_size",
+    "n_eval",
+    "hv_ratio",
+    "igd_plus",
+)
 
 
 @dataclass
@@ -111,24 +118,34 @@ def configuration_rows(spec, results: list[dict], failed_keys=frozenset()) -> tu
     for r in results:
         by_config.setdefault(r["config"], []).append(r)
     seeds = norm["seeds"]
-    has = {name: any(_value(r, name) is not None for r in results if r.get("status") == "ok")
-           for name in QUARTILE_FIELDS}
+    has = {
+        name: any(_value(r, name) is not None for r in results if r.get("status") == "ok")
+        for name in QUARTILE_FIELDS
+    }
     has["first_feasible_gen"] = has["first_feasible_gen"] or any(
-        norm["options"].get(k) for k in ("stop_at_first_feasible", "record_first_feasible"))
+        norm["options"].get(k) for k in ("stop_at_first_feasible", "record_first_feasible")
+    )
     rows, fronts = [], {}
     for conf in spec.configurations():
         ck = config_key(conf)
         runs = [r for r in by_config.get(ck, []) if r.get("status") == "ok"]
         n_failed = sum(run_key(dict(conf, seed=s)) in failed_keys for s in seeds)
-        row = {"config": ck[:10], "map": map_label(conf["map"]), "encoding": conf["encoding"],
-               "engine": conf["engine"]}
+        row = {
+            "config": ck[:10],
+            "map": map_label(conf["map"]),
+            "encoding": conf["encoding"],
+            "engine": conf["engine"],
+        }
         for a in axes:
             row[a] = _fmt_setting(conf["settings"][a])
         success = [r for r in runs if r["indicators"]["feasible"]]
-        row.update(runs=len(seeds), done=len(runs), failed=n_failed,
-                   success_pct=100.0 * len(success) / len(runs) if runs else None,
-                   obstacles_mean=float(np.mean([r["indicators"]["n_obstacles"] for r in runs]))
-                   if runs else None)
+        row.update(
+            runs=len(seeds),
+            done=len(runs),
+            failed=n_failed,
+            success_pct=100.0 * len(success) / len(runs) if runs else None,
+            obstacles_mean=float(np.mean([r["indicators"]["n_obstacles"] for r in runs])) if runs else None,
+        )
         for name in QUARTILE_FIELDS:
             if not has[name]:
                 continue
@@ -164,8 +181,12 @@ def _csv_text(rows, columns) -> str:
     w = csv.writer(buf, lineterminator="\n")
     w.writerow(columns)
     for row in rows:
-        w.writerow(["" if row[c] is None else (repr(row[c]) if isinstance(row[c], float) else row[c])
-                    for c in columns])
+        w.writerow(
+            [
+                "" if row[c] is None else (repr(row[c]) if isinstance(row[c], float) else row[c])
+                for c in columns
+            ]
+        )
     return buf.getvalue()
 
 
@@ -195,9 +216,14 @@ def _markdown(norm: dict, rows, columns, status: dict, versions: list[dict]) -> 
     axes = list(norm["grid"])
     header = ["config", "map", "encoding", "engine", *axes, "runs (failed)", "success %"]
     present = {c.rsplit("_", 1)[0] for c in columns if c.endswith("_median")}
-    labels = [("n_gen", "generations"), ("first_feasible_gen", "first feasible gen."),
-              ("min_length", "min length"), ("front_size", "front size"),
-              ("hv_ratio", "hv ratio"), ("igd_plus", "IGD+")]
+    labels = [
+        ("n_gen", "generations"),
+        ("first_feasible_gen", "first feasible gen."),
+        ("min_length", "min length"),
+        ("front_size", "front size"),
+        ("hv_ratio", "hv ratio"),
+        ("igd_plus", "IGD+"),
+    ]
     labels = [(n, lab) for n, lab in labels if n in present]
     header += [lab for _, lab in labels]
     if "min_length_mean" in columns:
@@ -206,8 +232,15 @@ def _markdown(norm: dict, rows, columns, status: dict, versions: list[dict]) -> 
         header.append("merged front")
     body = []
     for row in rows:
-        line = [row["config"], row["map"], row["encoding"], row["engine"], *[row[a] for a in axes],
-                f"{row['done']}/{row['runs']} ({row['failed']})", _num(row["success_pct"], 3)]
+        line = [
+            row["config"],
+            row["map"],
+            row["encoding"],
+            row["engine"],
+            *[row[a] for a in axes],
+            f"{row['done']}/{row['runs']} ({row['failed']})",
+            _num(row["success_pct"], 3),
+        ]
         line += [_mq(row, n) for n, _ in labels]
         if "min_length_mean" in columns:
             line.append(_num(row["min_length_mean"]))
@@ -219,17 +252,25 @@ def _markdown(norm: dict, rows, columns, status: dict, versions: list[dict]) -> 
         text += [norm["description"], ""]
     settings = ", ".join(f"{k}={_fmt_setting(v)}" for k, v in sorted(norm["settings"].items()))
     opts = ", ".join(f"{k}={v}" for k, v in sorted(norm["options"].items()) if v)
-    text += [f"Runs: {status['done']} of {status['total']} done, {status['failed']} failed, "
-             f"{status['pending']} pending. Seeds: {len(norm['seeds'])} per configuration.",
-             f"Fixed settings: {settings or '(solve defaults)'}." + (f" Options: {opts}." if opts else ""),
-             "", "Cells are medians [first, third quartile] over the runs (generations to the "
-             "first feasible path and path lengths over the successful runs; generation 1 is "
-             "the initial population).", "", markdown_table(header, body)]
+    text += [
+        f"Runs: {status['done']} of {status['total']} done, {status['failed']} failed, "
+        f"{status['pending']} pending. Seeds: {len(norm['seeds'])} per configuration.",
+        f"Fixed settings: {settings or '(solve defaults)'}." + (f" Options: {opts}." if opts else ""),
+        "",
+        "Cells are medians [first, third quartile] over the runs (generations to the "
+        "first feasible path and path lengths over the successful runs; generation 1 is "
+        "the initial population).",
+        "",
+        markdown_table(header, body),
+    ]
     if versions:
         v = versions[0]
-        text.append("Versions: " + ", ".join(f"{k} {v[k]}" for k in sorted(v)) + "."
-                    + (f" ({len(versions)} different version sets among the runs.)"
-                       if len(versions) > 1 else ""))
+        text.append(
+            "Versions: "
+            + ", ".join(f"{k} {v[k]}" for k in sorted(v))
+            + "."
+            + (f" ({len(versions)} different version sets among the runs.)" if len(versions) > 1 else "")
+        )
     return "\n".join(text) + "\n"
 
 
@@ -240,9 +281,15 @@ def _timing_csv(spec, results) -> str:
     rows = []
     for conf in spec.configurations():
         secs = [s for s in by_config.get(config_key(conf), []) if s is not None]
-        rows.append({"config": config_key(conf)[:10], "map": map_label(conf["map"]), "runs": len(secs),
-                     "seconds_median": float(np.median(secs)) if secs else None,
-                     "seconds_total": float(np.sum(secs)) if secs else None})
+        rows.append(
+            {
+                "config": config_key(conf)[:10],
+                "map": map_label(conf["map"]),
+                "runs": len(secs),
+                "seconds_median": float(np.median(secs)) if secs else None,
+                "seconds_total": float(np.sum(secs)) if secs else None,
+            }
+        )
     return _csv_text(rows, ["config", "map", "runs", "seconds_median", "seconds_total"])
 
 
@@ -274,8 +321,11 @@ def _plot_fronts(spec, rows, fronts):
 def _plot_indicators(rows, results):
     import matplotlib.pyplot as plt
 
-    for name, label in (("first_feasible_gen", "generation of the first feasible path"),
-                        ("hv_ratio", "hypervolume ratio"), ("front_size", "front size")):
+    for name, label in (  # noqa: B007 (label is used after the loop)
+        ("first_feasible_gen", "generation of the first feasible path"),
+        ("hv_ratio", "hypervolume ratio"),
+        ("front_size", "front size"),
+    ):
         data = {}
         for r in results:
             v = _value(r, name) if r.get("status") == "ok" else None
@@ -349,8 +399,10 @@ def report(store_dir, *, plots: bool = True) -> Report:
     if plots:
         from gapath.plotting import png_bytes
 
-        for name, draw in (("fronts.png", lambda: _plot_fronts(spec, rows, fronts)),
-                           ("indicators.png", lambda: _plot_indicators(rows, results))):
+        for name, draw in (
+            ("fronts.png", lambda: _plot_fronts(spec, rows, fronts)),
+            ("indicators.png", lambda: _plot_indicators(rows, results)),
+        ):
             ax = draw()
             if ax is not None:
                 write(name, png_bytes(ax))

@@ -71,12 +71,21 @@ from pymoo.core.callback import Callback
 
 from gapath.errors import ConfigError
 from gapath.experiments.dask_config import LOCAL_SCHEDULER  # "local": see make_executor
-from gapath.experiments.spec import (ExperimentSpec, build_workspace, config_key, load_spec,
-                                     map_label, run_key)
+from gapath.experiments.spec import ExperimentSpec, build_workspace, config_key, load_spec, map_label, run_key
 from gapath.experiments.store import ResultStore, store_versions
 
-__all__ = ["ExperimentRun", "FirstFeasible", "executor_slots", "front_from_dict", "front_to_dict",
-           "make_executor", "run_batch", "run_experiment", "run_one", "stable_part"]
+__all__ = [
+    "ExperimentRun",
+    "FirstFeasible",
+    "executor_slots",
+    "front_from_dict",
+    "front_to_dict",
+    "make_executor",
+    "run_batch",
+    "run_experiment",
+    "run_one",
+    "stable_part",
+]
 
 #: Environment variable naming a Dask scheduler (``tcp://HOST:PORT``, or
 #: ``local``: a LocalCluster started with gapath's Dask settings).
@@ -86,6 +95,7 @@ SCHEDULER_ENV = "GAPATH_SCHEDULER"
 # ---------------------------------------------------------------------------
 # one run
 # ---------------------------------------------------------------------------
+
 
 def _feasible_count(algorithm) -> int:
     """Paths without interfering cells in the algorithm's population (read
@@ -138,9 +148,13 @@ class FirstFeasible(Callback):
 
 def front_to_dict(front) -> dict:
     """A :class:`gapath.front.PathFront` as JSON-ready lists (exact floats)."""
-    return {"objectives": list(front.objectives), "F": np.asarray(front.F).tolist(),
-            "metrics": np.asarray(front.metrics).tolist(), "X": np.asarray(front.X).tolist(),
-            "paths": [np.asarray(p).tolist() for p in front.paths]}
+    return {
+        "objectives": list(front.objectives),
+        "F": np.asarray(front.F).tolist(),
+        "metrics": np.asarray(front.metrics).tolist(),
+        "X": np.asarray(front.X).tolist(),
+        "paths": [np.asarray(p).tolist() for p in front.paths],
+    }
 
 
 def front_from_dict(d: dict):
@@ -150,10 +164,13 @@ def front_from_dict(d: dict):
     m = len(d["objectives"])
     k = len(d["F"])
     X = np.asarray(d["X"])
-    return PathFront(tuple(d["objectives"]), np.asarray(d["F"], float).reshape(k, m),
-                     np.asarray(d["metrics"], float).reshape(k, 4),
-                     X.reshape(k, -1) if X.size else np.zeros((k, 0)),
-                     [np.asarray(p, np.int64).reshape(-1, 2) for p in d["paths"]])
+    return PathFront(
+        tuple(d["objectives"]),
+        np.asarray(d["F"], float).reshape(k, m),
+        np.asarray(d["metrics"], float).reshape(k, 4),
+        X.reshape(k, -1) if X.size else np.zeros((k, 0)),
+        [np.asarray(p, np.int64).reshape(-1, 2) for p in d["paths"]],
+    )
 
 
 def _solve_kwargs(run: dict) -> dict:
@@ -162,10 +179,17 @@ def _solve_kwargs(run: dict) -> dict:
     from gapath.solver import solve
 
     s = dict(run["settings"])
-    kwargs = dict(objectives=tuple(s["objectives"]), constraints=s["constraints"],
-                  penalty=s["penalty"], pop_size=s["pop_size"], n_gen=s["n_gen"],
-                  tiebreak=s["tiebreak"], sbx_eta=s["sbx_eta"], seed_from=s["seed_from"],
-                  paths=s.get("paths", "monotone"))
+    kwargs = dict(
+        objectives=tuple(s["objectives"]),
+        constraints=s["constraints"],
+        penalty=s["penalty"],
+        pop_size=s["pop_size"],
+        n_gen=s["n_gen"],
+        tiebreak=s["tiebreak"],
+        sbx_eta=s["sbx_eta"],
+        seed_from=s["seed_from"],
+        paths=s.get("paths", "monotone"),
+    )
     engine = run.get("engine", "paper")
     if "engine" in inspect.signature(solve).parameters:
         # solve's names: "fast" (FastNSGA2) and "pymoo" (paper_nsga2, pymoo's NSGA2)
@@ -174,8 +198,10 @@ def _solve_kwargs(run: dict) -> dict:
         names = getattr(gapath.solver, "ENGINES", {})
         kwargs["engine"] = "pymoo" if engine == "paper" and "pymoo" in names else engine
     elif engine != "paper":
-        raise ConfigError(f"engine {engine!r} needs gapath.solver.solve(engine=...), "
-                          "which this gapath does not have; use engine 'paper' or 'auto'")
+        raise ConfigError(
+            f"engine {engine!r} needs gapath.solver.solve(engine=...), "
+            "which this gapath does not have; use engine 'paper' or 'auto'"
+        )
     return kwargs
 
 
@@ -213,8 +239,13 @@ def run_one(run: dict) -> dict:
     from gapath.solver import solve
 
     started, t0 = time.time(), time.perf_counter()
-    result = {"key": run_key(run), "config": config_key(run), "run": run, "seed": run["seed"],
-              "versions": store_versions()}
+    result = {
+        "key": run_key(run),
+        "config": config_key(run),
+        "run": run,
+        "seed": run["seed"],
+        "versions": store_versions(),
+    }
     runtime = {"started": started, "host": platform.node(), "pid": os.getpid()}
     try:
         ws = build_workspace(run["map"], run["seed"])
@@ -222,14 +253,23 @@ def run_one(run: dict) -> dict:
         watch = None
         if options.get("stop_at_first_feasible") or options.get("record_first_feasible"):
             watch = FirstFeasible(stop=bool(options.get("stop_at_first_feasible")))
-        res = solve(ws, encoding=run["encoding"], seed=int(run["seed"]), progress=False,
-                    callback=watch, **_solve_kwargs(run))
+        res = solve(
+            ws,
+            encoding=run["encoding"],
+            seed=int(run["seed"]),
+            progress=False,
+            callback=watch,
+            **_solve_kwargs(run),
+        )
         if res.interrupted:  # Ctrl-C inside solve: not a result
             raise KeyboardInterrupt
         front = res.front
-        indicators = {"feasible": len(front) > 0, "front_size": len(front),
-                      "n_obstacles": ws.n_obstacles,
-                      "min_length": float(front.metrics[:, LENGTH].min()) if len(front) else None}
+        indicators = {
+            "feasible": len(front) > 0,
+            "front_size": len(front),
+            "n_obstacles": ws.n_obstacles,
+            "min_length": float(front.metrics[:, LENGTH].min()) if len(front) else None,
+        }
         if watch is not None:
             indicators["first_feasible_gen"] = watch.generation
             pop = getattr(res.pymoo_result, "pop", None)
@@ -242,8 +282,14 @@ def run_one(run: dict) -> dict:
             ref = reference_front(ws, front.objectives, options["reference"])
             q = front_quality(front.F, ref)
             indicators.update({k: q[k] for k in ("hv_ratio", "igd_plus", "reference_points_found")})
-        result.update(status="ok", settings=res.settings, front=front_to_dict(front),
-                      n_gen=int(res.n_gen), n_eval=int(res.n_eval), indicators=indicators)
+        result.update(
+            status="ok",
+            settings=res.settings,
+            front=front_to_dict(front),
+            n_gen=int(res.n_gen),
+            n_eval=int(res.n_eval),
+            indicators=indicators,
+        )
         runtime["seconds"] = res.seconds
     except Exception as exc:  # a failed run is a result too
         result.update(status="failed", error=f"{type(exc).__name__}: {exc}")
@@ -262,6 +308,7 @@ def stable_part(result: dict) -> dict:
 # ---------------------------------------------------------------------------
 # executors
 # ---------------------------------------------------------------------------
+
 
 class _InlineFuture:
     """A future computed when its result is asked for (``workers=0``)."""
@@ -309,8 +356,9 @@ def _process_pool(workers: int):
     import multiprocessing as mp
     from concurrent.futures import ProcessPoolExecutor
 
-    return ProcessPoolExecutor(max_workers=workers, mp_context=mp.get_context("spawn"),
-                               initializer=_die_with_parent)
+    return ProcessPoolExecutor(
+        max_workers=workers, mp_context=mp.get_context("spawn"), initializer=_die_with_parent
+    )
 
 
 def _is_dask(executor) -> bool:
@@ -348,15 +396,17 @@ def make_executor(workers: int | None = None, scheduler: str | None = None):
         try:
             from distributed import Client
         except ImportError:
-            raise ConfigError(f"scheduler {scheduler!r} needs the 'distributed' package "
-                              "(pip install 'dask[distributed]')") from None
+            raise ConfigError(
+                f"scheduler {scheduler!r} needs the 'distributed' package (pip install 'dask[distributed]')"
+            ) from None
         if scheduler.lower() == LOCAL_SCHEDULER:
             from gapath.experiments.dask_config import local_client
 
             client = local_client(workers)
             n = len(client.nthreads())
-            return client, (f"Dask LocalCluster of {n} worker process{'es' if n > 1 else ''} "
-                            "(gapath's Dask settings)")
+            return client, (
+                f"Dask LocalCluster of {n} worker process{'es' if n > 1 else ''} (gapath's Dask settings)"
+            )
         from distributed.comm.addressing import parse_address, parse_host_port
 
         # Checked before a Client exists: a Client whose constructor fails is
@@ -366,8 +416,10 @@ def make_executor(workers: int | None = None, scheduler: str | None = None):
         try:
             parse_host_port(parse_address(scheduler)[1])
         except ValueError as exc:  # e.g. "missing port number in address"
-            raise ConfigError(f"scheduler {scheduler!r}: {exc}; expected 'local' or the address "
-                              "of a Dask scheduler, tcp://HOST:PORT") from None
+            raise ConfigError(
+                f"scheduler {scheduler!r}: {exc}; expected 'local' or the address "
+                "of a Dask scheduler, tcp://HOST:PORT"
+            ) from None
         try:
             client = Client(scheduler, timeout="20s")
         except (OSError, TimeoutError, ValueError) as exc:
@@ -430,8 +482,11 @@ def _tune_malloc() -> bool:
     _MALLOC_TUNED = True
     import sys
 
-    if (not sys.platform.startswith("linux") or "MALLOC_TRIM_THRESHOLD_" not in os.environ
-            or os.environ.get(KEEP_MALLOC_ENV)):
+    if (
+        not sys.platform.startswith("linux")
+        or "MALLOC_TRIM_THRESHOLD_" not in os.environ
+        or os.environ.get(KEEP_MALLOC_ENV)
+    ):
         return False
     try:
         import ctypes
@@ -529,8 +584,9 @@ class _Batcher:
     slows the runs themselves; a pool: the client's wake-up and bookkeeping
     per task)."""
 
-    def __init__(self, pending, slots: int, *, target_seconds: float = 0.25, max_batch: int = 32,
-                 window: int = 16):
+    def __init__(
+        self, pending, slots: int, *, target_seconds: float = 0.25, max_batch: int = 32, window: int = 16
+    ):
         from collections import deque
 
         self.queue = deque(pending)
@@ -567,16 +623,27 @@ def _close(executor) -> None:
 
 def _lost_run(run: dict, key: str, exc: BaseException) -> dict:
     """The failed result of a run whose worker died or whose future broke."""
-    return {"key": key, "config": config_key(run), "run": run, "seed": run["seed"],
-            "versions": store_versions(), "status": "failed",
-            "error": f"{type(exc).__name__}: {exc}",
-            "runtime": {"started": time.time(), "host": platform.node(), "pid": os.getpid(),
-                        "traceback": "".join(traceback.format_exception(exc))}}
+    return {
+        "key": key,
+        "config": config_key(run),
+        "run": run,
+        "seed": run["seed"],
+        "versions": store_versions(),
+        "status": "failed",
+        "error": f"{type(exc).__name__}: {exc}",
+        "runtime": {
+            "started": time.time(),
+            "host": platform.node(),
+            "pid": os.getpid(),
+            "traceback": "".join(traceback.format_exception(exc)),
+        },
+    }
 
 
 # ---------------------------------------------------------------------------
 # the experiment
 # ---------------------------------------------------------------------------
+
 
 @dataclass
 class ExperimentRun:
@@ -617,9 +684,18 @@ def _as_spec(spec) -> ExperimentSpec:
     raise ConfigError(f"expected an ExperimentSpec, a dict or a spec file, got {type(spec).__name__}")
 
 
-def run_experiment(spec, out, *, workers: int | None = None, scheduler: str | None = None,
-                   executor=None, progress: bool = True, retry_failed: bool = True,
-                   on_result=None, batch_seconds: float | None = None) -> ExperimentRun:
+def run_experiment(
+    spec,
+    out,
+    *,
+    workers: int | None = None,
+    scheduler: str | None = None,
+    executor=None,
+    progress: bool = True,
+    retry_failed: bool = True,
+    on_result=None,
+    batch_seconds: float | None = None,
+) -> ExperimentRun:
     """Run every run of ``spec`` not yet stored in ``out``.
 
     Parameters
@@ -674,8 +750,7 @@ def run_experiment(spec, out, *, workers: int | None = None, scheduler: str | No
         keyed.setdefault(run_key(run), run)
     done = store.done_keys()
     failed_before = store.failed_keys() - done
-    pending = [(k, r) for k, r in keyed.items()
-               if k not in done and (retry_failed or k not in failed_before)]
+    pending = [(k, r) for k, r in keyed.items() if k not in done and (retry_failed or k not in failed_before)]
     skipped = len(keyed) - len(pending)
     t0 = time.perf_counter()
     ran = failed = 0
@@ -687,12 +762,23 @@ def run_experiment(spec, out, *, workers: int | None = None, scheduler: str | No
             executor, description = make_executor(workers, scheduler)
         else:
             description = type(executor).__name__
-        bar = tqdm(total=len(keyed), initial=skipped, unit="run", disable=not progress,
-                   desc=spec.to_dict()["name"], dynamic_ncols=True, mininterval=0.5)
+        bar = tqdm(
+            total=len(keyed),
+            initial=skipped,
+            unit="run",
+            disable=not progress,
+            desc=spec.to_dict()["name"],
+            dynamic_ncols=True,
+            mininterval=0.5,
+        )
         if batch_seconds is None:
             batch_seconds = DASK_BATCH_SECONDS if _is_dask(executor) else BATCH_SECONDS
-        batcher = _Batcher(pending, executor_slots(executor), target_seconds=batch_seconds,
-                           max_batch=1 if _is_inline(executor) or batch_seconds <= 0 else 32)
+        batcher = _Batcher(
+            pending,
+            executor_slots(executor),
+            target_seconds=batch_seconds,
+            max_batch=1 if _is_inline(executor) or batch_seconds <= 0 else 32,
+        )
         completed = _Completed(executor)
         in_flight = {}  # future -> its batch of (key, run)
         checked = time.monotonic()
@@ -737,11 +823,11 @@ def run_experiment(spec, out, *, workers: int | None = None, scheduler: str | No
             bar.close()
             if owned:
                 _close(executor)
-    return ExperimentRun(store, len(keyed), skipped, ran, failed, time.perf_counter() - t0,
-                         description, failures)
+    return ExperimentRun(
+        store, len(keyed), skipped, ran, failed, time.perf_counter() - t0, description, failures
+    )
 
 
 def describe_run(run: dict) -> str:
     """A one-line label of a run (map, encoding, engine, seed)."""
     return f"{map_label(run['map'])} {run['encoding']} {run['engine']} seed {run['seed']}"
-

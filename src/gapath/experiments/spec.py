@@ -87,8 +87,17 @@ from pathlib import Path
 from gapath.errors import ConfigError
 
 __all__ = [
-    "ENGINES", "SETTINGS", "ExperimentSpec", "build_workspace", "canonical_json", "config_key",
-    "load_spec", "map_label", "resolve_engine", "run_key", "sha256_hex",
+    "ENGINES",
+    "SETTINGS",
+    "ExperimentSpec",
+    "build_workspace",
+    "canonical_json",
+    "config_key",
+    "load_spec",
+    "map_label",
+    "resolve_engine",
+    "run_key",
+    "sha256_hex",
 ]
 
 #: Engine names a spec accepts (``auto`` is resolved when the spec is built
@@ -96,9 +105,16 @@ __all__ = [
 ENGINES = ("paper", "fast", "auto")
 
 #: Settings of :func:`gapath.solver.solve` a spec may set, with solve's defaults.
-SETTINGS = dict(objectives=("length", "vulnerability"), constraints=None, penalty=1000.0,
-                pop_size=500, n_gen=500, tiebreak="smoothness", sbx_eta=None,
-                seed_from="weighted")
+SETTINGS = dict(
+    objectives=("length", "vulnerability"),
+    constraints=None,
+    penalty=1000.0,
+    pop_size=500,
+    n_gen=500,
+    tiebreak="smoothness",
+    sbx_eta=None,
+    seed_from="weighted",
+)
 
 #: Settings a spec may give that :data:`SETTINGS` does not fill in when they
 #: are absent (so that the keys of runs stored before they existed stay the
@@ -108,8 +124,18 @@ OPTIONAL_SETTINGS = dict(paths="monotone")
 #: Per-experiment options and their defaults.
 OPTIONS = dict(stop_at_first_feasible=False, record_first_feasible=False, reference=None)
 
-_TOP_KEYS = ("name", "description", "maps", "encodings", "engines", "algorithms", "settings",
-             "grid", "seeds", "options")
+_TOP_KEYS = (
+    "name",
+    "description",
+    "maps",
+    "encodings",
+    "engines",
+    "algorithms",
+    "settings",
+    "grid",
+    "seeds",
+    "options",
+)
 _MAP_KINDS = ("default", "file", "dense", "random")
 _MAP_COMMON = ("start", "goal", "corner_cutting")
 
@@ -117,6 +143,7 @@ _MAP_COMMON = ("start", "goal", "corner_cutting")
 # ---------------------------------------------------------------------------
 # canonical JSON and hashes
 # ---------------------------------------------------------------------------
+
 
 def _plain(obj):
     """``obj`` with tuples as lists and NumPy scalars as Python numbers."""
@@ -143,8 +170,7 @@ def canonical_json(obj) -> str:
     >>> canonical_json({"b": (1, 2.5), "a": None})
     '{"a":null,"b":[1,2.5]}'
     """
-    return json.dumps(_plain(obj), sort_keys=True, separators=(",", ":"), ensure_ascii=True,
-                      allow_nan=False)
+    return json.dumps(_plain(obj), sort_keys=True, separators=(",", ":"), ensure_ascii=True, allow_nan=False)
 
 
 def sha256_hex(obj) -> str:
@@ -183,6 +209,7 @@ def config_key(run: dict) -> str:
 # validation helpers
 # ---------------------------------------------------------------------------
 
+
 class _Where:
     """Formats error messages as ``source: key.path: message``."""
 
@@ -194,8 +221,11 @@ class _Where:
 
 
 def _int(value, where: _Where, key: str, *, minimum: int | None = None) -> int:
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or (
-            isinstance(value, float) and not value.is_integer()):
+    if (
+        isinstance(value, bool)
+        or not isinstance(value, (int, float))
+        or (isinstance(value, float) and not value.is_integer())
+    ):
         raise where.error(key, f"expected an integer, got {value!r}")
     v = int(value)
     if minimum is not None and v < minimum:
@@ -247,6 +277,7 @@ def _unknown(d: dict, allowed, where: _Where, key: str, what: str) -> None:
 # maps
 # ---------------------------------------------------------------------------
 
+
 def _file_sha256(path: Path, where: _Where, key: str) -> str:
     try:
         return hashlib.sha256(path.read_bytes()).hexdigest()
@@ -261,9 +292,12 @@ def _normalise_map(value, where: _Where, key: str, base_dir: Path) -> dict:
             return {"default": {}}
         value = {"file": {"path": value}}
     if not isinstance(value, dict) or len(value) != 1:
-        raise where.error(key, f"expected 'default', a file path or one of "
-                               f"{{{', '.join(_MAP_KINDS[1:])}: {{...}}}}, got {value!r}")
-    (kind, args), = value.items()
+        raise where.error(
+            key,
+            f"expected 'default', a file path or one of "
+            f"{{{', '.join(_MAP_KINDS[1:])}: {{...}}}}, got {value!r}",
+        )
+    ((kind, args),) = value.items()
     if kind not in _MAP_KINDS:
         raise where.error(f"{key}.{kind}", f"unknown map kind; expected one of {', '.join(_MAP_KINDS)}")
     k = f"{key}.{kind}"
@@ -279,8 +313,11 @@ def _normalise_map(value, where: _Where, key: str, base_dir: Path) -> dict:
         path = (path if path.is_absolute() else base_dir / path).resolve()
         digest = _file_sha256(path, where, f"{k}.path")
         if args.get("sha256") not in (None, digest):
-            raise where.error(f"{k}.sha256", f"map file {str(path)!r} changed: its sha256 is "
-                                             f"{digest[:12]}..., the spec says {str(args['sha256'])[:12]}...")
+            raise where.error(
+                f"{k}.sha256",
+                f"map file {str(path)!r} changed: its sha256 is "
+                f"{digest[:12]}..., the spec says {str(args['sha256'])[:12]}...",
+            )
         out.update(path=str(path), name=path.name, sha256=digest)
     elif kind == "dense":
         _unknown(args, ("n", "p0", "seed") + _MAP_COMMON, where, k, "key")
@@ -294,8 +331,11 @@ def _normalise_map(value, where: _Where, key: str, base_dir: Path) -> dict:
             n = n[0] if n[0] == n[1] else n
         else:
             n = _int(n, where, f"{k}.n", minimum=2)
-        out.update(n=n, p0=_float(args["p0"], where, f"{k}.p0", lo=0.0, hi=1.0),
-                   seed=_map_seed(args.get("seed", 0), where, f"{k}.seed"))
+        out.update(
+            n=n,
+            p0=_float(args["p0"], where, f"{k}.p0", lo=0.0, hi=1.0),
+            seed=_map_seed(args.get("seed", 0), where, f"{k}.seed"),
+        )
     else:  # random
         _unknown(args, ("shape", "obstacles", "seed") + _MAP_COMMON, where, k, "key")
         if "shape" not in args or "obstacles" not in args:
@@ -303,15 +343,19 @@ def _normalise_map(value, where: _Where, key: str, base_dir: Path) -> dict:
         shape = args["shape"]
         if not isinstance(shape, (list, tuple)) or len(shape) != 2:
             raise where.error(f"{k}.shape", f"expected [rows, cols], got {shape!r}")
-        out.update(shape=[_int(v, where, f"{k}.shape[{i}]", minimum=2) for i, v in enumerate(shape)],
-                   obstacles=_int(args["obstacles"], where, f"{k}.obstacles", minimum=0),
-                   seed=_map_seed(args.get("seed", 0), where, f"{k}.seed"))
+        out.update(
+            shape=[_int(v, where, f"{k}.shape[{i}]", minimum=2) for i, v in enumerate(shape)],
+            obstacles=_int(args["obstacles"], where, f"{k}.obstacles", minimum=0),
+            seed=_map_seed(args.get("seed", 0), where, f"{k}.seed"),
+        )
     for name in ("start", "goal"):
         if args.get(name) is not None:
             out[name] = _cell(args[name], where, f"{k}.{name}")
     if args.get("corner_cutting") is not None:
         if not isinstance(args["corner_cutting"], bool):
-            raise where.error(f"{k}.corner_cutting", f"expected true or false, got {args['corner_cutting']!r}")
+            raise where.error(
+                f"{k}.corner_cutting", f"expected true or false, got {args['corner_cutting']!r}"
+            )
         out["corner_cutting"] = args["corner_cutting"]
     entry = {kind: out}
     _check_map(entry, where, k)
@@ -346,7 +390,7 @@ def map_label(spec: dict) -> str:
     >>> map_label({"dense": {"n": 8, "p0": 0.3, "seed": "run"}})
     'dense-8x8-p0.3'
     """
-    (kind, a), = spec.items()
+    ((kind, a),) = spec.items()
     if kind == "default":
         label = "default"
     elif kind == "file":
@@ -379,7 +423,7 @@ def build_workspace(spec: dict, seed: int | None = None):
     """
     from gapath.workspace import default_workspace, dense_workspace, random_workspace
 
-    (kind, a), = spec.items()
+    ((kind, a),) = spec.items()
     start, goal = a.get("start"), a.get("goal")
     cc = a.get("corner_cutting")
     if kind in ("dense", "random"):
@@ -389,8 +433,9 @@ def build_workspace(spec: dict, seed: int | None = None):
                 raise ConfigError(f"map {map_label(spec)} takes the run's seed, but none was given")
             s = int(seed)
         if kind == "dense":
-            ws = dense_workspace(a["n"] if isinstance(a["n"], int) else tuple(a["n"]), a["p0"], s,
-                                 start=start, goal=goal)
+            ws = dense_workspace(
+                a["n"] if isinstance(a["n"], int) else tuple(a["n"]), a["p0"], s, start=start, goal=goal
+            )
         else:
             ws = random_workspace(tuple(a["shape"]), a["obstacles"], s, start=start, goal=goal)
         return ws.replace(corner_cutting=cc) if cc is not None else ws
@@ -404,15 +449,19 @@ def build_workspace(spec: dict, seed: int | None = None):
     path = Path(a["path"])
     digest = hashlib.sha256(path.read_bytes()).hexdigest()
     if digest != a["sha256"]:
-        raise ConfigError(f"map file {path} changed since the experiment was set up "
-                          f"(sha256 {digest[:12]}..., expected {a['sha256'][:12]}...)")
-    return load_map(path, start=None if start is None else tuple(start),
-                    goal=None if goal is None else tuple(goal), **kw)
+        raise ConfigError(
+            f"map file {path} changed since the experiment was set up "
+            f"(sha256 {digest[:12]}..., expected {a['sha256'][:12]}...)"
+        )
+    return load_map(
+        path, start=None if start is None else tuple(start), goal=None if goal is None else tuple(goal), **kw
+    )
 
 
 # ---------------------------------------------------------------------------
 # settings and engines
 # ---------------------------------------------------------------------------
+
 
 def _setting(name: str, value, where: _Where, key: str):
     """One solve setting, validated and in canonical form."""
@@ -435,10 +484,12 @@ def _setting(name: str, value, where: _Where, key: str):
         return _float(value, where, key, lo=0.0)
     if name == "sbx_eta":
         return None if value is None else _float(value, where, key, lo=0.0)
-    choices = {"constraints": (None, "penalty", "constraint"),
-               "tiebreak": ("smoothness", None),
-               "seed_from": ("weighted", "exact", "none"),
-               "paths": ("monotone", "free")}[name]
+    choices = {
+        "constraints": (None, "penalty", "constraint"),
+        "tiebreak": ("smoothness", None),
+        "seed_from": ("weighted", "exact", "none"),
+        "paths": ("monotone", "free"),
+    }[name]
     if name == "tiebreak" and value == "none":
         value = None
     if value not in choices:
@@ -457,10 +508,13 @@ def _check_paths(encodings, settings, axes, where: _Where) -> None:
         needs = "free" if e in FREE_ENCODINGS else "monotone"
         other = path_sets - {needs}
         if other:
-            raise where.error(f"encodings[{i}]", f"encoding {e!r} describes {needs} paths, but the "
-                                                  f"spec runs it on {other.pop()} paths (settings."
-                                                  f"paths); use field or via for free paths and "
-                                                  f"integer, binary, mixed or absolute for monotone")
+            raise where.error(
+                f"encodings[{i}]",
+                f"encoding {e!r} describes {needs} paths, but the "
+                f"spec runs it on {other.pop()} paths (settings."
+                f"paths); use field or via for free paths and "
+                f"integer, binary, mixed or absolute for monotone",
+            )
 
 
 def _complete_settings(settings: dict) -> dict:
@@ -482,8 +536,7 @@ def fast_engine_available() -> bool:
     import gapath.algorithms
     from gapath.solver import solve
 
-    return (hasattr(gapath.algorithms, "FastNSGA2")
-            and "engine" in inspect.signature(solve).parameters)
+    return hasattr(gapath.algorithms, "FastNSGA2") and "engine" in inspect.signature(solve).parameters
 
 
 def resolve_engine(engine: str) -> str:
@@ -497,6 +550,7 @@ def resolve_engine(engine: str) -> str:
 # ---------------------------------------------------------------------------
 # the spec
 # ---------------------------------------------------------------------------
+
 
 @dataclass
 class ExperimentSpec:
@@ -546,7 +600,7 @@ class ExperimentSpec:
 
     # -- construction --------------------------------------------------------
     @classmethod
-    def from_dict(cls, data: dict, source=None) -> "ExperimentSpec":
+    def from_dict(cls, data: dict, source=None) -> ExperimentSpec:
         """A spec from a mapping (the parsed YAML / TOML document).
 
         Raises
@@ -556,8 +610,9 @@ class ExperimentSpec:
         """
         where = _Where(source)
         if not isinstance(data, dict):
-            raise where.error("", f"the spec must be a mapping of {', '.join(_TOP_KEYS)}, "
-                                  f"got {type(data).__name__}")
+            raise where.error(
+                "", f"the spec must be a mapping of {', '.join(_TOP_KEYS)}, got {type(data).__name__}"
+            )
         _unknown(data, _TOP_KEYS, where, "", "key")
         data = dict(data)
         if "algorithms" in data:
@@ -578,22 +633,28 @@ class ExperimentSpec:
         base_dir = Path(self.source).resolve().parent if self.source else Path.cwd()
         if not isinstance(self.name, str) or not self.name:
             raise where.error("name", f"expected a non-empty string, got {self.name!r}")
-        maps = [_normalise_map(m, where, f"maps[{i}]", base_dir)
-                for i, m in enumerate(_list(self.maps, where, "maps"))]
+        maps = [
+            _normalise_map(m, where, f"maps[{i}]", base_dir)
+            for i, m in enumerate(_list(self.maps, where, "maps"))
+        ]
         encodings = []
         for i, e in enumerate(_list(self.encodings, where, "encodings")):
             from gapath.encodings import ENCODINGS
             from gapath.encodings.free import FREE_ENCODINGS
 
             if e not in ENCODINGS and e not in FREE_ENCODINGS:
-                raise where.error(f"encodings[{i}]", f"unknown encoding {e!r}; expected one of "
-                                                      f"{', '.join([*ENCODINGS, *FREE_ENCODINGS])}")
+                raise where.error(
+                    f"encodings[{i}]",
+                    f"unknown encoding {e!r}; expected one of {', '.join([*ENCODINGS, *FREE_ENCODINGS])}",
+                )
             encodings.append(e)
         engines = []
         for i, e in enumerate(_list(self.engines, where, "engines")):
             e = "paper" if e == "pymoo" else e
             if e not in ENGINES:
-                raise where.error(f"engines[{i}]", f"unknown engine {e!r}; expected one of {', '.join(ENGINES)}")
+                raise where.error(
+                    f"engines[{i}]", f"unknown engine {e!r}; expected one of {', '.join(ENGINES)}"
+                )
             e = resolve_engine(e)  # saved resolved: a stored spec keeps meaning what it ran
             if e not in engines:
                 engines.append(e)
@@ -617,12 +678,19 @@ class ExperimentSpec:
                     raise where.error(f"options.{k}", f"expected true or false, got {options[k]!r}")
                 opts[k] = options[k]
         if options.get("reference") not in (None, "monotone", "free"):
-            raise where.error("options.reference",
-                              f"expected monotone or free, got {options['reference']!r}")
+            raise where.error("options.reference", f"expected monotone or free, got {options['reference']!r}")
         opts["reference"] = options.get("reference")
-        return dict(name=self.name, description=str(self.description or ""), maps=maps,
-                    encodings=encodings, engines=engines, settings=settings, grid=axes,
-                    seeds=self._seeds(where), options=opts)
+        return dict(
+            name=self.name,
+            description=str(self.description or ""),
+            maps=maps,
+            encodings=encodings,
+            engines=engines,
+            settings=settings,
+            grid=axes,
+            seeds=self._seeds(where),
+            options=opts,
+        )
 
     def _seeds(self, where: _Where) -> list[int]:
         s = self.seeds
@@ -650,16 +718,24 @@ class ExperimentSpec:
             for combo in itertools.product(*[v for _, v in axes]):
                 settings = dict(n["settings"])
                 settings.update({k: v for (k, _), v in zip(axes, combo)})
-                out.append(dict(map=copy.deepcopy(m), encoding=enc, engine=eng,
-                                settings=_complete_settings(settings), options=dict(n["options"])))
+                out.append(
+                    dict(
+                        map=copy.deepcopy(m),
+                        encoding=enc,
+                        engine=eng,
+                        settings=_complete_settings(settings),
+                        options=dict(n["options"]),
+                    )
+                )
         return out
 
     def runs(self) -> list[dict]:
         """Every run: configurations x seeds, in a deterministic order (seed
         innermost). Each run is a JSON-serialisable dict with keys ``map``,
         ``encoding``, ``engine``, ``settings``, ``options`` and ``seed``."""
-        return [dict(copy.deepcopy(c), seed=s) for c in self.configurations()
-                for s in self._normalised["seeds"]]
+        return [
+            dict(copy.deepcopy(c), seed=s) for c in self.configurations() for s in self._normalised["seeds"]
+        ]
 
     def __len__(self) -> int:
         n = self._normalised
@@ -687,8 +763,10 @@ def load_spec(path) -> ExperimentSpec:
     except OSError as exc:
         raise ConfigError(f"{path}: cannot read the experiment spec ({exc.strerror})") from None
     except UnicodeDecodeError as exc:
-        raise ConfigError(f"{path}: not a text file (undecodable byte at offset {exc.start}); "
-                          f"expected a YAML, TOML or JSON experiment spec") from None
+        raise ConfigError(
+            f"{path}: not a text file (undecodable byte at offset {exc.start}); "
+            f"expected a YAML, TOML or JSON experiment spec"
+        ) from None
     suffix = path.suffix.lower()
     if suffix in (".yaml", ".yml"):
         try:
@@ -706,7 +784,9 @@ def load_spec(path) -> ExperimentSpec:
         try:
             data = json.loads(text)
         except json.JSONDecodeError as exc:
-            raise ConfigError(f"{path}, line {exc.lineno}, column {exc.colno}: invalid JSON: {exc.msg}") from None
+            raise ConfigError(
+                f"{path}, line {exc.lineno}, column {exc.colno}: invalid JSON: {exc.msg}"
+            ) from None
     else:
         raise ConfigError(f"{path}: unknown spec format {suffix!r}; expected .yaml, .yml, .toml or .json")
     if data is None:

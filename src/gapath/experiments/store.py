@@ -80,16 +80,14 @@ class ResultStore:
         """Create the directory and save the spec (normalised, and the source
         file when there is one) and the package versions."""
         self.runs_dir.mkdir(parents=True, exist_ok=True)
-        atomic_write(self.root / "experiment.json",
-                     dumps(spec.to_dict(), indent=1, sort_keys=True) + "\n")
+        atomic_write(self.root / "experiment.json", dumps(spec.to_dict(), indent=1, sort_keys=True) + "\n")
         if spec.source and Path(spec.source).resolve() != (self.root / "experiment.json").resolve():
             src = Path(spec.source)
             try:
                 atomic_write(self.root / f"spec{src.suffix.lower()}", src.read_bytes())
             except OSError:
                 pass
-        atomic_write(self.root / "versions.json",
-                     dumps(store_versions(), indent=1, sort_keys=True) + "\n")
+        atomic_write(self.root / "versions.json", dumps(store_versions(), indent=1, sort_keys=True) + "\n")
 
     def exists(self) -> bool:
         """True when the directory holds an experiment."""
@@ -127,13 +125,15 @@ class ResultStore:
 
     def done_keys(self) -> set[str]:
         """Keys of the finished runs (one directory listing)."""
-        return {n[:-len(_OK)] for n in self._names()
-                if n.endswith(_OK) and not n.endswith(_FAILED) and not n.startswith(".")}
+        return {
+            n[: -len(_OK)]
+            for n in self._names()
+            if n.endswith(_OK) and not n.endswith(_FAILED) and not n.startswith(".")
+        }
 
     def failed_keys(self) -> set[str]:
         """Keys of the runs whose last attempt failed."""
-        return {n[:-len(_FAILED)] for n in self._names()
-                if n.endswith(_FAILED) and not n.startswith(".")}
+        return {n[: -len(_FAILED)] for n in self._names() if n.endswith(_FAILED) and not n.startswith(".")}
 
     def write(self, result: dict) -> None:
         """Store one result of :func:`gapath.experiments.runner.run_one`
@@ -174,5 +174,10 @@ class ResultStore:
         keys = {run_key(r) for r in runs}
         done, failed = self.done_keys(), self.failed_keys() - self.done_keys()
         n_done, n_failed = len(keys & done), len(keys & failed)
-        return dict(total=len(keys), done=n_done, failed=n_failed,
-                    pending=len(keys) - n_done - n_failed, extra=len(done - keys))
+        return dict(
+            total=len(keys),
+            done=n_done,
+            failed=n_failed,
+            pending=len(keys) - n_done - n_failed,
+            extra=len(done - keys),
+        )

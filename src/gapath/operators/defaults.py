@@ -13,8 +13,14 @@ from gapath.operators.mutation.discrete_pm import DiscretePM
 from gapath.operators.mutation.mixed_mutation import MixedMutation
 
 
-def default_operators(encoding_name: str, *, sbx_prob: float = 0.9, sbx_eta: float = 10,
-                      pm_eta: float = 20, pm_prob_var: float | None = None) -> dict:
+def default_operators(
+    encoding_name: str,
+    *,
+    sbx_prob: float = 0.9,
+    sbx_eta: float = 10,
+    pm_eta: float = 20,
+    pm_prob_var: float | None = None,
+) -> dict:
     """Fresh sampling, crossover and mutation operators for an encoding,
     with Ahmed & Deb's settings (sections 2 and 5.2).
 
@@ -53,27 +59,36 @@ def default_operators(encoding_name: str, *, sbx_prob: float = 0.9, sbx_eta: flo
     'DecayingBitflipMutation'
     """
     if encoding_name in ("integer", "absolute"):
-        return dict(sampling=IntegerRandomSampling(),
-                    crossover=DiscreteSBX(prob=sbx_prob, eta=sbx_eta),
-                    mutation=DiscretePM(eta=pm_eta, prob_var=pm_prob_var))
+        return dict(
+            sampling=IntegerRandomSampling(),
+            crossover=DiscreteSBX(prob=sbx_prob, eta=sbx_eta),
+            mutation=DiscretePM(eta=pm_eta, prob_var=pm_prob_var),
+        )
     if encoding_name == "binary":
-        return dict(sampling=BinaryRandomSampling(),
-                    crossover=TwoPointCrossover(prob=sbx_prob),
-                    mutation=DecayingBitflipMutation(prob_var=pm_prob_var))
+        return dict(
+            sampling=BinaryRandomSampling(),
+            crossover=TwoPointCrossover(prob=sbx_prob),
+            mutation=DecayingBitflipMutation(prob_var=pm_prob_var),
+        )
     if encoding_name == "mixed":
-        return dict(sampling=IntegerRandomSampling(),
-                    crossover=MixedCrossover(prob=sbx_prob, eta=sbx_eta),
-                    mutation=MixedMutation(eta=pm_eta, prob_var=pm_prob_var))
+        return dict(
+            sampling=IntegerRandomSampling(),
+            crossover=MixedCrossover(prob=sbx_prob, eta=sbx_eta),
+            mutation=MixedMutation(eta=pm_eta, prob_var=pm_prob_var),
+        )
     from gapath.encodings import ENCODINGS
     from gapath.encodings.free import FREE_ENCODINGS
 
-    if encoding_name in FREE_ENCODINGS:     # real genes in [0, 1]: pymoo's SBX and PM
+    if encoding_name in FREE_ENCODINGS:  # real genes in [0, 1]: pymoo's SBX and PM
         from pymoo.operators.crossover.sbx import SBX
         from pymoo.operators.mutation.pm import PM
         from pymoo.operators.sampling.rnd import FloatRandomSampling
 
-        return dict(sampling=FloatRandomSampling(), crossover=SBX(prob=sbx_prob, eta=sbx_eta),
-                    mutation=PM(eta=pm_eta, prob_var=pm_prob_var))
+        return dict(
+            sampling=FloatRandomSampling(),
+            crossover=SBX(prob=sbx_prob, eta=sbx_eta),
+            mutation=PM(eta=pm_eta, prob_var=pm_prob_var),
+        )
     raise ConfigError(f"unknown encoding {encoding_name!r}; expected one of {', '.join(ENCODINGS)}")
 
 

@@ -30,7 +30,7 @@ def duplicate_mask(keys: np.ndarray, other: np.ndarray | None = None) -> np.ndar
     np.minimum.at(first, inverse, np.arange(len(both)))
     if other is None:
         return first[inverse] != np.arange(n)
-    return first[inverse[len(other):]] < len(other)
+    return first[inverse[len(other) :]] < len(other)
 
 
 class PathDuplicateElimination(DuplicateElimination):
@@ -54,7 +54,7 @@ class PathDuplicateElimination(DuplicateElimination):
         self.problem = problem
         self._cache = ColumnCache()
 
-    def bind(self, problem) -> "PathDuplicateElimination":
+    def bind(self, problem) -> PathDuplicateElimination:
         """Use ``problem.encoding`` to decode genomes into paths."""
         self.problem = problem if hasattr(problem, "encoding") else None
         self._cache = ColumnCache()
@@ -64,7 +64,7 @@ class PathDuplicateElimination(DuplicateElimination):
         X = column(pop, "X")
         if self.problem is None:
             return np.asarray(X)
-        if hasattr(self.problem, "path_keys"):              # free paths: identity rows
+        if hasattr(self.problem, "path_keys"):  # free paths: identity rows
             return self.problem.path_keys(X)
         entries, exits = self.problem.encoding.decode(X)
         return np.concatenate([entries, exits], axis=1)

@@ -12,5 +12,16 @@ from gapath.planners.pareto import (
     weighted_sum_astar,
 )
 
-__all__ = ["DStarLite", "DStarPO", "ExactFront", "ParetoPlanResult", "PlanResult",
-           "WeightedSumDStar", "astar", "astar_po", "monotone_front", "weighted_sum_astar"]
+__all__ = [
+    "DStarLite",
+    "DStarPO",
+    "ExactFront",
+    "ParetoPlanResult",
+    "PlanResult",
+    "WeightedSumDStar",
+    "astar",
+    "astar_po",
+    "free_front",
+    "monotone_front",
+    "weighted_sum_astar",
+]

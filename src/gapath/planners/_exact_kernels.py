@@ -249,9 +249,25 @@ def _monotone_start(occ, pot, start_row, col0, cell_size):
 
 
 @numba.njit(cache=True)
-def _monotone_columns(occ, pot, goal_row, col0, n_cols, cell_size, corner_cutting,
-                      use_len, use_vul, use_smooth, primary, li, lf, off, st, n_steps,
-                      max_labels):
+def _monotone_columns(
+    occ,
+    pot,
+    goal_row,
+    col0,
+    n_cols,
+    cell_size,
+    corner_cutting,
+    use_len,
+    use_vul,
+    use_smooth,
+    primary,
+    li,
+    lf,
+    off,
+    st,
+    n_steps,
+    max_labels,
+):
     """Advance the multi-objective DP over the columns of the frame by at
     most ``n_steps`` columns.
 
@@ -320,8 +336,20 @@ def _monotone_columns(occ, pot, goal_row, col0, n_cols, cell_size, corner_cuttin
         for t in range(h):
             new_off[t] = n
             if cand_off[t + 1] > cand_off[t]:
-                n = _filter_row(li, lf, n, ci, cf, cand_off[t], cand_off[t + 1],
-                                use_len, use_vul, use_smooth, primary, at_goal)
+                n = _filter_row(
+                    li,
+                    lf,
+                    n,
+                    ci,
+                    cf,
+                    cand_off[t],
+                    cand_off[t + 1],
+                    use_len,
+                    use_vul,
+                    use_smooth,
+                    primary,
+                    at_goal,
+                )
         new_off[h] = n
         off = new_off
         st[1] = k + 1
@@ -352,8 +380,8 @@ def _monotone_columns(occ, pot, goal_row, col0, n_cols, cell_size, corner_cuttin
 #
 # Labels live in two growable tables, like the monotone DP's:
 
-CELL, F_HEAD, F_PARENT, NS, ND, TURNS, NEXT = range(7)   # int table
-F_VUL, RUNMIN = range(2)                                 # float table
+CELL, F_HEAD, F_PARENT, NS, ND, TURNS, NEXT = range(7)  # int table
+F_VUL, RUNMIN = range(2)  # float table
 # CELL: row * W + col; F_HEAD: heading of the last step (-1 at the start);
 # NS/ND: straight/diagonal step counts; TURNS: total turn in eighths; NEXT:
 # link to the next label of the same state's list; RUNMIN: the state's
@@ -364,7 +392,7 @@ OBJ_LEN, OBJ_VUL, OBJ_SMOOTH = range(3)
 #: smoothness as tie-break; BOA* on (x, smoothness) with (cell, heading)
 #: states; NAMOA*-dr on (length, vulnerability, smoothness).
 MODE_CELL, MODE_HEADING, MODE_THREE = range(3)
-N_SLOTS = 9          # per cell: the 8 headings and "no heading" (slot 8)
+N_SLOTS = 9  # per cell: the 8 headings and "no heading" (slot 8)
 _BIG_TURNS = 1 << 40
 
 
@@ -385,6 +413,7 @@ def _slot(head):
 
 
 # -- open list: binary heap on (k1, k2, k3, label) ---------------------------
+
 
 @numba.njit(cache=True, inline="always")
 def _key_less(a1, a2, a3, an, b1, b2, b3, bn):
@@ -430,8 +459,16 @@ def _heap_pop(hk, hid, size):
             ch = 2 * i + 1
             if ch >= size:
                 break
-            if ch + 1 < size and _key_less(hk[ch + 1, 0], hk[ch + 1, 1], hk[ch + 1, 2], hid[ch + 1],
-                                           hk[ch, 0], hk[ch, 1], hk[ch, 2], hid[ch]):
+            if ch + 1 < size and _key_less(
+                hk[ch + 1, 0],
+                hk[ch + 1, 1],
+                hk[ch + 1, 2],
+                hid[ch + 1],
+                hk[ch, 0],
+                hk[ch, 1],
+                hk[ch, 2],
+                hid[ch],
+            ):
                 ch += 1
             if not _key_less(hk[ch, 0], hk[ch, 1], hk[ch, 2], hid[ch], k1, k2, k3, node):
                 break
@@ -448,6 +485,7 @@ def _heap_pop(hk, hid, size):
 
 
 # -- 1. heuristics ----------------------------------------------------------
+
 
 @numba.njit(cache=True)
 def _idecrease(keys, ids, pos, size, key, node):
@@ -493,8 +531,9 @@ def _ipop(keys, ids, pos, size):
             ch = 2 * i + 1
             if ch >= size:
                 break
-            if ch + 1 < size and (keys[ch + 1] < keys[ch] or
-                                  (keys[ch + 1] == keys[ch] and ids[ch + 1] < ids[ch])):
+            if ch + 1 < size and (
+                keys[ch + 1] < keys[ch] or (keys[ch + 1] == keys[ch] and ids[ch + 1] < ids[ch])
+            ):
                 ch += 1
             if not (keys[ch] < keys[i] or (keys[ch] == keys[i] and ids[ch] < ids[i])):
                 break
@@ -640,6 +679,7 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns, mask):
 
 # -- label values -------------------------------------------------------------
 
+
 @numba.njit(cache=True, inline="always")
 def _ht(ht, c, head):
     """Turn heuristic of cell ``c`` arrived with heading ``head``; 0 (a valid
@@ -673,6 +713,7 @@ def _f(li, lf, i, o, cell_size, hs, hd, hv, ht):
 
 # -- 3. dominance checks --------------------------------------------------------
 
+
 @numba.njit(cache=True, inline="always")
 def _stair_min(li, lf, first, s, bound):
     """Smallest vulnerability among the labels of staircase ``s`` whose turn
@@ -695,7 +736,7 @@ def _stair_insert(li, lf, first, s, x):
     or more."""
     t = li[x, TURNS]
     v = lf[x, F_VUL]
-    keep = -1                       # the last entry before x that stays
+    keep = -1  # the last entry before x that stays
     a = first[s]
     while a >= 0 and li[a, TURNS] > t:
         if lf[a, F_VUL] < v:
@@ -772,8 +813,9 @@ def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties):
 
 
 @numba.njit(cache=True, inline="always")
-def _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state,
-                  cell_size, hs, hd, hv, ht, ties):
+def _goal_covered(
+    li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state, cell_size, hs, hd, hv, ht, ties
+):
     """True if a solution already found covers the f-vector of ``x`` (its
     lower bound at the goal), i.e. every completion of ``x`` is dominated by
     a solution or tolerance-equal to one and not smoother."""
@@ -789,7 +831,7 @@ def _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state
         return False
     if goal_min < fq and not _eq(goal_min, fq):
         return True
-    if mode == MODE_HEADING or not ties:   # MODE_HEADING: Q is integer, goal_min == fq
+    if mode == MODE_HEADING or not ties:  # MODE_HEADING: Q is integer, goal_min == fq
         return True
     fp = _f(li, lf, x, P, cell_size, hs, hd, hv, ht)
     to_go = _ht(ht, li[x, CELL], li[x, F_HEAD])
@@ -821,7 +863,7 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
 
     Returns ``(gmin, first, li, lf, sols, hk, hid, st, stf)``, the arrays
     :func:`_free_run` resumes from."""
-    gmin = np.full(n_states, np.inf)             # BOA*: g2_min of each state
+    gmin = np.full(n_states, np.inf)  # BOA*: g2_min of each state
     first = np.full(n_states + 1, -1, np.int32)  # newest label / staircase head
     li = np.empty((1024, 7), np.int32)
     lf = np.empty((1024, 2))
@@ -846,15 +888,46 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
     st[S_FREE] = -1
     stf = np.full(1, np.inf)
     second = OBJ_VUL if mode == MODE_THREE else Q
-    _heap_push(hk, hid, 0, _f(li, lf, 0, P, cell_size, hs, hd, hv, ht),
-               _f(li, lf, 0, second, cell_size, hs, hd, hv, ht),
-               _f(li, lf, 0, OBJ_SMOOTH, cell_size, hs, hd, hv, ht), 0)
+    _heap_push(
+        hk,
+        hid,
+        0,
+        _f(li, lf, 0, P, cell_size, hs, hd, hv, ht),
+        _f(li, lf, 0, second, cell_size, hs, hd, hv, ht),
+        _f(li, lf, 0, OBJ_SMOOTH, cell_size, hs, hd, hv, ht),
+        0,
+    )
     return gmin, first, li, lf, sols, hk, hid, st, stf
 
 
 @numba.njit(cache=True)
-def _free_run(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
-              gmin, first, li, lf, sols, hk, hid, st, stf, n_steps, max_labels, ties):
+def _free_run(
+    occ,
+    pot,
+    gr,
+    gc,
+    cell_size,
+    mask,
+    mode,
+    P,
+    Q,
+    hs,
+    hd,
+    hv,
+    ht,
+    gmin,
+    first,
+    li,
+    lf,
+    sols,
+    hk,
+    hid,
+    st,
+    stf,
+    n_steps,
+    max_labels,
+    ties,
+):
     """Advance the multi-objective label-setting search from start to goal
     by at most ``n_steps`` pops of the open list.
 
@@ -881,9 +954,33 @@ def _free_run(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
     """
     pops0 = st[S_POPS]
     while True:
-        status = _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q,
-                             hs, hd, hv, ht, gmin, first, li, lf, sols, hk, hid, st, stf,
-                             n_steps - (st[S_POPS] - pops0), max_labels, ties)
+        status = _free_steps(
+            occ,
+            pot,
+            gr,
+            gc,
+            cell_size,
+            mask,
+            mode,
+            P,
+            Q,
+            hs,
+            hd,
+            hv,
+            ht,
+            gmin,
+            first,
+            li,
+            lf,
+            sols,
+            hk,
+            hid,
+            st,
+            stf,
+            n_steps - (st[S_POPS] - pops0),
+            max_labels,
+            ties,
+        )
         if status != NEED_ROOM:
             return li, lf, sols, hk, hid, status
         if st[S_N] + 8 > li.shape[0]:
@@ -897,14 +994,39 @@ def _free_run(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
 
 
 @numba.njit(cache=True)
-def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
-                gmin, first, li, lf, sols, hk, hid, st, stf, n_steps, max_labels, ties):
+def _free_steps(
+    occ,
+    pot,
+    gr,
+    gc,
+    cell_size,
+    mask,
+    mode,
+    P,
+    Q,
+    hs,
+    hd,
+    hv,
+    ht,
+    gmin,
+    first,
+    li,
+    lf,
+    sols,
+    hk,
+    hid,
+    st,
+    stf,
+    n_steps,
+    max_labels,
+    ties,
+):
     """The search loop of :func:`_free_run`, in arrays it never reallocates:
     returns NEED_ROOM before a pop when the label tables, the heap or the
     solution list could overflow."""
     h, w = occ.shape
     goal = gr * w + gc
-    goal_state = first.shape[0] - 1          # MODE_THREE: the goal's staircase
+    goal_state = first.shape[0] - 1  # MODE_THREE: the goal's staircase
     second = OBJ_VUL if mode == MODE_THREE else Q
     n = st[S_N]
     size = st[S_SIZE]
@@ -923,7 +1045,7 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
         if steps == n_steps:
             status = PAUSED
             break
-        if n - n_free + 8 > max_labels:    # an expansion adds up to 8 labels
+        if n - n_free + 8 > max_labels:  # an expansion adds up to 8 labels
             status = OVER_BUDGET
             break
         if n + 8 > li.shape[0] or size + 8 > hid.shape[0] or n_sols + 1 > sols.shape[0]:
@@ -942,22 +1064,58 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
             if c != goal:
                 m = gmin[c]
                 if m < np.inf and not (q < m and not _eq(q, m)):
-                    covered = (not ties or (m < q and not _eq(m, q))
-                               or _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size,
-                                                 ties))
+                    covered = (
+                        not ties
+                        or (m < q and not _eq(m, q))
+                        or _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties)
+                    )
             fq = q + hv[c]
-            if not covered and goal_min < np.inf and not (fq < goal_min and
-                                                          not _eq(fq, goal_min)):
-                covered = (not ties or (goal_min < fq and not _eq(goal_min, fq))
-                           or _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first,
-                                            goal_state, cell_size, hs, hd, hv, ht, ties))
+            if not covered and goal_min < np.inf and not (fq < goal_min and not _eq(fq, goal_min)):
+                covered = (
+                    not ties
+                    or (goal_min < fq and not _eq(goal_min, fq))
+                    or _goal_covered(
+                        li,
+                        lf,
+                        x,
+                        mode,
+                        P,
+                        Q,
+                        goal_min,
+                        goal_first,
+                        first,
+                        goal_state,
+                        cell_size,
+                        hs,
+                        hd,
+                        hv,
+                        ht,
+                        ties,
+                    )
+                )
         else:
-            covered = (c != goal and _state_covered(li, lf, x, mode, P, Q, gmin, first,
-                                                    cell_size, ties)) or \
-                _goal_covered(li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state,
-                              cell_size, hs, hd, hv, ht, ties)
+            covered = (
+                c != goal and _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties)
+            ) or _goal_covered(
+                li,
+                lf,
+                x,
+                mode,
+                P,
+                Q,
+                goal_min,
+                goal_first,
+                first,
+                goal_state,
+                cell_size,
+                hs,
+                hd,
+                hv,
+                ht,
+                ties,
+            )
         if covered:
-            li[x, NEXT] = free                 # recycle the row
+            li[x, NEXT] = free  # recycle the row
             free = x
             n_free += 1
             continue
@@ -993,9 +1151,9 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
                 continue
             r2, c2 = r + DR[d], col + DC[d]
             cell = r2 * w + c2
-            if hv[cell] == np.inf:             # the goal cannot be reached from there
+            if hv[cell] == np.inf:  # the goal cannot be reached from there
                 continue
-            if free >= 0:                      # a recycled row (its NEXT links the free list)
+            if free >= 0:  # a recycled row (its NEXT links the free list)
                 j = free
             else:
                 j = n
@@ -1025,8 +1183,24 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
                 if goal_min < np.inf and not (f_vul < goal_min and not _eq(f_vul, goal_min)):
                     if not ties or (goal_min < f_vul and not _eq(goal_min, f_vul)):
                         continue
-                    if _goal_covered(li, lf, j, mode, P, Q, goal_min, goal_first, first,
-                                     goal_state, cell_size, hs, hd, hv, ht, ties):
+                    if _goal_covered(
+                        li,
+                        lf,
+                        j,
+                        mode,
+                        P,
+                        Q,
+                        goal_min,
+                        goal_first,
+                        first,
+                        goal_state,
+                        cell_size,
+                        hs,
+                        hd,
+                        hv,
+                        ht,
+                        ties,
+                    ):
                         continue
             elif mode == MODE_THREE:
                 # the (turns, vulnerability) staircases, walked here (see above)
@@ -1038,7 +1212,7 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
                         a = first[cell * N_SLOTS + k]
                         if a < 0:
                             continue
-                        bound = t - (0 if k == 8 else _turn(k, d))   # _heading_gap
+                        bound = t - (0 if k == 8 else _turn(k, d))  # _heading_gap
                         if bound < 0:
                             continue
                         while a >= 0 and li[a, TURNS] > bound:
@@ -1055,11 +1229,26 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
                 if covered:
                     continue
             else:
-                if cell != goal and _state_covered(li, lf, j, mode, P, Q, gmin, first,
-                                                   cell_size, ties):
+                if cell != goal and _state_covered(li, lf, j, mode, P, Q, gmin, first, cell_size, ties):
                     continue
-                if _goal_covered(li, lf, j, mode, P, Q, goal_min, goal_first, first, goal_state,
-                                 cell_size, hs, hd, hv, ht, ties):
+                if _goal_covered(
+                    li,
+                    lf,
+                    j,
+                    mode,
+                    P,
+                    Q,
+                    goal_min,
+                    goal_first,
+                    first,
+                    goal_state,
+                    cell_size,
+                    hs,
+                    hd,
+                    hv,
+                    ht,
+                    ties,
+                ):
                     continue
             if j == free:
                 free = li[j, NEXT]
@@ -1085,6 +1274,7 @@ def _free_steps(occ, pot, gr, gc, cell_size, mask, mode, P, Q, hs, hd, hv, ht,
 
 
 # -- 5. paths and the final filter ------------------------------------------------
+
 
 @numba.njit(cache=True)
 def _trace(li, sols, w):
@@ -1153,4 +1343,3 @@ def _tolerant_front(F, order):
             out[n] = i
             n += 1
     return out[:n]
-

@@ -61,6 +61,7 @@ def angle_diff(a, b):
 # discs against the grid
 # ---------------------------------------------------------------------------
 
+
 @numba.njit(cache=True)
 def disc_free(occ, x, y, r):
     """True if the closed disc of radius ``r`` at ``(x, y)`` (cell units)
@@ -158,6 +159,7 @@ def path_clearance(occ, pts, cap):
 # arcs of a simple car
 # ---------------------------------------------------------------------------
 
+
 @numba.njit(cache=True)
 def arc_point(x, y, th, kappa, s):
     """Pose after driving the arc of curvature ``kappa`` for length ``s``
@@ -165,9 +167,7 @@ def arc_point(x, y, th, kappa, s):
     if abs(kappa) < 1e-12:
         return x + s * math.cos(th), y + s * math.sin(th), th
     th1 = th + kappa * s
-    return (x + (math.sin(th1) - math.sin(th)) / kappa,
-            y - (math.cos(th1) - math.cos(th)) / kappa,
-            th1)
+    return (x + (math.sin(th1) - math.sin(th)) / kappa, y - (math.cos(th1) - math.cos(th)) / kappa, th1)
 
 
 @numba.njit(cache=True)
@@ -224,8 +224,7 @@ def arcs_free(occ, x, y, th, kappas, lengths, r, ds):
 # candidate is integrated and kept only when it really ends at the goal pose,
 # so a slip in a formula can cost optimality but never correctness.
 
-_WORDS = np.array([[1, 0, 1], [-1, 0, -1], [1, 0, -1], [-1, 0, 1], [-1, 1, -1], [1, -1, 1]],
-                  dtype=np.int64)
+_WORDS = np.array([[1, 0, 1], [-1, 0, -1], [1, 0, -1], [-1, 0, 1], [-1, 1, -1], [1, -1, 1]], dtype=np.int64)
 
 
 @numba.njit(cache=True)
@@ -236,40 +235,40 @@ def _dubins_word(word, alpha, beta, d):
     ca = math.cos(alpha)
     cb = math.cos(beta)
     cab = math.cos(alpha - beta)
-    if word == 0:                                            # LSL
+    if word == 0:  # LSL
         p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sa - sb)
         if p2 < 0.0:
             return -1.0, -1.0, -1.0
         tmp = math.atan2(cb - ca, d + sa - sb)
         return mod2pi(-alpha + tmp), math.sqrt(p2), mod2pi(beta - tmp)
-    if word == 1:                                            # RSR
+    if word == 1:  # RSR
         p2 = 2.0 + d * d - 2.0 * cab + 2.0 * d * (sb - sa)
         if p2 < 0.0:
             return -1.0, -1.0, -1.0
         tmp = math.atan2(ca - cb, d - sa + sb)
         return mod2pi(alpha - tmp), math.sqrt(p2), mod2pi(-beta + tmp)
-    if word == 2:                                            # LSR
+    if word == 2:  # LSR
         p2 = -2.0 + d * d + 2.0 * cab + 2.0 * d * (sa + sb)
         if p2 < 0.0:
             return -1.0, -1.0, -1.0
         p = math.sqrt(p2)
         tmp = math.atan2(-ca - cb, d + sa + sb) - math.atan2(-2.0, p)
         return mod2pi(-alpha + tmp), p, mod2pi(-mod2pi(beta) + tmp)
-    if word == 3:                                            # RSL
+    if word == 3:  # RSL
         p2 = d * d - 2.0 + 2.0 * cab - 2.0 * d * (sa + sb)
         if p2 < 0.0:
             return -1.0, -1.0, -1.0
         p = math.sqrt(p2)
         tmp = math.atan2(ca + cb, d - sa - sb) - math.atan2(2.0, p)
         return mod2pi(alpha - tmp), p, mod2pi(beta - tmp)
-    if word == 4:                                            # RLR
+    if word == 4:  # RLR
         tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (sa - sb)) / 8.0
         if abs(tmp) > 1.0:
             return -1.0, -1.0, -1.0
         p = mod2pi(TWO_PI - math.acos(tmp))
         t = mod2pi(alpha - math.atan2(ca - cb, d - sa + sb) + p / 2.0)
         return t, p, mod2pi(alpha - beta - t + p)
-    tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (-sa + sb)) / 8.0   # LRL
+    tmp = (6.0 - d * d + 2.0 * cab + 2.0 * d * (-sa + sb)) / 8.0  # LRL
     if abs(tmp) > 1.0:
         return -1.0, -1.0, -1.0
     p = mod2pi(TWO_PI - math.acos(tmp))
@@ -343,7 +342,7 @@ def turn_to_point(x0, y0, th0, x1, y1, radius):
             continue
         tangent = math.sqrt(max(dist * dist - radius * radius, 0.0))
         alpha = math.atan2(vy, vx)
-        psi0 = th0 - side * 0.5 * math.pi                 # robot's angle on the circle
+        psi0 = th0 - side * 0.5 * math.pi  # robot's angle on the circle
         psi1 = alpha - side * math.atan2(tangent, radius)  # tangent point's angle
         sweep = mod2pi(side * (psi1 - psi0))
         if sweep > TWO_PI - 1e-9:
@@ -361,6 +360,7 @@ def turn_to_point(x0, y0, th0, x1, y1, radius):
 # ---------------------------------------------------------------------------
 # the 2-D grid distance used as heuristic and reachability test
 # ---------------------------------------------------------------------------
+
 
 @numba.njit(cache=True)
 def grid_dijkstra(occ, gr, gc):

@@ -44,6 +44,7 @@ HEURISTICS = {"octile": 0, "euclidean": 1, "chebyshev": 2, "zero": 3}
 # moves and distances
 # ---------------------------------------------------------------------------
 
+
 @numba.njit(cache=True, inline="always")
 def can_step(occ, r, c, dr, dc, corner_cutting):
     """True if the move ``(r, c) -> (r + dr, c + dc)`` is allowed.
@@ -71,7 +72,7 @@ def move_mask(occ, h, w, r, c, corner_cutting):
     ``occ`` as bits: bit ``k`` is set if ``can_step`` allows move ``k``."""
     if r == 0 or c == 0 or r == h - 1 or c == w - 1:
         return _border_move_mask(occ, h, w, r, c, corner_cutting)
-    u = r * w + c                                # interior: no bounds checks
+    u = r * w + c  # interior: no bounds checks
     e = not occ[u + 1]
     n = not occ[u - w]
     we = not occ[u - 1]
@@ -80,13 +81,12 @@ def move_mask(occ, h, w, r, c, corner_cutting):
     nw = not occ[u - w - 1]
     sw = not occ[u + w - 1]
     se = not occ[u + w + 1]
-    if not corner_cutting:                       # a diagonal needs both sides free
+    if not corner_cutting:  # a diagonal needs both sides free
         ne &= n & e
         nw &= n & we
         sw &= s & we
         se &= s & e
-    return (e | (ne << 1) | (n << 2) | (nw << 3) | (we << 4) | (sw << 5) | (s << 6)
-            | (se << 7))
+    return e | (ne << 1) | (n << 2) | (nw << 3) | (we << 4) | (sw << 5) | (s << 6) | (se << 7)
 
 
 @numba.njit(cache=True)
@@ -136,6 +136,7 @@ def heuristic(kind, r1, c1, r2, c2):
 # with negative values; pop and remove set -1). Keys compare
 # lexicographically, then the smaller node index wins: ties are deterministic.
 
+
 @numba.njit(cache=True, inline="always")
 def _before(a1, a2, an, b1, b2, bn):
     if a1 != b1:
@@ -175,8 +176,9 @@ def heap_sift_down(hnode, hk1, hk2, pos, i, size):
         if child >= size:
             break
         right = child + 1
-        if right < size and _before(hk1[right], hk2[right], hnode[right],
-                                    hk1[child], hk2[child], hnode[child]):
+        if right < size and _before(
+            hk1[right], hk2[right], hnode[right], hk1[child], hk2[child], hnode[child]
+        ):
             child = right
         if not _before(hk1[child], hk2[child], hnode[child], k1, k2, node):
             break
@@ -312,11 +314,11 @@ def open_push(heap, where, size, held, k1, k2, node):
         if not _precedes(k1, k2, node, held[0], held[1], held[2]):
             _open_sift_up(heap, where, size, k1, k2, node)
             return size + 1, held
-        _open_sift_up(heap, where, size, held[0], held[1], held[2])   # hold the new one
+        _open_sift_up(heap, where, size, held[0], held[1], held[2])  # hold the new one
         where[node] = HELD
         return size + 1, (k1, k2, node)
     if size == 0 or _precedes(k1, k2, node, heap[0], heap[1], heap[2]):
-        where[node] = HELD                                            # before the whole heap
+        where[node] = HELD  # before the whole heap
         return size, (k1, k2, node)
     _open_sift_up(heap, where, size, k1, k2, node)
     return size + 1, held
@@ -326,12 +328,11 @@ def open_push(heap, where, size, held, k1, k2, node):
 def open_decrease(heap, where, held, k1, k2, node):
     """Give the open ``node`` a key not larger than its old one; return ``held``."""
     i = where[node]
-    if i == HELD:                                 # smaller still: stays held
+    if i == HELD:  # smaller still: stays held
         return (k1, k2, node)
     _open_sift_up(heap, where, i - 1, k1, k2, node)
-    if held[2] >= 0 and where[node] == 1 and _precedes(k1, k2, node,
-                                                       held[0], held[1], held[2]):
-        heap[0] = held[0]                         # now before the held entry: swap them
+    if held[2] >= 0 and where[node] == 1 and _precedes(k1, k2, node, held[0], held[1], held[2]):
+        heap[0] = held[0]  # now before the held entry: swap them
         heap[1] = held[1]
         heap[2] = float(held[2])
         where[held[2]] = 1
@@ -350,7 +351,7 @@ def open_pop(heap, where, size, held):
         return -1, size, held
     node = int(heap[2])
     size -= 1
-    k1 = heap[3 * size]                           # the last entry sinks from the root
+    k1 = heap[3 * size]  # the last entry sinks from the root
     k2 = heap[3 * size + 1]
     fnode = heap[3 * size + 2]
     i = 0
@@ -358,9 +359,15 @@ def open_pop(heap, where, size, held):
         c = 2 * i + 1
         if c >= size:
             break
-        if c + 1 < size:                          # the smaller child, branch-free
-            c += _precedes(heap[3 * c + 3], heap[3 * c + 4], heap[3 * c + 5],
-                           heap[3 * c], heap[3 * c + 1], heap[3 * c + 2])
+        if c + 1 < size:  # the smaller child, branch-free
+            c += _precedes(
+                heap[3 * c + 3],
+                heap[3 * c + 4],
+                heap[3 * c + 5],
+                heap[3 * c],
+                heap[3 * c + 1],
+                heap[3 * c + 2],
+            )
         if not _precedes(heap[3 * c], heap[3 * c + 1], heap[3 * c + 2], k1, k2, fnode):
             break
         heap[3 * i] = heap[3 * c]
@@ -379,6 +386,7 @@ def open_pop(heap, where, size, held):
 # ---------------------------------------------------------------------------
 # finished paths
 # ---------------------------------------------------------------------------
+
 
 @numba.njit(cache=True)
 def step_counts(path):
@@ -417,6 +425,7 @@ def path_length(path: np.ndarray, cell_size: float) -> float:
 # input checks
 # ---------------------------------------------------------------------------
 
+
 def check_cell(value, name: str, occ: np.ndarray) -> tuple[int, int]:
     """``value`` as a ``(row, col)`` tuple of a free cell of ``occ``.
 
@@ -437,8 +446,7 @@ def check_cell(value, name: str, occ: np.ndarray) -> tuple[int, int]:
         raise ConfigError(f"{name} must be a (row, col) pair of integers, got {value!r}") from None
     h, w = occ.shape
     if not (0 <= r < h and 0 <= c < w):
-        raise ConfigError(
-            f"{name} {(r, c)} is outside the {h}x{w} grid (rows 0..{h - 1}, cols 0..{w - 1})")
+        raise ConfigError(f"{name} {(r, c)} is outside the {h}x{w} grid (rows 0..{h - 1}, cols 0..{w - 1})")
     if occ[r, c]:
         raise ConfigError(f"{name} {(r, c)} is on an obstacle")
     return r, c

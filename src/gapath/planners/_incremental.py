@@ -82,7 +82,7 @@ class IncrementalGridPlanner:
             return 0
         arr, flags = arr[changed], flags[changed]
         occ_old = occ.copy()
-        occ[arr[:, 0], arr[:, 1]] = flags                        # scan graph: the new edge costs
+        occ[arr[:, 0], arr[:, 1]] = flags  # scan graph: the new edge costs
         if not self._initialized:
             return int(len(arr))
         self._sync_km()
@@ -113,8 +113,7 @@ class IncrementalGridPlanner:
             raise ConfigError(f"cells must be (row, col) pairs of integers, got {cells!r}") from None
         if arr.ndim == 1 and arr.shape[0] == 2:
             arr = arr[None, :]
-        if arr.ndim != 2 or arr.shape[1] != 2 or not np.all(np.isfinite(arr)) \
-                or np.any(arr != np.round(arr)):
+        if arr.ndim != 2 or arr.shape[1] != 2 or not np.all(np.isfinite(arr)) or np.any(arr != np.round(arr)):
             raise ConfigError(f"cells must be (row, col) pairs of integers, got {cells!r}")
         arr = arr.astype(np.int64)
         flags = np.asarray(blocked)
@@ -122,13 +121,14 @@ class IncrementalGridPlanner:
             flags = np.full(len(arr), bool(flags))
         elif flags.shape != (len(arr),):
             raise ConfigError(
-                f"blocked must be one bool or one per cell ({len(arr)}), got shape {flags.shape}")
+                f"blocked must be one bool or one per cell ({len(arr)}), got shape {flags.shape}"
+            )
         flags = flags.astype(bool)
         for (r, c), b in zip(arr, flags):
             if not (0 <= r < h and 0 <= c < w):
                 raise ConfigError(
-                    f"cell {(int(r), int(c))} is outside the {h}x{w} grid "
-                    f"(rows 0..{h - 1}, cols 0..{w - 1})")
+                    f"cell {(int(r), int(c))} is outside the {h}x{w} grid (rows 0..{h - 1}, cols 0..{w - 1})"
+                )
             if b and (r, c) == self._start:
                 raise ConfigError(f"cannot block the robot's cell (start) {self._start}")
             if b and (r, c) == self._goal:

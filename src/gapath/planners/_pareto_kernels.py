@@ -45,6 +45,7 @@ _OUT, _ND, _DOMINATED = 0, 1, 2
 # Small helpers are inlined: numba passes arrays to an outlined call with
 # reference counting, which costs more than these helpers themselves.
 
+
 @numba.njit(cache=True, inline="always")
 def _vinf(V, C, i):
     C[i, 0] = -1
@@ -144,6 +145,7 @@ def _vcmp(V, C, a, b, ucols):
 # ---------------------------------------------------------------------------
 # K[x] = [k1 (M floats) | k2 (M floats) | p(k1) s(k1) p(k2) s(k2)]
 
+
 @numba.njit(cache=True, inline="always")
 def _finish_key(K, row, wts):
     m = wts.shape[1]
@@ -220,6 +222,7 @@ def _octile_counts(a, b, w):
 #   hn[:sz[1]]   binary heap of the non-dominated nodes, ordered by _kbefore;
 #                hk[i] = p(k1), s(k1) of hn[i], kept in heap order
 #   kx, buf      scratch
+
 
 @numba.njit(cache=True, inline="always")
 def _hbefore(hk, i, node_i, j, node_j, K, ucols):
@@ -441,7 +444,7 @@ def _open_insert(x, K, S, ndl, NDK, hn, hk, sz, kx, ucols, pareto):
                 better = True
         if dominates and better:
             z = ndl[i]
-            _nd_del(z, K, S, ndl, NDK, hn, hk, sz, ucols)   # the last member moves into slot i
+            _nd_del(z, K, S, ndl, NDK, hn, hk, sz, ucols)  # the last member moves into slot i
             _splice(S, z, x)
             _attach(S, z, x)
         else:
@@ -491,6 +494,7 @@ def _open_reset(S, sz):
 # A*-PO (forward search)
 # ---------------------------------------------------------------------------
 
+
 @numba.njit(cache=True, inline="always")
 def _astar_key(K, x, V, C, t, w, wts):
     """k1 = g(x) + h(x, goal), k2 = h(x, goal) (deeper nodes first on ties)."""
@@ -505,8 +509,32 @@ def _astar_key(K, x, V, C, t, w, wts):
 
 
 @numba.njit(cache=True)
-def _astar_kernel(s, t, occ, cc, kind, cells, soltab, khat, wts, ucols, pareto,
-                  V, C, K, S, ndl, NDK, hn, hk, sz, kx, buf, parent, closed):
+def _astar_kernel(
+    s,
+    t,
+    occ,
+    cc,
+    kind,
+    cells,
+    soltab,
+    khat,
+    wts,
+    ucols,
+    pareto,
+    V,
+    C,
+    K,
+    S,
+    ndl,
+    NDK,
+    hn,
+    hk,
+    sz,
+    kx,
+    buf,
+    parent,
+    closed,
+):
     """A* over cost vectors from cell ``s`` to ``t``; slots: g(x) = x,
     scratch ``n``. Returns ``(path cell indices, expansions)`` (empty when
     the goal is unreachable)."""
@@ -516,8 +544,8 @@ def _astar_kernel(s, t, occ, cc, kind, cells, soltab, khat, wts, ucols, pareto,
     _open_reset(S, sz)
     for i in range(n):
         closed[i] = False
-        parent[i] = -2                       # -2: not reached yet
-    C[s, 0] = 0                              # g(s) = 0
+        parent[i] = -2  # -2: not reached yet
+    C[s, 0] = 0  # g(s) = 0
     C[s, 1] = 0
     for j in range(V.shape[1]):
         V[s, j] = 0.0
@@ -527,7 +555,7 @@ def _astar_kernel(s, t, occ, cc, kind, cells, soltab, khat, wts, ucols, pareto,
     expansions = 0
     reached = False
     while sz[1] > 0:
-        u = hn[0]                            # smallest priority among the non-dominated
+        u = hn[0]  # smallest priority among the non-dominated
         _open_remove(u, K, S, ndl, NDK, hn, hk, sz, kx, buf, ucols, pareto)
         closed[u] = True
         expansions += 1
@@ -573,6 +601,7 @@ def _astar_kernel(s, t, occ, cc, kind, cells, soltab, khat, wts, ucols, pareto,
 # slots: g(s) = s, rhs(s) = n + s, scratch 2n, 2n + 1, 2n + 2
 # key rows: K[s] for s in U, scratch rows n (the start's key) and n + 1
 
+
 @numba.njit(cache=True, inline="always")
 def _dstar_key(K, row, x, V, C, start, w, km, wts, ucols):
     """CalculateKey(x) into row ``row``:
@@ -580,7 +609,7 @@ def _dstar_key(K, row, x, V, C, start, w, km, wts, ucols):
     n = K.shape[0] - 2
     m = wts.shape[1]
     src = x if _vcmp(V, C, x, n + x, ucols) <= 0 else n + x
-    if C[src, 0] < 0:                                # both infinite: the key is infinite
+    if C[src, 0] < 0:  # both infinite: the key is infinite
         for j in range(K.shape[1]):
             K[row, j] = INF
     else:
@@ -598,8 +627,8 @@ def _update_vertex(u, start, w, km, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn
     """UpdateVertex(u)."""
     n = K.shape[0] - 2
     in_u = S[u, _ST] != _OUT
-    if _vcmp(V, C, u, n + u, ucols) != 0:           # g(u) != rhs(u)
-        if in_u:                                     # U.Update(u, CalculateKey(u))
+    if _vcmp(V, C, u, n + u, ucols) != 0:  # g(u) != rhs(u)
+        if in_u:  # U.Update(u, CalculateKey(u))
             _dstar_key(K, n + 1, u, V, C, start, w, km, wts, ucols)
             same = True
             for j in range(K.shape[1]):
@@ -611,10 +640,10 @@ def _update_vertex(u, start, w, km, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn
             _open_remove(u, K, S, ndl, NDK, hn, hk, sz, kx, buf, ucols, pareto)
             for j in range(K.shape[1]):
                 K[u, j] = K[n + 1, j]
-        else:                                        # U.Insert(u, CalculateKey(u))
+        else:  # U.Insert(u, CalculateKey(u))
             _dstar_key(K, u, u, V, C, start, w, km, wts, ucols)
         _open_insert(u, K, S, ndl, NDK, hn, hk, sz, kx, ucols, pareto)
-    elif in_u:                                       # U.Remove(u)
+    elif in_u:  # U.Remove(u)
         _open_remove(u, K, S, ndl, NDK, hn, hk, sz, kx, buf, ucols, pareto)
 
 
@@ -641,8 +670,31 @@ def _dstar_insert(x, start, km, w, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn,
 
 
 @numba.njit(cache=True)
-def _compute_shortest_path(start, goal, km, occ, cc, kind, cells, soltab, khat, wts, ucols,
-                           pareto, V, C, K, S, ndl, NDK, hn, hk, sz, kx, buf):
+def _compute_shortest_path(
+    start,
+    goal,
+    km,
+    occ,
+    cc,
+    kind,
+    cells,
+    soltab,
+    khat,
+    wts,
+    ucols,
+    pareto,
+    V,
+    C,
+    K,
+    S,
+    ndl,
+    NDK,
+    hn,
+    hk,
+    sz,
+    kx,
+    buf,
+):
     """ComputeShortestPath(); returns the number of expansions."""
     h, w = occ.shape
     n = h * w
@@ -655,56 +707,78 @@ def _compute_shortest_path(start, goal, km, occ, cc, kind, cells, soltab, khat, 
         top_less = sz[1] > 0 and _kcmp(K, hn[0], n, ucols) < 0
         if not (top_less or _vcmp(V, C, n + start, start, ucols) > 0):
             break
-        if sz[1] == 0:                                   # cannot happen
+        if sz[1] == 0:  # cannot happen
             break
-        u = hn[0]                                        # u = U.Top()
-        _dstar_key(K, n + 1, u, V, C, start, w, km, wts, ucols)   # k_new = CalculateKey(u)
-        if _kcmp(K, u, n + 1, ucols) < 0:                # if (k_old < k_new)
+        u = hn[0]  # u = U.Top()
+        _dstar_key(K, n + 1, u, V, C, start, w, km, wts, ucols)  # k_new = CalculateKey(u)
+        if _kcmp(K, u, n + 1, ucols) < 0:  # if (k_old < k_new)
             _open_remove(u, K, S, ndl, NDK, hn, hk, sz, kx, buf, ucols, pareto)
-            for j in range(K.shape[1]):                  # U.Update(u, k_new)
+            for j in range(K.shape[1]):  # U.Update(u, k_new)
                 K[u, j] = K[n + 1, j]
             _open_insert(u, K, S, ndl, NDK, hn, hk, sz, kx, ucols, pareto)
-        elif _vcmp(V, C, u, n + u, ucols) > 0:           # else if (g(u) > rhs(u))
+        elif _vcmp(V, C, u, n + u, ucols) > 0:  # else if (g(u) > rhs(u))
             expansions += 1
-            _vcopy(V, C, u, n + u)                       # g(u) = rhs(u)
-            _open_remove(u, K, S, ndl, NDK, hn, hk, sz, kx, buf, ucols, pareto)   # U.Remove(u)
-            for d in range(8):                           # for all s in Pred(u)
+            _vcopy(V, C, u, n + u)  # g(u) = rhs(u)
+            _open_remove(u, K, S, ndl, NDK, hn, hk, sz, kx, buf, ucols, pareto)  # U.Remove(u)
+            for d in range(8):  # for all s in Pred(u)
                 s = _neighbour(u, d, h, w)
                 if s < 0:
                     continue
-                back = (d + 4) & 7                       # the move s -> u
+                back = (d + 4) & 7  # the move s -> u
                 if s != goal and _passable(occ, cc, s, back, w):
                     # rhs(s) = min(rhs(s), c(s, u) + g(u))
                     _vedge(V, C, t0, u, s, u, back, kind, cells, soltab, khat, wts)
                     if _vcmp(V, C, t0, n + s, ucols) < 0:
                         _vcopy(V, C, n + s, t0)
-                _update_vertex(s, start, w, km, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn, hk,
-                               sz, kx, buf)
+                _update_vertex(s, start, w, km, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn, hk, sz, kx, buf)
         else:
             expansions += 1
-            _vcopy(V, C, gold, u)                        # g_old = g(u)
-            _vinf(V, C, u)                               # g(u) = inf
-            for d in range(8):                           # for all s in Pred(u)
+            _vcopy(V, C, gold, u)  # g_old = g(u)
+            _vinf(V, C, u)  # g(u) = inf
+            for d in range(8):  # for all s in Pred(u)
                 s = _neighbour(u, d, h, w)
                 if s < 0:
                     continue
                 back = (d + 4) & 7
                 if s != goal and _passable(occ, cc, s, back, w):
                     _vedge(V, C, t0, gold, s, u, back, kind, cells, soltab, khat, wts)
-                    if _vcmp(V, C, n + s, t0, ucols) == 0:   # if (rhs(s) = c(s, u) + g_old)
+                    if _vcmp(V, C, n + s, t0, ucols) == 0:  # if (rhs(s) = c(s, u) + g_old)
                         # rhs(s) = min over s' of c(s, s') + g(s')
                         _min_succ(s, n + s, occ, cc, kind, cells, soltab, khat, wts, ucols, V, C)
-                _update_vertex(s, start, w, km, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn, hk,
-                               sz, kx, buf)
+                _update_vertex(s, start, w, km, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn, hk, sz, kx, buf)
             # ... and s = u (no self loops: rhs(u) does not depend on g(u))
-            _update_vertex(u, start, w, km, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn, hk, sz,
-                           kx, buf)
+            _update_vertex(u, start, w, km, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn, hk, sz, kx, buf)
     return expansions
 
 
 @numba.njit(cache=True)
-def _update_changed_edges(occ_old, sources, start, goal, km, occ, cc, kind, cells, soltab, khat,
-                          wts, ucols, pareto, V, C, K, S, ndl, NDK, hn, hk, sz, kx, buf):
+def _update_changed_edges(
+    occ_old,
+    sources,
+    start,
+    goal,
+    km,
+    occ,
+    cc,
+    kind,
+    cells,
+    soltab,
+    khat,
+    wts,
+    ucols,
+    pareto,
+    V,
+    C,
+    K,
+    S,
+    ndl,
+    NDK,
+    hn,
+    hk,
+    sz,
+    kx,
+    buf,
+):
     """for all directed edges (u, v) with changed edge costs: update c(u, v)
     and rhs(u); UpdateVertex(u). Only passability changes (the cost values
     are static); ``sources`` lists every cell whose outgoing edges may have
@@ -723,14 +797,13 @@ def _update_changed_edges(occ_old, sources, start, goal, km, occ, cc, kind, cell
             if was == now:
                 continue
             if u != goal:
-                _vedge(V, C, t0, v, u, v, d, kind, cells, soltab, khat, wts)   # c(u, v) + g(v)
-                if now:                                      # if (c_old > c(u, v))
+                _vedge(V, C, t0, v, u, v, d, kind, cells, soltab, khat, wts)  # c(u, v) + g(v)
+                if now:  # if (c_old > c(u, v))
                     if _vcmp(V, C, t0, n + u, ucols) < 0:
                         _vcopy(V, C, n + u, t0)
-                elif _vcmp(V, C, n + u, t0, ucols) == 0:     # else if (rhs(u) = c_old + g(v))
+                elif _vcmp(V, C, n + u, t0, ucols) == 0:  # else if (rhs(u) = c_old + g(v))
                     _min_succ(u, n + u, occ, cc, kind, cells, soltab, khat, wts, ucols, V, C)
-            _update_vertex(u, start, w, km, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn, hk, sz,
-                           kx, buf)
+            _update_vertex(u, start, w, km, wts, ucols, pareto, V, C, K, S, ndl, NDK, hn, hk, sz, kx, buf)
 
 
 @numba.njit(cache=True)
@@ -769,4 +842,3 @@ def _extract_path(start, goal, occ, cc, kind, cells, soltab, khat, wts, ucols, V
 # ---------------------------------------------------------------------------
 # the model: objectives, normalisers, priority
 # ---------------------------------------------------------------------------
-

@@ -39,16 +39,18 @@ from gapath.planners._grid import (
     DC,
     DR,
     HEURISTICS,
+    NOT_HELD,
     SQRT2,
     STEP,
     check_cell,
-    NOT_HELD,
-    heuristic as _heuristic,
     layer_path_cost,
     move_mask,
     open_decrease,
     open_pop,
     open_push,
+)
+from gapath.planners._grid import (
+    heuristic as _heuristic,
 )
 
 __all__ = ["PlanResult", "astar"]
@@ -84,14 +86,17 @@ class PlanResult:
     seconds: float
 
     def __repr__(self) -> str:
-        return (f"PlanResult(cells={len(self.path)}, cost={self.cost!r}, "
-                f"length={self.length!r}, expansions={self.expansions}, "
-                f"seconds={self.seconds:.6f})")
+        return (
+            f"PlanResult(cells={len(self.path)}, cost={self.cost!r}, "
+            f"length={self.length!r}, expansions={self.expansions}, "
+            f"seconds={self.seconds:.6f})"
+        )
 
 
 @numba.njit(cache=True)
-def _astar_kernel(occ2d, cost2d, use_cost, s, t, corner_cutting, weight, hkind,
-                  state, g, came, heap, touched):
+def _astar_kernel(
+    occ2d, cost2d, use_cost, s, t, corner_cutting, weight, hkind, state, g, came, heap, touched
+):
     """A* from cell ``s`` to cell ``t`` (row-major indices) of the grid ``occ2d``.
 
     ``cost2d`` is the cost layer (unused unless ``use_cost``). The per-cell
@@ -110,11 +115,11 @@ def _astar_kernel(occ2d, cost2d, use_cost, s, t, corner_cutting, weight, hkind,
     unreachable; ``expansions`` is -1 if the start or the goal is blocked.
     """
     h, w = occ2d.shape
-    occ = occ2d.ravel()                             # views, cell v at [v]
+    occ = occ2d.ravel()  # views, cell v at [v]
     cost = cost2d.ravel()
     if occ[s] or occ[t]:
         return np.empty((0, 2), dtype=np.int64), 0, 0, -1
-    offset = np.empty(8, dtype=np.int64)            # index step of each move
+    offset = np.empty(8, dtype=np.int64)  # index step of each move
     for k in range(8):
         offset[k] = DR[k] * w + DC[k]
     tr = t // w
@@ -130,7 +135,7 @@ def _astar_kernel(occ2d, cost2d, use_cost, s, t, corner_cutting, weight, hkind,
 
     while True:
         u, size, held = open_pop(heap, state, size, held)
-        if u < 0:                                   # open list exhausted
+        if u < 0:  # open list exhausted
             break
         state[u] = _CLOSED
         expansions += 1
@@ -152,7 +157,7 @@ def _astar_kernel(occ2d, cost2d, use_cost, s, t, corner_cutting, weight, hkind,
             if use_cost:
                 step *= 1.0 + 0.5 * (cost[u] + cost[v])
             ng = gu + step
-            if sv != _UNSEEN and ng >= g[v]:          # open, and no shorter way
+            if sv != _UNSEEN and ng >= g[v]:  # open, and no shorter way
                 continue
             g[v] = ng
             came[v] = k
@@ -164,7 +169,7 @@ def _astar_kernel(occ2d, cost2d, use_cost, s, t, corner_cutting, weight, hkind,
             else:
                 held = open_decrease(heap, state, held, ng + hv, hv, v)
 
-    for i in range(n_touched):                      # leave state all _UNSEEN
+    for i in range(n_touched):  # leave state all _UNSEEN
         state[touched[i]] = _UNSEEN
     if not reached:
         return np.empty((0, 2), dtype=np.int64), 0, 0, expansions
@@ -193,16 +198,18 @@ class _Scratch(threading.local):
     searches on large maps). The kernel leaves ``state`` all zero."""
 
     n = -1
-    arrays = ()
+    arrays: tuple = ()
 
     def get(self, n: int):
         if n > self.n:
             index = np.int32 if n < 2**31 - 1 else np.int64
-            self.arrays = (np.zeros(n, index),               # state
-                           np.empty(n),                      # g
-                           np.empty(n, np.uint8),            # came
-                           np.empty(3 * n),                  # open list (heap)
-                           np.empty(n, index))               # touched cells
+            self.arrays = (
+                np.zeros(n, index),  # state
+                np.empty(n),  # g
+                np.empty(n, np.uint8),  # came
+                np.empty(3 * n),  # open list (heap)
+                np.empty(n, index),
+            )  # touched cells
             self.n = n
         return self.arrays
 
@@ -236,25 +243,26 @@ def check_cost_layer(cost, shape) -> np.ndarray:
         arr = np.asarray(cost)
     except Exception:  # pragma: no cover - exotic objects
         raise ConfigError(
-            f"cost must be an array of shape {tuple(shape)}, got {type(cost).__name__}") from None
-    if arr.dtype == np.bool_ or not (np.issubdtype(arr.dtype, np.integer)
-                                     or np.issubdtype(arr.dtype, np.floating)):
+            f"cost must be an array of shape {tuple(shape)}, got {type(cost).__name__}"
+        ) from None
+    if arr.dtype == np.bool_ or not (
+        np.issubdtype(arr.dtype, np.integer) or np.issubdtype(arr.dtype, np.floating)
+    ):
         raise ConfigError(f"cost must be a numeric array, got dtype {arr.dtype}")
     if arr.shape != tuple(shape):
-        raise ConfigError(
-            f"cost must have the grid's shape {tuple(shape)}, got shape {arr.shape}")
+        raise ConfigError(f"cost must have the grid's shape {tuple(shape)}, got shape {arr.shape}")
     arr = np.ascontiguousarray(arr, dtype=np.float64)
     bad = ~np.isfinite(arr)
     if bad.any():
         r, c = np.argwhere(bad)[0]
         raise ConfigError(
             f"cost must be finite, got {float(arr[r, c])!r} at (row {r}, col {c}) "
-            f"(mark impassable cells as obstacles instead)")
+            f"(mark impassable cells as obstacles instead)"
+        )
     neg = arr < 0
     if neg.any():
         r, c = np.argwhere(neg)[0]
-        raise ConfigError(
-            f"cost must be non-negative, got {float(arr[r, c])!r} at (row {r}, col {c})")
+        raise ConfigError(f"cost must be non-negative, got {float(arr[r, c])!r} at (row {r}, col {c})")
     return arr
 
 
@@ -268,8 +276,9 @@ def _check_weight(weight) -> float:
     return wv
 
 
-def astar(workspace, start=None, goal=None, *, cost=None, weight: float = 1.0,
-          heuristic: str = "octile") -> PlanResult:
+def astar(
+    workspace, start=None, goal=None, *, cost=None, weight: float = 1.0, heuristic: str = "octile"
+) -> PlanResult:
     """Shortest 8-connected path by A*.
 
     Parameters
@@ -330,7 +339,7 @@ def astar(workspace, start=None, goal=None, *, cost=None, weight: float = 1.0,
     4.0
     """
     t0 = time.perf_counter()
-    occ = workspace.occ                 # C-contiguous read-only bool (Workspace)
+    occ = workspace.occ  # C-contiguous read-only bool (Workspace)
     start = workspace.start if start is None else start
     goal = workspace.goal if goal is None else goal
     s = _cell_index(start, "start", occ)
@@ -338,8 +347,7 @@ def astar(workspace, start=None, goal=None, *, cost=None, weight: float = 1.0,
     wv = weight if type(weight) is float and 0.0 <= weight < math.inf else _check_weight(weight)
     hkind = HEURISTICS.get(heuristic) if isinstance(heuristic, str) else None
     if hkind is None:
-        raise ConfigError(
-            f"heuristic must be one of {', '.join(map(repr, HEURISTICS))}, got {heuristic!r}")
+        raise ConfigError(f"heuristic must be one of {', '.join(map(repr, HEURISTICS))}, got {heuristic!r}")
     if cost is None:
         layer = _NO_COST
         use_cost = False
@@ -347,19 +355,25 @@ def astar(workspace, start=None, goal=None, *, cost=None, weight: float = 1.0,
         layer = check_cost_layer(cost, occ.shape)
         use_cost = True
     path, n_straight, n_diagonal, expansions = _astar_kernel(
-        occ, layer, use_cost, s, t, workspace.corner_cutting, wv, hkind,
-        *_scratch.get(occ.size))
+        occ, layer, use_cost, s, t, workspace.corner_cutting, wv, hkind, *_scratch.get(occ.size)
+    )
     if len(path) == 0:
-        src = check_cell(start, "start", occ)          # raises if on an obstacle
+        src = check_cell(start, "start", occ)  # raises if on an obstacle
         dst = check_cell(goal, "goal", occ)
         h, w = occ.shape
         rule = "allowed" if workspace.corner_cutting else "not allowed"
         raise NoPathError(
             f"no path from start {src} to goal {dst} on the {h}x{w} grid "
-            f"(8-connected, corner cutting {rule}; the search closed {expansions} cells)")
+            f"(8-connected, corner cutting {rule}; the search closed {expansions} cells)"
+        )
     cs = workspace.cell_size
-    length = (n_straight + SQRT2 * n_diagonal) * cs      # as path_length (SPEC)
+    length = (n_straight + SQRT2 * n_diagonal) * cs  # as path_length (SPEC)
     total = layer_path_cost(path, layer) * cs if use_cost else length
     path.setflags(write=False)
-    return PlanResult(path=path, cost=float(total), length=float(length),
-                      expansions=int(expansions), seconds=time.perf_counter() - t0)
+    return PlanResult(
+        path=path,
+        cost=float(total),
+        length=float(length),
+        expansions=int(expansions),
+        seconds=time.perf_counter() - t0,
+    )

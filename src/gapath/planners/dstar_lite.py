@@ -34,7 +34,7 @@ import time
 import numba
 import numpy as np
 
-from gapath.errors import ConfigError, NoPathError
+from gapath.errors import NoPathError
 from gapath.planners._grid import (
     DC,
     DR,
@@ -70,6 +70,7 @@ H_FACTOR = 1.0 - 1e-9
 # ---------------------------------------------------------------------------
 # the graph
 # ---------------------------------------------------------------------------
+
 
 @numba.njit(cache=True, inline="always")
 def _c(occ, corner_cutting, ur, uc, k):
@@ -112,6 +113,7 @@ def _min_succ(occ, cc, g, u):
 # the priority queue U and the keys
 # ---------------------------------------------------------------------------
 
+
 @numba.njit(cache=True, inline="always")
 def _key_less(a1, a2, b1, b2):
     """Lexicographic ``[a1; a2] < [b1; b2]``."""
@@ -135,13 +137,13 @@ def _calculate_key(g, rhs, s, start, w, km):
 def _update_vertex(u, g, rhs, hnode, hk1, hk2, pos, size, start, w, km):
     """UpdateVertex(u); returns the new size of U."""
     in_u = pos[u] >= 0
-    if g[u] != rhs[u] and in_u:                     # U.Update(u, CalculateKey(u))
+    if g[u] != rhs[u] and in_u:  # U.Update(u, CalculateKey(u))
         key1, key2 = _calculate_key(g, rhs, u, start, w, km)
         heap_update(hnode, hk1, hk2, pos, size, u, key1, key2)
-    elif g[u] != rhs[u] and not in_u:               # U.Insert(u, CalculateKey(u))
+    elif g[u] != rhs[u] and not in_u:  # U.Insert(u, CalculateKey(u))
         key1, key2 = _calculate_key(g, rhs, u, start, w, km)
         size = heap_push(hnode, hk1, hk2, pos, size, u, key1, key2)
-    elif g[u] == rhs[u] and in_u:                   # U.Remove(u)
+    elif g[u] == rhs[u] and in_u:  # U.Remove(u)
         size = heap_remove(hnode, hk1, hk2, pos, size, u)
     return size
 
@@ -166,41 +168,41 @@ def _compute_shortest_path(occ, cc, g, rhs, hnode, hk1, hk2, pos, size, start, g
         s1, s2 = _calculate_key(g, rhs, start, start, w, km)
         if not (_key_less(top1, top2, s1, s2) or rhs[start] > g[start]):
             break
-        u = hnode[0]                                             # u = U.Top()
-        kold1 = top1                                             # k_old = U.TopKey()
+        u = hnode[0]  # u = U.Top()
+        kold1 = top1  # k_old = U.TopKey()
         kold2 = top2
-        knew1, knew2 = _calculate_key(g, rhs, u, start, w, km)   # k_new = CalculateKey(u)
-        if _key_less(kold1, kold2, knew1, knew2):                # if (k_old < k_new)
+        knew1, knew2 = _calculate_key(g, rhs, u, start, w, km)  # k_new = CalculateKey(u)
+        if _key_less(kold1, kold2, knew1, knew2):  # if (k_old < k_new)
             # U.Update(u, k_new)
             heap_update(hnode, hk1, hk2, pos, size, u, knew1, knew2)
-        elif g[u] > rhs[u]:                                      # else if (g(u) > rhs(u))
+        elif g[u] > rhs[u]:  # else if (g(u) > rhs(u))
             expansions += 1
-            g[u] = rhs[u]                                        # g(u) = rhs(u)
-            _, size = heap_pop(hnode, hk1, hk2, pos, size)      # U.Remove(u)
+            g[u] = rhs[u]  # g(u) = rhs(u)
+            _, size = heap_pop(hnode, hk1, hk2, pos, size)  # U.Remove(u)
             ur = u // w
             uc = u - ur * w
-            for k in range(8):                                   # for all s in Pred(u)
+            for k in range(8):  # for all s in Pred(u)
                 s = _neighbour(u, k, h, w)
                 if s < 0:
                     continue
-                if s != goal:                 # if (s != s_goal) rhs(s) = min(rhs(s), c(s,u) + g(u))
+                if s != goal:  # if (s != s_goal) rhs(s) = min(rhs(s), c(s,u) + g(u))
                     cand = _c(occ, cc, ur, uc, k) + g[u]
                     if cand < rhs[s]:
                         rhs[s] = cand
                 # UpdateVertex(s)
                 size = _update_vertex(s, g, rhs, hnode, hk1, hk2, pos, size, start, w, km)
-        else:                                                    # else
+        else:  # else
             expansions += 1
-            g_old = g[u]                                         # g_old = g(u)
-            g[u] = INF                                           # g(u) = inf
+            g_old = g[u]  # g_old = g(u)
+            g[u] = INF  # g(u) = inf
             ur = u // w
             uc = u - ur * w
-            for k in range(8):                                   # for all s in Pred(u)
+            for k in range(8):  # for all s in Pred(u)
                 s = _neighbour(u, k, h, w)
                 if s < 0:
                     continue
-                if rhs[s] == _c(occ, cc, ur, uc, k) + g_old:     # if (rhs(s) = c(s,u) + g_old)
-                    if s != goal:                 # if (s != s_goal) rhs(s) = min_s' c(s,s') + g(s')
+                if rhs[s] == _c(occ, cc, ur, uc, k) + g_old:  # if (rhs(s) = c(s,u) + g_old)
+                    if s != goal:  # if (s != s_goal) rhs(s) = min_s' c(s,s') + g(s')
                         rhs[s] = _min_succ(occ, cc, g, s)
                 # UpdateVertex(s)
                 size = _update_vertex(s, g, rhs, hnode, hk1, hk2, pos, size, start, w, km)
@@ -211,8 +213,7 @@ def _compute_shortest_path(occ, cc, g, rhs, hnode, hk1, hk2, pos, size, start, g
 
 
 @numba.njit(cache=True)
-def _update_changed_edges(occ_old, occ, cc, sources, g, rhs, hnode, hk1, hk2, pos, size,
-                          start, goal, km):
+def _update_changed_edges(occ_old, occ, cc, sources, g, rhs, hnode, hk1, hk2, pos, size, start, goal, km):
     """for all directed edges (u, v) with changed edge costs.
 
     ``sources`` lists every cell ``u`` whose outgoing edges may have changed;
@@ -228,17 +229,17 @@ def _update_changed_edges(occ_old, occ, cc, sources, g, rhs, hnode, hk1, hk2, po
             v = _neighbour(u, k, h, w)
             if v < 0:
                 continue
-            c_old = _c(occ_old, cc, ur, uc, k)                   # c_old = c(u, v)
-            c_new = _c(occ, cc, ur, uc, k)                       # update c(u, v)
+            c_old = _c(occ_old, cc, ur, uc, k)  # c_old = c(u, v)
+            c_new = _c(occ, cc, ur, uc, k)  # update c(u, v)
             if c_old == c_new:
                 continue
-            if c_old > c_new:                                    # if (c_old > c(u, v))
-                if u != goal:                 # if (u != s_goal) rhs(u) = min(rhs(u), c(u,v) + g(v))
+            if c_old > c_new:  # if (c_old > c(u, v))
+                if u != goal:  # if (u != s_goal) rhs(u) = min(rhs(u), c(u,v) + g(v))
                     cand = c_new + g[v]
                     if cand < rhs[u]:
                         rhs[u] = cand
-            elif rhs[u] == c_old + g[v]:                         # else if (rhs(u) = c_old + g(v))
-                if u != goal:                     # if (u != s_goal) rhs(u) = min_s' c(u,s') + g(s')
+            elif rhs[u] == c_old + g[v]:  # else if (rhs(u) = c_old + g(v))
+                if u != goal:  # if (u != s_goal) rhs(u) = min_s' c(u,s') + g(s')
                     rhs[u] = _min_succ(occ, cc, g, u)
             # UpdateVertex(u)
             size = _update_vertex(u, g, rhs, hnode, hk1, hk2, pos, size, start, w, km)
@@ -260,7 +261,7 @@ def _extract_path(occ, cc, g, start, goal):
     m = 1
     s = start
     while s != goal:
-        if m > n:                                 # cannot happen with consistent g
+        if m > n:  # cannot happen with consistent g
             return np.empty((0, 2), dtype=np.int64)
         sr = s // w
         sc = s - sr * w
@@ -289,6 +290,7 @@ def _extract_path(occ, cc, g, start, goal):
 # ---------------------------------------------------------------------------
 # the planner
 # ---------------------------------------------------------------------------
+
 
 class DStarLite(IncrementalGridPlanner):
     """Incremental shortest paths under changing obstacles (D* Lite).
@@ -346,9 +348,9 @@ class DStarLite(IncrementalGridPlanner):
         n = occ.size
         self._g = np.empty(n)
         self._rhs = np.empty(n)
-        self._pos = np.empty(n, dtype=np.int64)        # slot of a cell in U, -1 if not in U
-        self._hnode = np.empty(n, dtype=np.int64)      # U: cells in heap order
-        self._hk1 = np.empty(n)                        # ... and their keys
+        self._pos = np.empty(n, dtype=np.int64)  # slot of a cell in U, -1 if not in U
+        self._hnode = np.empty(n, dtype=np.int64)  # U: cells in heap order
+        self._hk1 = np.empty(n)  # ... and their keys
         self._hk2 = np.empty(n)
         self._size = 0
         self._km = 0.0
@@ -362,8 +364,14 @@ class DStarLite(IncrementalGridPlanner):
         (start = the robot's cell)."""
         from gapath.workspace import Workspace
 
-        return Workspace(self._occ.copy(), self._start, self._goal, cell_size=self.cell_size,
-                         corner_cutting=self.corner_cutting, name=self.name)
+        return Workspace(
+            self._occ.copy(),
+            self._start,
+            self._goal,
+            cell_size=self.cell_size,
+            corner_cutting=self.corner_cutting,
+            name=self.name,
+        )
 
     # -- the paper's Main(); move_to and update_cells: IncrementalGridPlanner --
     def plan(self) -> PlanResult:
@@ -380,26 +388,39 @@ class DStarLite(IncrementalGridPlanner):
             If the goal is unreachable (the planner stays usable).
         """
         t0 = time.perf_counter()
-        self._g.fill(INF)                                        # rhs(s) = g(s) = inf
+        self._g.fill(INF)  # rhs(s) = g(s) = inf
         self._rhs.fill(INF)
-        self._pos.fill(-1)                                       # U = empty
+        self._pos.fill(-1)  # U = empty
         self._size = 0
-        self._km = 0.0                                           # km = 0
-        self._last = self._start                                 # s_last = s_start
+        self._km = 0.0  # km = 0
+        self._last = self._start  # s_last = s_start
         goal = self._index(self._goal)
-        self._rhs[goal] = 0.0                                    # rhs(s_goal) = 0
+        self._rhs[goal] = 0.0  # rhs(s_goal) = 0
         h_start_goal = _h(self._index(self._start), goal, self._occ.shape[1])
-        self._size = heap_push(self._hnode, self._hk1, self._hk2, self._pos, 0,
-                               goal, h_start_goal, 0.0)  # U.Insert(s_goal, [h(s_start, s_goal); 0])
+        self._size = heap_push(
+            self._hnode, self._hk1, self._hk2, self._pos, 0, goal, h_start_goal, 0.0
+        )  # U.Insert(s_goal, [h(s_start, s_goal); 0])
         self._initialized = True
         return self._search(t0)
 
     # -- helpers -----------------------------------------------------------
     def _repair_edges(self, occ_old, src) -> None:
         self._size = _update_changed_edges(
-            occ_old, self._occ, self.corner_cutting, src, self._g, self._rhs, self._hnode,
-            self._hk1, self._hk2, self._pos, self._size, self._index(self._start),
-            self._index(self._goal), self._km)
+            occ_old,
+            self._occ,
+            self.corner_cutting,
+            src,
+            self._g,
+            self._rhs,
+            self._hnode,
+            self._hk1,
+            self._hk2,
+            self._pos,
+            self._size,
+            self._index(self._start),
+            self._index(self._goal),
+            self._km,
+        )
 
     def _sync_km(self) -> None:
         """km = km + h(s_last, s_start); s_last = s_start.
@@ -414,8 +435,19 @@ class DStarLite(IncrementalGridPlanner):
         start = self._index(self._start)
         goal = self._index(self._goal)
         self._size, expansions = _compute_shortest_path(
-            self._occ, self.corner_cutting, self._g, self._rhs, self._hnode, self._hk1,
-            self._hk2, self._pos, self._size, start, goal, self._km)
+            self._occ,
+            self.corner_cutting,
+            self._g,
+            self._rhs,
+            self._hnode,
+            self._hk1,
+            self._hk2,
+            self._pos,
+            self._size,
+            start,
+            goal,
+            self._km,
+        )
         if start == goal:
             path = np.array([self._start], dtype=np.int64)
         elif not np.isfinite(self._rhs[start]):
@@ -423,17 +455,25 @@ class DStarLite(IncrementalGridPlanner):
             h, w = self._occ.shape
             raise NoPathError(
                 f"no path from start {self._start} to goal {self._goal} on the {h}x{w} grid "
-                f"(8-connected, corner cutting {rule})")
+                f"(8-connected, corner cutting {rule})"
+            )
         else:
             path = _extract_path(self._occ, self.corner_cutting, self._g, start, goal)
             if len(path) == 0:  # pragma: no cover - would be a bug
                 raise RuntimeError("D* Lite: inconsistent g-values while extracting the path")
         length = path_length(path, self.cell_size)
         path.setflags(write=False)
-        return PlanResult(path=path, cost=float(length), length=float(length),
-                          expansions=int(expansions), seconds=time.perf_counter() - t0)
+        return PlanResult(
+            path=path,
+            cost=float(length),
+            length=float(length),
+            expansions=int(expansions),
+            seconds=time.perf_counter() - t0,
+        )
 
     def __repr__(self) -> str:
         h, w = self._occ.shape
-        return (f"DStarLite(shape={h}x{w}, start={self._start}, goal={self._goal}, "
-                f"corner_cutting={self.corner_cutting}, km={self._km:g})")
+        return (
+            f"DStarLite(shape={h}x{w}, start={self._start}, goal={self._goal}, "
+            f"corner_cutting={self.corner_cutting}, km={self._km:g})"
+        )

@@ -55,10 +55,40 @@ from gapath.encodings.base import Frame, expand_profiles, split_paths
 from gapath.errors import ConfigError, LabelBudgetError, NoPathError
 from gapath.objectives import OBJECTIVES, QUARTER_PI, SQRT2, objective_index
 from gapath.planners._exact_kernels import (
-    DONE, EIGHTHS, F_VUL, LENGTH, MODE_CELL, MODE_HEADING, MODE_THREE, N_SLOTS, ND, NS,
-    OBJ_LEN, OBJ_SMOOTH, OBJ_VUL, OVER_BUDGET, PARENT, ROW, S_EXPANDED, S_GENERATED, S_N,
-    S_N_FREE, S_POPS, S_SIZE, S_SOLS, TURNS, VUL, _free_heuristics, _free_init, _free_run,
-    _monotone_columns, _monotone_start, _move_masks, _tolerant_front, _trace)
+    DONE,
+    EIGHTHS,
+    F_VUL,
+    LENGTH,
+    MODE_CELL,
+    MODE_HEADING,
+    MODE_THREE,
+    N_SLOTS,
+    ND,
+    NS,
+    OBJ_LEN,
+    OBJ_SMOOTH,
+    OBJ_VUL,
+    OVER_BUDGET,
+    PARENT,
+    ROW,
+    S_EXPANDED,
+    S_GENERATED,
+    S_N,
+    S_N_FREE,
+    S_POPS,
+    S_SIZE,
+    S_SOLS,
+    TURNS,
+    VUL,
+    _free_heuristics,
+    _free_init,
+    _free_run,
+    _monotone_columns,
+    _monotone_start,
+    _move_masks,
+    _tolerant_front,
+    _trace,
+)
 
 __all__ = ["ExactFront", "monotone_front", "free_front", "EXACT_OBJECTIVES"]
 
@@ -80,6 +110,7 @@ _SLICE_S = 0.1
 # ---------------------------------------------------------------------------
 # result
 # ---------------------------------------------------------------------------
+
 
 @dataclass(frozen=True, eq=False)
 class ExactFront:
@@ -113,7 +144,7 @@ class ExactFront:
     objectives: tuple
     F: np.ndarray
     paths: list
-    profiles: tuple
+    profiles: tuple | None
     smoothness: np.ndarray
     stats: dict = field(default_factory=dict)
 
@@ -151,6 +182,7 @@ class ExactFront:
 # monotone reference front
 # ---------------------------------------------------------------------------
 
+
 def _check_objectives(objectives) -> tuple[str, ...]:
     names = tuple(OBJECTIVES[i] for i in objective_index(objectives))
     bad = [n for n in names if n not in EXACT_OBJECTIVES]
@@ -158,7 +190,8 @@ def _check_objectives(objectives) -> tuple[str, ...]:
         raise ConfigError(
             f"objective {bad[0]!r} cannot be minimised by the exact planner (it is a "
             f"constraint: every returned path has interfering == 0); "
-            f"choose among {', '.join(EXACT_OBJECTIVES)}")
+            f"choose among {', '.join(EXACT_OBJECTIVES)}"
+        )
     return names
 
 
@@ -166,10 +199,14 @@ def _budget(max_labels) -> int:
     """The label budget as an int (``None``: the largest one)."""
     if max_labels is None:
         return MAX_LABELS
-    if isinstance(max_labels, bool) or not isinstance(max_labels, (int, np.integer)) \
-            or not 1 <= max_labels <= MAX_LABELS:
-        raise ConfigError(f"max_labels (--max-labels) must be an integer between 1 and "
-                          f"{MAX_LABELS:,}, got {max_labels!r}")
+    if (
+        isinstance(max_labels, bool)
+        or not isinstance(max_labels, (int, np.integer))
+        or not 1 <= max_labels <= MAX_LABELS
+    ):
+        raise ConfigError(
+            f"max_labels (--max-labels) must be an integer between 1 and {MAX_LABELS:,}, got {max_labels!r}"
+        )
     return int(max_labels)
 
 
@@ -209,8 +246,7 @@ class _DeferredInterrupt:
 
     def __exit__(self, exc_type, exc, tb):
         if self.installed:
-            signal.signal(signal.SIGINT, self.prev if self.prev is not None
-                          else signal.default_int_handler)
+            signal.signal(signal.SIGINT, self.prev if self.prev is not None else signal.default_int_handler)
         if exc_type is None:
             self.check()
         return False
@@ -224,14 +260,15 @@ class _Slices:
         self.n, self.lo, self.hi = first, lo, hi
 
     def update(self, done: int, seconds: float) -> None:
-        if done < self.n:          # the kernel stopped early: nothing to learn
+        if done < self.n:  # the kernel stopped early: nothing to learn
             return
         scale = _SLICE_S / max(seconds, 1e-4)
         self.n = int(min(self.hi, max(self.lo, self.n * min(4.0, max(0.25, scale)))))
 
 
-def monotone_front(workspace, objectives=("length", "vulnerability"), *, max_labels=None,
-                   progress=None) -> ExactFront:
+def monotone_front(
+    workspace, objectives=("length", "vulnerability"), *, max_labels=None, progress=None
+) -> ExactFront:
     """Exact Pareto front of the feasible column-monotone paths.
 
     A dynamic programme over the columns of the canonical frame: the state is
@@ -317,14 +354,33 @@ def monotone_front(workspace, objectives=("length", "vulnerability"), *, max_lab
         while True:
             k0, t1 = st[1], time.perf_counter()
             li, lf, off, status, n_cand = _monotone_columns(
-                occ, pot, gr, frame.col0, frame.n_cols, cs, cc, *use, primary, li, lf, off, st,
-                slices.n, budget)
+                occ,
+                pot,
+                gr,
+                frame.col0,
+                frame.n_cols,
+                cs,
+                cc,
+                *use,
+                primary,
+                li,
+                lf,
+                off,
+                st,
+                slices.n,
+                budget,
+            )
             interrupt.check()
             now = time.perf_counter()
             slices.update(st[1] - k0, now - t1)
             peak = max(peak, li.nbytes + lf.nbytes + off.nbytes + n_cand * (li.itemsize * 6 + 16))
-            stats = {"columns": int(st[1]), "n_cols": int(frame.n_cols), "labels": int(st[0]),
-                     "peak_bytes": int(peak), "seconds": now - t0}
+            stats = {
+                "columns": int(st[1]),
+                "n_cols": int(frame.n_cols),
+                "labels": int(st[0]),
+                "peak_bytes": int(peak),
+                "seconds": now - t0,
+            }
             if status == OVER_BUDGET:
                 raise LabelBudgetError(
                     f"monotone DP stopped at the label budget max_labels={budget:,} "
@@ -332,7 +388,9 @@ def monotone_front(workspace, objectives=("length", "vulnerability"), *, max_lab
                     f"candidates for the next column after {stats['columns']} of "
                     f"{stats['n_cols']} columns ({stats['seconds']:.1f} s); no front (a partial "
                     f"DP is not a Pareto front). Raise the budget, or use a smaller map or fewer "
-                    f"objectives", {**stats, "max_labels": budget})
+                    f"objectives",
+                    {**stats, "max_labels": budget},
+                )
             if progress is not None:
                 progress({"phase": "monotone", **stats})
             if status == DONE:
@@ -343,7 +401,8 @@ def monotone_front(workspace, objectives=("length", "vulnerability"), *, max_lab
         raise NoPathError(
             f"no feasible column-monotone path from {workspace.start} to {workspace.goal} "
             f"in workspace {workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
-            f"corner_cutting={workspace.corner_cutting})")
+            f"corner_cutting={workspace.corner_cutting})"
+        )
 
     # back-pointers -> exit row of every column
     final = np.arange(lo, hi)
@@ -366,9 +425,14 @@ def monotone_front(workspace, objectives=("length", "vulnerability"), *, max_lab
     F, entries, exits = F[order], entries[order], exits[order]
     cells, n_cells = expand_profiles(frame, entries, exits)
     stats["seconds"] = time.perf_counter() - t0
-    return ExactFront(objectives=names, F=F, paths=split_paths(cells, n_cells),
-                      profiles=(entries, exits), smoothness=values["smoothness"][order],
-                      stats=stats)
+    return ExactFront(
+        objectives=names,
+        F=F,
+        paths=split_paths(cells, n_cells),
+        profiles=(entries, exits),
+        smoothness=values["smoothness"][order],
+        stats=stats,
+    )
 
 
 # ---------------------------------------------------------------------------
@@ -388,8 +452,14 @@ def _search_plan(names):
     return MODE_HEADING, (rest[0] if rest else OBJ_LEN), OBJ_SMOOTH
 
 
-def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=None,
-               progress=None, tie_break="smoothest") -> ExactFront:
+def free_front(
+    workspace,
+    objectives=("length", "vulnerability"),
+    *,
+    max_labels=None,
+    progress=None,
+    tie_break="smoothest",
+) -> ExactFront:
     """Exact Pareto front of all feasible 8-connected paths.
 
     A multi-objective label-setting search from the start to the goal over
@@ -555,10 +625,25 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
             raise NoPathError(
                 f"no feasible path from {workspace.start} to {workspace.goal} in workspace "
                 f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
-                f"corner_cutting={workspace.corner_cutting})")
+                f"corner_cutting={workspace.corner_cutting})"
+            )
         n_states = h * w * (1 if mode == MODE_CELL else N_SLOTS)
-        args = (occ, pot, (sr, sc), (gr, gc), cs, mask, mode, P, Q, (hs, hd, hv, ht), n_states,
-                budget, progress, interrupt)
+        args = (
+            occ,
+            pot,
+            (sr, sc),
+            (gr, gc),
+            cs,
+            mask,
+            mode,
+            P,
+            Q,
+            (hs, hd, hv, ht),
+            n_states,
+            budget,
+            progress,
+            interrupt,
+        )
         total = {"expansions": 0, "generated": 0, "labels": 0, "peak_bytes": 0}
         li, lf, sols, st = _search_pass(*args, tie_break == "smoothest", total, t0)
 
@@ -573,15 +658,42 @@ def free_front(workspace, objectives=("length", "vulnerability"), *, max_labels=
     keep = _tolerant_front(np.ascontiguousarray(F), order)
     keep = keep[np.lexsort(F[keep].T[::-1])]
     cells, offsets = _trace(li, sols[keep], w)
-    paths = [cells[offsets[i]:offsets[i + 1]] for i in range(len(keep))]
-    stats = {**total, "solutions": int(st[S_SOLS]), "heuristic_seconds": t_heur,
-             "seconds": time.perf_counter() - t0}
-    return ExactFront(objectives=names, F=F[keep], paths=paths, profiles=None,
-                      smoothness=values["smoothness"][keep], stats=stats)
+    paths = [cells[offsets[i] : offsets[i + 1]] for i in range(len(keep))]
+    stats = {
+        **total,
+        "solutions": int(st[S_SOLS]),
+        "heuristic_seconds": t_heur,
+        "seconds": time.perf_counter() - t0,
+    }
+    return ExactFront(
+        objectives=names,
+        F=F[keep],
+        paths=paths,
+        profiles=None,
+        smoothness=values["smoothness"][keep],
+        stats=stats,
+    )
 
 
-def _search_pass(occ, pot, start, goal, cs, mask, mode, P, Q, heuristics, n_states, budget,
-                 progress, interrupt, ties, total, t0):
+def _search_pass(
+    occ,
+    pot,
+    start,
+    goal,
+    cs,
+    mask,
+    mode,
+    P,
+    Q,
+    heuristics,
+    n_states,
+    budget,
+    progress,
+    interrupt,
+    ties,
+    total,
+    t0,
+):
     """One run of the free search in slices (progress, Ctrl-C and the budget
     handled between slices); adds its counts to ``total``. Returns the label
     tables, the solution labels and the scalar state."""
@@ -589,21 +701,50 @@ def _search_pass(occ, pot, start, goal, cs, mask, mode, P, Q, heuristics, n_stat
     w = occ.shape[1]
     hs, hd, hv, ht = heuristics
     gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
-        pot, sr, sc, w, cs, mode, P, Q, hs, hd, hv, ht, n_states)
+        pot, sr, sc, w, cs, mode, P, Q, hs, hd, hv, ht, n_states
+    )
     fixed = sum(a.nbytes for a in (hs, hd, hv, ht, gmin, first))
     slices = _Slices(1 << 14, 1 << 10, 1 << 26)
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
         li, lf, sols, hk, hid, status = _free_run(
-            occ, pot, gr, gc, cs, mask, mode, P, Q, hs, hd, hv, ht, gmin, first, li, lf, sols,
-            hk, hid, st, stf, slices.n, budget, ties)
+            occ,
+            pot,
+            gr,
+            gc,
+            cs,
+            mask,
+            mode,
+            P,
+            Q,
+            hs,
+            hd,
+            hv,
+            ht,
+            gmin,
+            first,
+            li,
+            lf,
+            sols,
+            hk,
+            hid,
+            st,
+            stf,
+            slices.n,
+            budget,
+            ties,
+        )
         interrupt.check()
         now = time.perf_counter()
         slices.update(st[S_POPS] - pops, now - t1)
-        stats = {"expansions": total["expansions"] + int(st[S_EXPANDED]),
-                 "generated": total["generated"] + int(st[S_GENERATED]),
-                 "labels": int(st[S_N] - st[S_N_FREE]), "open": int(st[S_SIZE]),
-                 "solutions": int(st[S_SOLS]), "seconds": now - t0}
+        stats = {
+            "expansions": total["expansions"] + int(st[S_EXPANDED]),
+            "generated": total["generated"] + int(st[S_GENERATED]),
+            "labels": int(st[S_N] - st[S_N_FREE]),
+            "open": int(st[S_SIZE]),
+            "solutions": int(st[S_SOLS]),
+            "seconds": now - t0,
+        }
         if status == OVER_BUDGET:
             raise LabelBudgetError(
                 f"free search stopped at the label budget max_labels={budget:,} "
@@ -611,14 +752,17 @@ def _search_pass(occ, pot, start, goal, cs, mask, mode, P, Q, heuristics, n_stat
                 f"held, {stats['expansions']:,} expanded, {stats['open']:,} on the open list, "
                 f"{stats['solutions']:,} solutions found so far; no front (a partial search is "
                 f"not a Pareto front). Raise the budget, or use a smaller map or fewer "
-                f"objectives", {**stats, "max_labels": budget})
+                f"objectives",
+                {**stats, "max_labels": budget},
+            )
         if progress is not None:
             progress({"phase": "free", **stats})
         if status == DONE:
             break
     total["expansions"] += int(st[S_EXPANDED])
     total["generated"] += int(st[S_GENERATED])
-    total["labels"] = max(total["labels"], int(st[S_N]))   # rows used at the peak
-    total["peak_bytes"] = max(total["peak_bytes"], int(
-        fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes))
-    return li, lf, sols[:st[S_SOLS]], st
+    total["labels"] = max(total["labels"], int(st[S_N]))  # rows used at the peak
+    total["peak_bytes"] = max(
+        total["peak_bytes"], int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes)
+    )
+    return li, lf, sols[: st[S_SOLS]], st

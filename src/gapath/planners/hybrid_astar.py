@@ -85,8 +85,16 @@ from gapath.planners._geometry import (
 )
 from gapath.planners._grid import heap_pop, heap_push, heap_update
 
-__all__ = ["CarModel", "HybridAStar", "HybridPath", "cell_pose", "hybrid_astar", "initial_heading", "pose_cell",
-           "path_objectives"]
+__all__ = [
+    "CarModel",
+    "HybridAStar",
+    "HybridPath",
+    "cell_pose",
+    "hybrid_astar",
+    "initial_heading",
+    "pose_cell",
+    "path_objectives",
+]
 
 #: Clearance objectives are capped at this many cells (the search for the
 #: nearest obstacle stops there).
@@ -96,6 +104,7 @@ CLEARANCE_CAP = 5.0
 # ---------------------------------------------------------------------------
 # the robot
 # ---------------------------------------------------------------------------
+
 
 def _positive(value, name: str, *, allow_zero: bool = False) -> float:
     try:
@@ -179,7 +188,8 @@ class CarModel:
             raise ConfigError(
                 f"max_steer must be in (0, pi/2) radians (0 to 90 degrees, exclusive), "
                 f"got {steer:.4g} rad"
-                + (f" ({math.degrees(steer):.1f} degrees)" if math.isfinite(steer) else ""))
+                + (f" ({math.degrees(steer):.1f} degrees)" if math.isfinite(steer) else "")
+            )
         object.__setattr__(self, "max_steer", steer)
 
     @property
@@ -201,6 +211,7 @@ class CarModel:
 # ---------------------------------------------------------------------------
 # frames and results
 # ---------------------------------------------------------------------------
+
 
 def cell_pose(cell, heading: float = 0.0, cell_size: float = 1.0) -> tuple[float, float, float]:
     """World pose ``(x, y, theta)`` at the centre of cell ``(row, col)``."""
@@ -239,8 +250,9 @@ def path_objectives(poses: np.ndarray, occ: np.ndarray, cell_size: float = 1.0) 
         dth = np.diff(th)
         turning = float(np.abs((dth + np.pi) % (2 * np.pi) - np.pi).sum())
     pts = np.ascontiguousarray(p[:, :2] / cell_size) if len(p) else np.zeros((0, 2))
-    clearance = path_clearance(np.ascontiguousarray(occ, dtype=np.bool_), pts, CLEARANCE_CAP) \
-        if len(pts) else 0.0
+    clearance = (
+        path_clearance(np.ascontiguousarray(occ, dtype=np.bool_), pts, CLEARANCE_CAP) if len(pts) else 0.0
+    )
     return {"length": length, "turning": turning, "clearance": float(clearance) * cell_size}
 
 
@@ -293,9 +305,11 @@ class HybridPath:
         return rc[keep]
 
     def __repr__(self) -> str:
-        return (f"HybridPath(poses={len(self.poses)}, length={self.length:.4f}, "
-                f"turning={self.turning:.4f}, clearance={self.clearance:.4f}, "
-                f"expansions={self.expansions}, seconds={self.seconds:.6f}, reached={self.reached!r})")
+        return (
+            f"HybridPath(poses={len(self.poses)}, length={self.length:.4f}, "
+            f"turning={self.turning:.4f}, clearance={self.clearance:.4f}, "
+            f"expansions={self.expansions}, seconds={self.seconds:.6f}, reached={self.reached!r})"
+        )
 
 
 # ---------------------------------------------------------------------------
@@ -317,12 +331,49 @@ def _state(x, y, th, w, nh):
 
 
 @numba.njit(cache=True)
-def _search(occ, layer, use_layer, hgrid, use_grid_h,
-            sx, sy, sth, gx, gy, gth, has_gth, pos_tol, th_tol,
-            kappas, steers, arc_len, ds, r_check, nh,
-            steer_cost, steer_change_cost, layer_weight, h_weight,
-            shot_dist, shot_radius, shot_slack, max_exp, max_len,
-            stamp, gen, pos, gval, px, py, pth, parent, psteer, hnode, hk1, hk2):
+def _search(
+    occ,
+    layer,
+    use_layer,
+    hgrid,
+    use_grid_h,
+    sx,
+    sy,
+    sth,
+    gx,
+    gy,
+    gth,
+    has_gth,
+    pos_tol,
+    th_tol,
+    kappas,
+    steers,
+    arc_len,
+    ds,
+    r_check,
+    nh,
+    steer_cost,
+    steer_change_cost,
+    layer_weight,
+    h_weight,
+    shot_dist,
+    shot_radius,
+    shot_slack,
+    max_exp,
+    max_len,
+    stamp,
+    gen,
+    pos,
+    gval,
+    px,
+    py,
+    pth,
+    parent,
+    psteer,
+    hnode,
+    hk1,
+    hk2,
+):
     """Hybrid A* from pose ``s`` to goal ``g`` (cell units).
 
     Returns ``(status, goal_state, shot_kappas, shot_lengths, expansions)``.
@@ -404,20 +455,24 @@ def _search(occ, layer, use_layer, hgrid, use_grid_h,
             nr = int(math.floor(ny + 0.5))
             nc = int(math.floor(nx + 0.5))
             hg = hgrid[nr, nc]
-            if hg == np.inf:                     # the goal cell is not reachable from here
+            if hg == np.inf:  # the goal cell is not reachable from here
                 continue
             v = _state(nx, ny, nth, w, nh)
             seen = stamp[v] == gen
             if seen and pos[v] == _CLOSED:
                 continue
             # g + length + SO + (DSO + DMO)
-            ng = (gu + arc_len + steer_cost * abs(steers[k])
-                  + steer_change_cost * abs(steers[k] - steers[su])
-                  + layer_weight * lc * (arc_len / steps))
+            ng = (
+                gu
+                + arc_len
+                + steer_cost * abs(steers[k])
+                + steer_change_cost * abs(steers[k] - steers[su])
+                + layer_weight * lc * (arc_len / steps)
+            )
             if seen and ng >= gval[v]:
                 continue
             he = math.hypot(gx - nx, gy - ny)
-            if ng + he > max_len:                # cannot end within max_length
+            if ng + he > max_len:  # cannot end within max_length
                 continue
             if use_grid_h and hg > he:
                 he = hg
@@ -493,6 +548,7 @@ def _extract(goal_state, parent, psteer, px, py, pth, kappas, arc_len, ds, shot_
 # ---------------------------------------------------------------------------
 # the planner
 # ---------------------------------------------------------------------------
+
 
 def initial_heading(dist: np.ndarray, cell, steps: int = 3) -> float | None:
     """Heading from ``cell`` towards the cell ``steps`` moves down the grid
@@ -602,13 +658,25 @@ class HybridAStar:
     ('shot', True)
     """
 
-    def __init__(self, workspace, car: CarModel | None = None, *, heading_bins: int = 72,
-                 arc_length: float | None = None, ds: float | None = None,
-                 steer_cost: float = 0.1, steer_change_cost: float = 0.5,
-                 cost_weight: float = 1.0, heuristic: str = "dijkstra",
-                 heuristic_weight: float = 1.1, goal_tolerance: float | None = None,
-                 heading_tolerance: float = math.radians(15), shot_distance: float | None = None,
-                 shot_slack: float = 1.5, max_expansions: int = 1_000_000):
+    def __init__(
+        self,
+        workspace,
+        car: CarModel | None = None,
+        *,
+        heading_bins: int = 72,
+        arc_length: float | None = None,
+        ds: float | None = None,
+        steer_cost: float = 0.1,
+        steer_change_cost: float = 0.5,
+        cost_weight: float = 1.0,
+        heuristic: str = "dijkstra",
+        heuristic_weight: float = 1.1,
+        goal_tolerance: float | None = None,
+        heading_tolerance: float = math.radians(15),
+        shot_distance: float | None = None,
+        shot_slack: float = 1.5,
+        max_expansions: int = 1_000_000,
+    ):
         self.car = CarModel() if car is None else car
         if not isinstance(self.car, CarModel):
             raise ConfigError(f"car must be a CarModel, got {type(car).__name__}")
@@ -627,7 +695,8 @@ class HybridAStar:
         if self.arc_length <= math.sqrt(2) * cs:
             raise ConfigError(
                 f"arc_length must exceed sqrt(2) * cell_size = {math.sqrt(2) * cs:.4f} (an "
-                f"expansion must leave its cell, eq. (4)), got {arc_length!r}")
+                f"expansion must leave its cell, eq. (4)), got {arc_length!r}"
+            )
         self.ds = 0.2 * cs if ds is None else _positive(ds, "ds")
         if self.ds > self.arc_length:
             raise ConfigError(f"ds must not exceed arc_length, got {ds!r}")
@@ -638,11 +707,15 @@ class HybridAStar:
             raise ConfigError(f"heuristic must be one of {HEURISTIC_KINDS}, got {heuristic!r}")
         self.heuristic = heuristic
         self.heuristic_weight = _positive(heuristic_weight, "heuristic_weight")
-        self.goal_tolerance = (0.5 * cs if goal_tolerance is None
-                               else _positive(goal_tolerance, "goal_tolerance", allow_zero=True))
+        self.goal_tolerance = (
+            0.5 * cs
+            if goal_tolerance is None
+            else _positive(goal_tolerance, "goal_tolerance", allow_zero=True)
+        )
         self.heading_tolerance = _positive(heading_tolerance, "heading_tolerance", allow_zero=True)
-        self.shot_distance = (12.0 * cs if shot_distance is None
-                              else _positive(shot_distance, "shot_distance", allow_zero=True))
+        self.shot_distance = (
+            12.0 * cs if shot_distance is None else _positive(shot_distance, "shot_distance", allow_zero=True)
+        )
         self.shot_slack = _positive(shot_slack, "shot_slack")
         try:
             self.max_expansions = int(max_expansions)
@@ -654,7 +727,7 @@ class HybridAStar:
         self._hcache: dict = {}
         self._scratch_n = 0
         self._gen = 0
-        self._scratch = ()
+        self._scratch: tuple = ()
 
     # -- map ------------------------------------------------------------------
     @property
@@ -674,8 +747,9 @@ class HybridAStar:
         """
         arr = np.asarray(cells, dtype=np.int64).reshape(-1, 2)
         h, w = self._occ.shape
-        if len(arr) and ((arr[:, 0] < 0).any() or (arr[:, 0] >= h).any()
-                         or (arr[:, 1] < 0).any() or (arr[:, 1] >= w).any()):
+        if len(arr) and (
+            (arr[:, 0] < 0).any() or (arr[:, 0] >= h).any() or (arr[:, 1] < 0).any() or (arr[:, 1] >= w).any()
+        ):
             bad = arr[(arr[:, 0] < 0) | (arr[:, 0] >= h) | (arr[:, 1] < 0) | (arr[:, 1] >= w)][0]
             raise ConfigError(f"cell {tuple(int(v) for v in bad)} is outside the {h}x{w} grid")
         flags = np.broadcast_to(np.asarray(blocked, dtype=bool), (len(arr),))
@@ -710,11 +784,19 @@ class HybridAStar:
 
     def _arrays(self, n: int):
         if n > self._scratch_n:
-            self._scratch = (np.zeros(n, np.int64),                      # stamp
-                             np.empty(n, np.int64), np.empty(n),          # pos, g
-                             np.empty(n), np.empty(n), np.empty(n),       # x, y, theta
-                             np.empty(n, np.int64), np.empty(n, np.int64),  # parent, steer
-                             np.empty(n, np.int64), np.empty(n), np.empty(n))  # heap
+            self._scratch = (
+                np.zeros(n, np.int64),  # stamp
+                np.empty(n, np.int64),
+                np.empty(n),  # pos, g
+                np.empty(n),
+                np.empty(n),
+                np.empty(n),  # x, y, theta
+                np.empty(n, np.int64),
+                np.empty(n, np.int64),  # parent, steer
+                np.empty(n, np.int64),
+                np.empty(n),
+                np.empty(n),
+            )  # heap
             self._scratch_n = n
             self._gen = 0
         self._gen += 1
@@ -740,8 +822,9 @@ class HybridAStar:
                 return (sc * cs, sr * cs, heading)
         return (sc * cs, sr * cs, math.atan2(gy - sr * cs, gx - sc * cs))
 
-    def plan(self, start=None, goal=None, *, cost=None, blocked=None, max_length=None,
-             max_expansions=None) -> HybridPath:
+    def plan(
+        self, start=None, goal=None, *, cost=None, blocked=None, max_length=None, max_expansions=None
+    ) -> HybridPath:
         """Plan a drivable path from ``start`` to ``goal``.
 
         Parameters
@@ -804,12 +887,14 @@ class HybridAStar:
             raise ConfigError(
                 f"start {describe_pose(s, cs)} is in collision (robot radius "
                 f"{self.car.radius:g}, --radius, plus the sampling margin {0.5 * self.ds:.3g}) "
-                "or outside the map")
+                "or outside the map"
+            )
         if not disc_free(occ, gx, gy, r_check):
             raise ConfigError(
                 f"goal {describe_pose(g, cs)} is in collision (robot radius "
                 f"{self.car.radius:g}, --radius, plus the sampling margin {0.5 * self.ds:.3g}) "
-                "or outside the map")
+                "or outside the map"
+            )
         h, w = occ.shape
         gcell = (int(math.floor(gy + 0.5)), int(math.floor(gx + 0.5)))
         hgrid = self._goal_grid(occ, gcell, cached)
@@ -817,7 +902,8 @@ class HybridAStar:
         if not np.isfinite(hgrid[scell]):
             raise NoPathError(
                 f"no path from the start {describe_pose(s, cs)} to the goal "
-                f"{describe_pose(g, cs)}: the goal cell is not connected to the start cell")
+                f"{describe_pose(g, cs)}: the goal cell is not connected to the start cell"
+            )
         if cost is None:
             layer = np.zeros((1, 1))
             use_layer = False
@@ -833,21 +919,51 @@ class HybridAStar:
         if hgrid[scell] / 1.09 > max_len + 1.0:
             raise NoPathError(
                 f"no path within max_length={max_length:g}: the grid distance to the goal is "
-                f"{hgrid[scell] * cs:.3f}")
+                f"{hgrid[scell] * cs:.3f}"
+            )
         steers = self.car.steering_angles()
         kappas = np.tan(steers) / (self.car.wheelbase / cs)
         gen, arr = self._arrays(h * w * self.heading_bins)
         status, goal_state, shot_k, shot_l, expansions = _search(
-            occ, layer, use_layer, hgrid, self.heuristic == "dijkstra",
-            sx, sy, sth, gx, gy, gth, has_gth, self.goal_tolerance / cs, self.heading_tolerance,
-            kappas, steers, self.arc_length / cs, self.ds / cs, r_check, self.heading_bins,
-            self.steer_cost / cs, self.steer_change_cost / cs, self.cost_weight,
-            self.heuristic_weight, self.shot_distance / cs,
-            self.car.min_turning_radius / cs, self.shot_slack, budget, max_len, arr[0], gen,
-            *arr[1:])
+            occ,
+            layer,
+            use_layer,
+            hgrid,
+            self.heuristic == "dijkstra",
+            sx,
+            sy,
+            sth,
+            gx,
+            gy,
+            gth,
+            has_gth,
+            self.goal_tolerance / cs,
+            self.heading_tolerance,
+            kappas,
+            steers,
+            self.arc_length / cs,
+            self.ds / cs,
+            r_check,
+            self.heading_bins,
+            self.steer_cost / cs,
+            self.steer_change_cost / cs,
+            self.cost_weight,
+            self.heuristic_weight,
+            self.shot_distance / cs,
+            self.car.min_turning_radius / cs,
+            self.shot_slack,
+            budget,
+            max_len,
+            arr[0],
+            gen,
+            *arr[1:],
+        )
         if status in (_EXHAUSTED, _LIMIT):
-            why = ("every reachable state was expanded" if status == _EXHAUSTED
-                   else f"the budget of {budget} expansions was reached")
+            why = (
+                "every reachable state was expanded"
+                if status == _EXHAUSTED
+                else f"the budget of {budget} expansions was reached"
+            )
             if max_length is not None and status == _EXHAUSTED:
                 why += f" within max_length={max_length:g}"
             raise NoPathError(
@@ -855,30 +971,50 @@ class HybridAStar:
                 f"{describe_pose(g, cs)} for a car with minimum turning radius "
                 f"{self.car.min_turning_radius:.3g} and radius {self.car.radius:g}: {why} "
                 f"({expansions} expansions); try a tighter turn (a larger --max-steer or a shorter "
-                "--wheelbase), a smaller --radius or more --heading-bins")
+                "--wheelbase), a smaller --radius or more --heading-bins"
+            )
         stamp, pos, gval, px, py, pth, parent, psteer = arr[:8]
-        pts, actions = _extract(goal_state, parent, psteer, px, py, pth, kappas,
-                                self.arc_length / cs, self.ds / cs, shot_k, shot_l)
+        pts, actions = _extract(
+            goal_state,
+            parent,
+            psteer,
+            px,
+            py,
+            pth,
+            kappas,
+            self.arc_length / cs,
+            self.ds / cs,
+            shot_k,
+            shot_l,
+        )
         poses = pts.copy()
         poses[:, :2] *= cs
         poses.setflags(write=False)
         obj = path_objectives(poses, occ, cs)
         total = gval[goal_state] * cs + float(shot_l.sum()) * cs
         reached = "shot" if status == _FOUND_SHOT else ("start" if len(poses) == 1 else "tolerance")
-        return HybridPath(poses=poses, length=obj["length"], turning=obj["turning"],
-                          clearance=obj["clearance"], cost=float(total), expansions=int(expansions),
-                          seconds=time.perf_counter() - t0, reached=reached,
-                          steering=steers[actions])
+        return HybridPath(
+            poses=poses,
+            length=obj["length"],
+            turning=obj["turning"],
+            clearance=obj["clearance"],
+            cost=float(total),
+            expansions=int(expansions),
+            seconds=time.perf_counter() - t0,
+            reached=reached,
+            steering=steers[actions],
+        )
 
     def __repr__(self) -> str:
         h, w = self._occ.shape
-        return (f"HybridAStar(shape={h}x{w}, R_min={self.car.min_turning_radius:.3g}, "
-                f"radius={self.car.radius:g}, heading_bins={self.heading_bins}, "
-                f"arc_length={self.arc_length:g})")
+        return (
+            f"HybridAStar(shape={h}x{w}, R_min={self.car.min_turning_radius:.3g}, "
+            f"radius={self.car.radius:g}, heading_bins={self.heading_bins}, "
+            f"arc_length={self.arc_length:g})"
+        )
 
 
-def hybrid_astar(workspace, start=None, goal=None, *, car: CarModel | None = None,
-                 **kwargs) -> HybridPath:
+def hybrid_astar(workspace, start=None, goal=None, *, car: CarModel | None = None, **kwargs) -> HybridPath:
     """One hybrid A* plan on ``workspace`` (see :class:`HybridAStar`).
 
     Parameters

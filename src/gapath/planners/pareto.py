@@ -128,12 +128,19 @@ from gapath.planners._pareto_kernels import (
 )
 
 __all__ = [
-    "ParetoPlanResult", "astar_po", "weighted_sum_astar", "DStarPO", "WeightedSumDStar",
-    "plan", "PLANNERS", "DEFAULT_OBJECTIVES",
+    "ParetoPlanResult",
+    "astar_po",
+    "weighted_sum_astar",
+    "DStarPO",
+    "WeightedSumDStar",
+    "plan",
+    "PLANNERS",
+    "DEFAULT_OBJECTIVES",
 ]
 
 #: The paper's four objectives F1..F4.
 DEFAULT_OBJECTIVES = ("length", "elevation", "solar", "risk")
+
 
 class _Model:
     """Everything the kernels need about the costs, built from a costmap."""
@@ -145,11 +152,11 @@ class _Model:
         h, w = ws.shape
         n = h * w
         others = [o for o in self.objectives if o != "length"]
-        self.columns = ("length",) + tuple(others)        # internal column order
+        self.columns = ("length",) + tuple(others)  # internal column order
         m = len(self.columns)
         kind = np.zeros(m, np.int64)
         cells = np.zeros((m, n))
-        scale = np.ones(m)                                 # N_j: mean cost of a step
+        scale = np.ones(m)  # N_j: mean cost of a step
         for j, name in enumerate(self.columns[1:], start=1):
             if name == "solar":
                 kind[j] = _SOLAR
@@ -193,10 +200,19 @@ class _Model:
         ndl, NDK, hn, hk, sz, kx, buf)``."""
         m = len(self.columns)
         u = max(len(self.ucols), 1)
-        return (np.zeros((n_slots, m + 2)), np.zeros((n_slots, 2), np.int64),
-                np.zeros((n + 2, 2 * m + 4)), np.full((n, 7), -1, np.int64),
-                np.zeros(n, np.int64), np.zeros((n, u)), np.zeros(n, np.int64),
-                np.zeros((n, 2)), np.zeros(8, np.int64), np.zeros(u), np.zeros(n, np.int64))
+        return (
+            np.zeros((n_slots, m + 2)),
+            np.zeros((n_slots, 2), np.int64),
+            np.zeros((n + 2, 2 * m + 4)),
+            np.full((n, 7), -1, np.int64),
+            np.zeros(n, np.int64),
+            np.zeros((n, u)),
+            np.zeros(n, np.int64),
+            np.zeros((n, 2)),
+            np.zeros(8, np.int64),
+            np.zeros(u),
+            np.zeros(n, np.int64),
+        )
 
     def _priority(self, priority, used, scale) -> np.ndarray:
         m = len(self.columns)
@@ -208,7 +224,8 @@ class _Model:
             if priority not in self.objectives:
                 raise ConfigError(
                     f"priority {priority!r} must be 'sum', one of the objectives "
-                    f"({', '.join(self.objectives)}) or a sequence of weights")
+                    f"({', '.join(self.objectives)}) or a sequence of weights"
+                )
             pw = np.zeros(m)
             j = self.columns.index(priority)
             pw[j] = 1.0 / scale[j]
@@ -224,9 +241,11 @@ class _Model:
         except (TypeError, ValueError):
             raise ConfigError(f"{label} must be a sequence of numbers, got {weights!r}") from None
         if wv.shape != (len(self.objectives),):
-            raise ConfigError(f"{label} needs one weight per objective "
-                              f"({len(self.objectives)}: {', '.join(self.objectives)}), "
-                              f"got {weights!r}")
+            raise ConfigError(
+                f"{label} needs one weight per objective "
+                f"({len(self.objectives)}: {', '.join(self.objectives)}), "
+                f"got {weights!r}"
+            )
         if not np.all(np.isfinite(wv)) or (wv < 0).any() or not (wv > 0).any():
             raise ConfigError(f"{label} must be finite, >= 0 and not all 0, got {weights!r}")
         out = np.zeros(m)
@@ -258,6 +277,7 @@ class _Model:
 # ---------------------------------------------------------------------------
 # results
 # ---------------------------------------------------------------------------
+
 
 @dataclass(frozen=True, eq=False)
 class ParetoPlanResult:
@@ -302,8 +322,10 @@ class ParetoPlanResult:
 
     def __repr__(self) -> str:
         vals = ", ".join(f"{n}={v:.4g}" for n, v in self.values.items())
-        return (f"ParetoPlanResult({self.planner}, cells={len(self.path)}, {vals}, "
-                f"expansions={self.expansions}, seconds={self.seconds:.6f})")
+        return (
+            f"ParetoPlanResult({self.planner}, cells={len(self.path)}, {vals}, "
+            f"expansions={self.expansions}, seconds={self.seconds:.6f})"
+        )
 
 
 def _result(model, idx, expansions, t0, planner) -> ParetoPlanResult:
@@ -311,17 +333,28 @@ def _result(model, idx, expansions, t0, planner) -> ParetoPlanResult:
     w = cm.shape[1]
     path = np.column_stack([idx // w, idx % w]).astype(np.int64)
     if len(path) == 1:
-        F = np.array([0.0 if o in ("length", "solar") else float(cm.layer(o)[tuple(path[0])])
-                      for o in model.objectives])
+        F = np.array(
+            [
+                0.0 if o in ("length", "solar") else float(cm.layer(o)[tuple(path[0])])
+                for o in model.objectives
+            ]
+        )
     else:
         vals = cm.evaluate_path(path, model.objectives)
         F = np.array([vals[o] for o in model.objectives])
     search = model.search_vector(idx)
     path.setflags(write=False)
     length = _length(path, cm.workspace.cell_size)
-    return ParetoPlanResult(path=path, objectives=model.objectives, F=F, search_cost=search,
-                            length=length, expansions=int(expansions),
-                            seconds=time.perf_counter() - t0, planner=planner)
+    return ParetoPlanResult(
+        path=path,
+        objectives=model.objectives,
+        F=F,
+        search_cost=search,
+        length=length,
+        expansions=int(expansions),
+        seconds=time.perf_counter() - t0,
+        planner=planner,
+    )
 
 
 def _length(path, cell_size) -> float:
@@ -334,13 +367,16 @@ def _no_path(ws, src, dst, expansions=None) -> NoPathError:
     h, w = ws.shape
     rule = "allowed" if ws.corner_cutting else "not allowed"
     extra = "" if expansions is None else f"; the search expanded {expansions} cells"
-    return NoPathError(f"no path from start {src} to goal {dst} on the {h}x{w} grid "
-                       f"(8-connected, corner cutting {rule}{extra})")
+    return NoPathError(
+        f"no path from start {src} to goal {dst} on the {h}x{w} grid "
+        f"(8-connected, corner cutting {rule}{extra})"
+    )
 
 
 # ---------------------------------------------------------------------------
 # A*: A*-PO and the weighted-sum baseline
 # ---------------------------------------------------------------------------
+
 
 def _check_origin(origin, default, shape):
     if origin is None:
@@ -350,8 +386,9 @@ def _check_origin(origin, default, shape):
     return check_any_cell(origin, "origin", shape)
 
 
-def _astar(costmap, objectives, start, goal, origin, *, pareto, priority=None, weights=None,
-           planner="astar-po") -> ParetoPlanResult:
+def _astar(
+    costmap, objectives, start, goal, origin, *, pareto, priority=None, weights=None, planner="astar-po"
+) -> ParetoPlanResult:
     t0 = time.perf_counter()
     ws = costmap.workspace
     occ = ws.occ
@@ -364,16 +401,26 @@ def _astar(costmap, objectives, start, goal, origin, *, pareto, priority=None, w
     arrays = model.arrays(n, n + 1)
     parent = np.empty(n, np.int64)
     closed = np.empty(n, np.bool_)
-    idx, expansions = _astar_kernel(src[0] * w + src[1], dst[0] * w + dst[1], model.occ, model.cc,
-                                    *model.costs(), model.ucols, model.pareto, *arrays,
-                                    parent, closed)
+    idx, expansions = _astar_kernel(
+        src[0] * w + src[1],
+        dst[0] * w + dst[1],
+        model.occ,
+        model.cc,
+        *model.costs(),
+        model.ucols,
+        model.pareto,
+        *arrays,
+        parent,
+        closed,
+    )
     if len(idx) == 0:
         raise _no_path(ws, src, dst, expansions)
     return _result(model, idx, expansions, t0, planner)
 
 
-def astar_po(costmap, objectives=DEFAULT_OBJECTIVES, *, priority=None, start=None,
-             goal=None, origin=None) -> ParetoPlanResult:
+def astar_po(
+    costmap, objectives=DEFAULT_OBJECTIVES, *, priority=None, start=None, goal=None, origin=None
+) -> ParetoPlanResult:
     """A*-PO: A* choosing, at every step, the non-dominated open node of
     smallest priority (Lavin; see :mod:`gapath.planners.pareto`).
 
@@ -437,12 +484,14 @@ def astar_po(costmap, objectives=DEFAULT_OBJECTIVES, *, priority=None, start=Non
     >>> [round(float(v), 4) for v in res.F]
     [7.6569, 0.1817]
     """
-    return _astar(costmap, objectives, start, goal, origin, pareto=True, priority=priority,
-                  planner="astar-po")
+    return _astar(
+        costmap, objectives, start, goal, origin, pareto=True, priority=priority, planner="astar-po"
+    )
 
 
-def weighted_sum_astar(costmap, objectives=DEFAULT_OBJECTIVES, *, weights=None, start=None,
-                       goal=None, origin=None) -> ParetoPlanResult:
+def weighted_sum_astar(
+    costmap, objectives=DEFAULT_OBJECTIVES, *, weights=None, start=None, goal=None, origin=None
+) -> ParetoPlanResult:
     """A* on the normalised weighted sum of the objectives (the paper's A*
     baseline): minimises ``sum_j w_j G_j / N_j`` (module docstring), equal
     weights by default.
@@ -474,13 +523,13 @@ def weighted_sum_astar(costmap, objectives=DEFAULT_OBJECTIVES, *, weights=None, 
     >>> weighted_sum_astar(cm, ("length", "risk"), weights=(1, 0.01)).path.tolist()
     [[2, 0], [2, 1], [2, 2], [2, 3], [2, 4], [2, 5], [2, 6]]
     """
-    return _astar(costmap, objectives, start, goal, origin, pareto=False, weights=weights,
-                  planner="astar")
+    return _astar(costmap, objectives, start, goal, origin, pareto=False, weights=weights, planner="astar")
 
 
 # ---------------------------------------------------------------------------
 # D*: D*-PO and the weighted-sum baseline
 # ---------------------------------------------------------------------------
+
 
 class DStarPO(IncrementalGridPlanner):
     """D*-PO: D* Lite over cost vectors with Pareto selection of ``U.Top()``
@@ -527,8 +576,9 @@ class DStarPO(IncrementalGridPlanner):
     _pareto = True
     _name = "dstar-po"
 
-    def __init__(self, costmap, objectives=DEFAULT_OBJECTIVES, *, priority=None, start=None,
-                 goal=None, origin=None):
+    def __init__(
+        self, costmap, objectives=DEFAULT_OBJECTIVES, *, priority=None, start=None, goal=None, origin=None
+    ):
         self._setup(costmap, objectives, start, goal, origin, priority=priority)
 
     def _setup(self, costmap, objectives, start, goal, origin, *, priority=None, weights=None):
@@ -539,9 +589,10 @@ class DStarPO(IncrementalGridPlanner):
         self._goal = check_cell(ws.goal if goal is None else goal, "goal", occ)
         self.costmap = costmap
         self.origin = _check_origin(origin, self._start, occ.shape)
-        self._model = _Model(costmap, objectives, self.origin, pareto=self._pareto,
-                             priority=priority, weights=weights)
-        self._model.occ = occ                     # the planner's own, changing grid
+        self._model = _Model(
+            costmap, objectives, self.origin, pareto=self._pareto, priority=priority, weights=weights
+        )
+        self._model.occ = occ  # the planner's own, changing grid
         n = occ.size
         self._arrays = self._model.arrays(n, 2 * n + 3)
         self._V, self._C = self._arrays[:2]
@@ -561,8 +612,14 @@ class DStarPO(IncrementalGridPlanner):
         from gapath.workspace import Workspace
 
         ws = self.costmap.workspace
-        return Workspace(self._occ.copy(), self._start, self._goal, cell_size=ws.cell_size,
-                         corner_cutting=ws.corner_cutting, name=ws.name)
+        return Workspace(
+            self._occ.copy(),
+            self._start,
+            self._goal,
+            cell_size=ws.cell_size,
+            corner_cutting=ws.corner_cutting,
+            name=ws.name,
+        )
 
     def plan(self) -> ParetoPlanResult:
         """Search from scratch: Initialize(), then ComputeShortestPath().
@@ -575,29 +632,56 @@ class DStarPO(IncrementalGridPlanner):
         t0 = time.perf_counter()
         n = self._occ.size
         V, C = self._V, self._C
-        V[: 2 * n] = INF                                         # rhs(s) = g(s) = inf
+        V[: 2 * n] = INF  # rhs(s) = g(s) = inf
         C[: 2 * n, 0] = -1
         C[: 2 * n, 1] = 0
         V, C, K, S, ndl, NDK, hn, hk, sz, kx, buf = self._arrays
-        _open_reset(S, sz)                                       # U = empty
-        self._km[:] = 0                                          # km = 0
-        self._last = self._start                                 # s_last = s_start
+        _open_reset(S, sz)  # U = empty
+        self._km[:] = 0  # km = 0
+        self._last = self._start  # s_last = s_start
         goal = self._index(self._goal)
-        V[n + goal] = 0.0                                        # rhs(s_goal) = 0
+        V[n + goal] = 0.0  # rhs(s_goal) = 0
         C[n + goal] = 0
         model = self._model
         # U.Insert(s_goal, [h(s_start, s_goal); 0])
-        _dstar_insert(goal, self._index(self._start), self._km, self._occ.shape[1], model.wts,
-                      model.ucols, model.pareto, V, C, K, S, ndl, NDK, hn, hk, sz, kx)
+        _dstar_insert(
+            goal,
+            self._index(self._start),
+            self._km,
+            self._occ.shape[1],
+            model.wts,
+            model.ucols,
+            model.pareto,
+            V,
+            C,
+            K,
+            S,
+            ndl,
+            NDK,
+            hn,
+            hk,
+            sz,
+            kx,
+        )
         self._initialized = True
         return self._search(t0)
 
     # -- helpers -----------------------------------------------------------
     def _repair_edges(self, occ_old, src) -> None:
         model = self._model
-        _update_changed_edges(occ_old, src, self._index(self._start), self._index(self._goal),
-                              self._km, self._occ, model.cc, *model.costs(), model.ucols,
-                              model.pareto, *self._arrays)
+        _update_changed_edges(
+            occ_old,
+            src,
+            self._index(self._start),
+            self._index(self._goal),
+            self._km,
+            self._occ,
+            model.cc,
+            *model.costs(),
+            model.ucols,
+            model.pareto,
+            *self._arrays,
+        )
 
     def _sync_km(self) -> None:
         """km = km + h(s_last, s_start); s_last = s_start."""
@@ -612,25 +696,36 @@ class DStarPO(IncrementalGridPlanner):
         start = self._index(self._start)
         goal = self._index(self._goal)
         model = self._model
-        expansions = _compute_shortest_path(start, goal, self._km, self._occ, model.cc,
-                                            *model.costs(), model.ucols, model.pareto,
-                                            *self._arrays)
+        expansions = _compute_shortest_path(
+            start,
+            goal,
+            self._km,
+            self._occ,
+            model.cc,
+            *model.costs(),
+            model.ucols,
+            model.pareto,
+            *self._arrays,
+        )
         ws = self.costmap.workspace
         if start == goal:
             idx = np.array([start], np.int64)
         elif self._C[self._occ.size + start, 0] < 0:
             raise _no_path(ws, self._start, self._goal, expansions)
         else:
-            idx = _extract_path(start, goal, self._occ, model.cc, *model.costs(), model.ucols,
-                                self._V, self._C)
+            idx = _extract_path(
+                start, goal, self._occ, model.cc, *model.costs(), model.ucols, self._V, self._C
+            )
             if len(idx) == 0:  # pragma: no cover - would be a bug
                 raise RuntimeError("D*-PO: inconsistent g-values while extracting the path")
         return _result(self._model, idx, expansions, t0, self._name)
 
     def __repr__(self) -> str:
         h, w = self._occ.shape
-        return (f"{type(self).__name__}(shape={h}x{w}, objectives={self.objectives}, "
-                f"start={self._start}, goal={self._goal})")
+        return (
+            f"{type(self).__name__}(shape={h}x{w}, objectives={self.objectives}, "
+            f"start={self._start}, goal={self._goal})"
+        )
 
 
 class WeightedSumDStar(DStarPO):
@@ -648,8 +743,9 @@ class WeightedSumDStar(DStarPO):
     _pareto = False
     _name = "dstar-lite"
 
-    def __init__(self, costmap, objectives=DEFAULT_OBJECTIVES, *, weights=None, start=None,
-                 goal=None, origin=None):
+    def __init__(
+        self, costmap, objectives=DEFAULT_OBJECTIVES, *, weights=None, start=None, goal=None, origin=None
+    ):
         self._setup(costmap, objectives, start, goal, origin, weights=weights)
 
 
@@ -661,8 +757,16 @@ class WeightedSumDStar(DStarPO):
 PLANNERS = ("astar", "dstar-lite", "astar-po", "dstar-po")
 
 
-def plan(costmap, planner: str = "dstar-po", objectives=DEFAULT_OBJECTIVES, *, priority=None,
-         weights=None, start=None, goal=None) -> ParetoPlanResult:
+def plan(
+    costmap,
+    planner: str = "dstar-po",
+    objectives=DEFAULT_OBJECTIVES,
+    *,
+    priority=None,
+    weights=None,
+    start=None,
+    goal=None,
+) -> ParetoPlanResult:
     """Plan one path with a named planner.
 
     Parameters
@@ -686,8 +790,7 @@ def plan(costmap, planner: str = "dstar-po", objectives=DEFAULT_OBJECTIVES, *, p
     if planner == "astar-po":
         return astar_po(costmap, objectives, priority=priority, start=start, goal=goal)
     if planner == "dstar-lite":
-        return WeightedSumDStar(costmap, objectives, weights=weights, start=start,
-                                goal=goal).plan()
+        return WeightedSumDStar(costmap, objectives, weights=weights, start=start, goal=goal).plan()
     if planner == "dstar-po":
         return DStarPO(costmap, objectives, priority=priority, start=start, goal=goal).plan()
     raise ConfigError(f"unknown planner {planner!r}; expected one of {', '.join(PLANNERS)}")

@@ -88,9 +88,11 @@ class RRTPath:
         return {"length": self.length, "turning": self.turning, "clearance": self.clearance}
 
     def __repr__(self) -> str:
-        return (f"RRTPath(points={len(self.points)}, length={self.length:.4f}, "
-                f"iterations={self.iterations}, nodes={self.nodes}, "
-                f"first_solution={self.first_solution}, seconds={self.seconds:.6f})")
+        return (
+            f"RRTPath(points={len(self.points)}, length={self.length:.4f}, "
+            f"iterations={self.iterations}, nodes={self.nodes}, "
+            f"first_solution={self.first_solution}, seconds={self.seconds:.6f})"
+        )
 
 
 @numba.njit(cache=True)
@@ -108,8 +110,9 @@ def _unlink(first_child, next_sib, p, c):
 
 
 @numba.njit(cache=True)
-def _grow(occ, sx, sy, gx, gy, samples, step, goal_bias, goal_tol, r_check, ds,
-          star, gamma, rewire_radius, extra):
+def _grow(
+    occ, sx, sy, gx, gy, samples, step, goal_bias, goal_tol, r_check, ds, star, gamma, rewire_radius, extra
+):
     """Grow the tree (cell units). Returns ``(path, iterations, nodes,
     first_solution)``; ``path`` is empty when the goal was never connected."""
     h, w = occ.shape
@@ -214,8 +217,7 @@ def _grow(occ, sx, sy, gx, gy, samples, step, goal_bias, goal_tol, r_check, ds,
                             ch = next_sib[ch]
         # 5. connect to the goal
         dg = math.hypot(gx - px, gy - py)
-        if dg <= max(step, goal_tol) and (dg <= goal_tol or
-                                          segment_free(occ, px, py, gx, gy, r_check, ds)):
+        if dg <= max(step, goal_tol) and (dg <= goal_tol or segment_free(occ, px, py, gx, gy, r_check, ds)):
             c = pc + dg
             if c < best_cost:
                 best_cost = c
@@ -250,7 +252,7 @@ def _grow(occ, sx, sy, gx, gy, samples, step, goal_bias, goal_tol, r_check, ds,
         v = parent[v]
     # drop a zero-length last segment (node on the goal)
     if m >= 2 and out[m - 2, 0] == gx and out[m - 2, 1] == gy:
-        out = out[:m - 1]
+        out = out[: m - 1]
     return out, it, n, first
 
 
@@ -270,16 +272,27 @@ def _point(value, name):
     except (TypeError, ValueError):
         raise ConfigError(f"{name} must be a point (x, y), got {value!r}") from None
     if len(vals) not in (2, 3) or not all(math.isfinite(v) for v in vals):
-        raise ConfigError(f"{name} must be (x, y) (or a pose (x, y, theta)) of finite numbers, "
-                          f"got {value!r}")
+        raise ConfigError(f"{name} must be (x, y) (or a pose (x, y, theta)) of finite numbers, got {value!r}")
     return vals[0], vals[1]
 
 
-def rrt(workspace, start=None, goal=None, *, seed=0, radius: float = 0.3,
-        step: float | None = None, goal_bias: float = 0.1, goal_tolerance: float | None = None,
-        max_iter: int = 20000, star: bool = False, rewire_radius: float | None = None,
-        extra_iterations: int | None = None, ds: float | None = None,
-        blocked=None) -> RRTPath:
+def rrt(
+    workspace,
+    start=None,
+    goal=None,
+    *,
+    seed=0,
+    radius: float = 0.3,
+    step: float | None = None,
+    goal_bias: float = 0.1,
+    goal_tolerance: float | None = None,
+    max_iter: int = 20000,
+    star: bool = False,
+    rewire_radius: float | None = None,
+    extra_iterations: int | None = None,
+    ds: float | None = None,
+    blocked=None,
+) -> RRTPath:
     """A path by RRT (``star=False``) or RRT* (``star=True``).
 
     Parameters
@@ -348,8 +361,7 @@ def rrt(workspace, start=None, goal=None, *, seed=0, radius: float = 0.3,
     r = _positive(radius, "radius", allow_zero=True) / cs
     stp = 2.0 if step is None else _positive(step, "step") / cs
     bias = _unit(goal_bias, "goal_bias", 0.0, 1.0)
-    tol = 0.5 if goal_tolerance is None else _positive(goal_tolerance, "goal_tolerance",
-                                                        allow_zero=True) / cs
+    tol = 0.5 if goal_tolerance is None else _positive(goal_tolerance, "goal_tolerance", allow_zero=True) / cs
     dsv = 0.2 if ds is None else _positive(ds, "ds") / cs
     try:
         iters = int(max_iter)
@@ -374,20 +386,24 @@ def rrt(workspace, start=None, goal=None, *, seed=0, radius: float = 0.3,
 
     for label, (px, py) in (("start", (sx, sy)), ("goal", (gx, gy))):
         if not disc_free(occ, px, py, r_check):
-            raise ConfigError(f"{label} {describe_pose((px * cs, py * cs), cs)} is in collision "
-                              f"(robot radius {float(radius):g}, --radius) or outside the map")
+            raise ConfigError(
+                f"{label} {describe_pose((px * cs, py * cs), cs)} is in collision "
+                f"(robot radius {float(radius):g}, --radius) or outside the map"
+            )
     rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
     samples = rng.random((iters, 3))
     free_area = float((~occ).sum())
     gamma = 2.0 * math.sqrt(1.5 * free_area / math.pi)
-    pts, it, n, first = _grow(occ, sx, sy, gx, gy, samples, stp, bias, tol, r_check, dsv,
-                              bool(star), gamma, rew, extra_it)
+    pts, it, n, first = _grow(
+        occ, sx, sy, gx, gy, samples, stp, bias, tol, r_check, dsv, bool(star), gamma, rew, extra_it
+    )
     if len(pts) == 0:
         raise NoPathError(
             f"{'RRT*' if star else 'RRT'} found no path from the start "
             f"{describe_pose((sx * cs, sy * cs), cs)} to the goal "
             f"{describe_pose((gx * cs, gy * cs), cs)} in {iters} iterations (tree of {n} "
-            "nodes); try more --iterations, a larger --goal-bias or a smaller --radius")
+            "nodes); try more --iterations, a larger --goal-bias or a smaller --radius"
+        )
     points = pts * cs
     d = np.diff(points, axis=0)
     heading = np.arctan2(d[:, 1], d[:, 0]) if len(d) else np.zeros(0)
@@ -396,9 +412,18 @@ def rrt(workspace, start=None, goal=None, *, seed=0, radius: float = 0.3,
     obj = path_objectives(poses, occ, cs)
     points.setflags(write=False)
     poses.setflags(write=False)
-    return RRTPath(points=points, poses=poses, length=obj["length"], turning=obj["turning"],
-                   clearance=obj["clearance"], cost=obj["length"], iterations=int(it), nodes=int(n),
-                   first_solution=int(first), seconds=time.perf_counter() - t0)
+    return RRTPath(
+        points=points,
+        poses=poses,
+        length=obj["length"],
+        turning=obj["turning"],
+        clearance=obj["clearance"],
+        cost=obj["length"],
+        iterations=int(it),
+        nodes=int(n),
+        first_solution=int(first),
+        seconds=time.perf_counter() - t0,
+    )
 
 
 def rrt_star(workspace, start=None, goal=None, **kwargs) -> RRTPath:

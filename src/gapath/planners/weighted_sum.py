@@ -27,8 +27,7 @@ from gapath.objectives import LENGTH, VULNERABILITY
 
 
 @numba.njit(cache=True)
-def _weighted_dp(occ, pot, start_row, goal_row, col0, n_cols, w_len, w_vul, cell_size,
-                 corner_cutting):
+def _weighted_dp(occ, pot, start_row, goal_row, col0, n_cols, w_len, w_vul, cell_size, corner_cutting):
     h = occ.shape[0]
     inf = np.inf
     # prefix sums down each used column: potential and obstacle count
@@ -44,8 +43,9 @@ def _weighted_dp(occ, pot, start_row, goal_row, col0, n_cols, w_len, w_vul, cell
     for e in range(h):
         lo, hi = min(start_row, e), max(start_row, e)
         if cum_occ[0, hi + 1] - cum_occ[0, lo] == 0:
-            cost[0, e] = (w_len * abs(e - start_row) * cell_size
-                          + w_vul * (cum_pot[0, hi + 1] - cum_pot[0, lo]))
+            cost[0, e] = w_len * abs(e - start_row) * cell_size + w_vul * (
+                cum_pot[0, hi + 1] - cum_pot[0, lo]
+            )
     for k in range(1, n_cols):
         c = col0 + k
         last = k == n_cols - 1
@@ -63,8 +63,11 @@ def _weighted_dp(occ, pot, start_row, goal_row, col0, n_cols, w_len, w_vul, cell
                 if s != 0 and not corner_cutting and (occ[p, c] or occ[entry, c - 1]):
                     continue
                 step = math.sqrt(2.0) if s != 0 else 1.0
-                val = (cost[k - 1, p] + w_len * (step + (hi - lo)) * cell_size
-                       + w_vul * (cum_pot[k, hi + 1] - cum_pot[k, lo]))
+                val = (
+                    cost[k - 1, p]
+                    + w_len * (step + (hi - lo)) * cell_size
+                    + w_vul * (cum_pot[k, hi + 1] - cum_pot[k, lo])
+                )
                 if val < cost[k, e]:
                     cost[k, e] = val
                     back[k, e] = p
@@ -107,11 +110,23 @@ def weighted_sum_path(workspace, w_length: float = 1.0, w_vulnerability: float =
     if not np.isfinite(w).all() or (w < 0).any() or not w.any():
         raise ConfigError(f"weights must be finite, >= 0 and not all zero, got {tuple(w)}")
     frame = Frame.of(workspace)
-    exits = _weighted_dp(frame.occ, frame.potential, frame.start[0], frame.goal[0], frame.col0,
-                         frame.n_cols, w[0], w[1], workspace.cell_size, workspace.corner_cutting)
+    exits = _weighted_dp(
+        frame.occ,
+        frame.potential,
+        frame.start[0],
+        frame.goal[0],
+        frame.col0,
+        frame.n_cols,
+        w[0],
+        w[1],
+        workspace.cell_size,
+        workspace.corner_cutting,
+    )
     if exits[0] < 0:
-        raise NoPathError(f"no feasible column-monotone path from {workspace.start} to "
-                          f"{workspace.goal} in {workspace.name!r}")
+        raise NoPathError(
+            f"no feasible column-monotone path from {workspace.start} to "
+            f"{workspace.goal} in {workspace.name!r}"
+        )
     prev = np.concatenate([[frame.start[0]], exits[:-1]])
     entries = prev + np.sign(exits - prev)
     entries[0] = frame.start[0]
@@ -136,8 +151,9 @@ def weighted_sum_paths(workspace, n_weights: int = 9) -> list[np.ndarray]:
     shortest = weighted_sum_path(workspace, 1.0, 1e-7)
     safest = weighted_sum_path(workspace, 1e-7, 1.0)
     P, L = pad_paths([shortest, safest])
-    m = evaluate_paths(P, L, workspace.occ, workspace.potential, workspace.cell_size,
-                       workspace.corner_cutting)
+    m = evaluate_paths(
+        P, L, workspace.occ, workspace.potential, workspace.cell_size, workspace.corner_cutting
+    )
     span_len = max(m[1, LENGTH] - m[0, LENGTH], 1e-12)
     span_vul = max(m[0, VULNERABILITY] - m[1, VULNERABILITY], 1e-12)
     paths = [shortest, safest]

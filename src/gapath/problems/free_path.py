@@ -74,17 +74,23 @@ class FreePathProblem(Problem):
 
     paths = "free"
 
-    def __init__(self, workspace, objectives=("length", "vulnerability"),
-                 encoding=DEFAULT_FREE_ENCODING, constraints="penalty", penalty=1000.0,
-                 costmap=None, **options):
+    def __init__(
+        self,
+        workspace,
+        objectives=("length", "vulnerability"),
+        encoding=DEFAULT_FREE_ENCODING,
+        constraints="penalty",
+        penalty=1000.0,
+        costmap=None,
+        **options,
+    ):
         names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
         names = [n.strip() for n in names]
         layer_names = () if costmap is None else costmap.objective_names
         for n in names:
             if n not in OBJECTIVE_NAMES and n not in layer_names:
                 expected = OBJECTIVE_NAMES + tuple(x for x in layer_names if x not in OBJECTIVE_NAMES)
-                raise ConfigError(
-                    f"unknown objective {n!r}; expected some of {', '.join(expected)}")
+                raise ConfigError(f"unknown objective {n!r}; expected some of {', '.join(expected)}")
         self.objectives = tuple(names)
         self.layer_objectives = tuple(n for n in names if n not in OBJECTIVE_NAMES)
         base = [n for n in names if n in OBJECTIVE_NAMES]
@@ -93,11 +99,14 @@ class FreePathProblem(Problem):
         if len(set(self.layer_objectives)) != len(self.layer_objectives):
             dup = next(n for n in self.layer_objectives if names.count(n) > 1)
             raise ConfigError(f"objective {dup!r} is given twice")
-        self._obj_idx = [OBJECTIVES.index(n) if n in OBJECTIVE_NAMES
-                         else len(OBJECTIVES) + self.layer_objectives.index(n) for n in names]
+        self._obj_idx = [
+            OBJECTIVES.index(n) if n in OBJECTIVE_NAMES else len(OBJECTIVES) + self.layer_objectives.index(n)
+            for n in names
+        ]
         if constraints not in CONSTRAINT_MODES:
             raise ConfigError(
-                f"unknown constraint handling {constraints!r}; expected one of {', '.join(CONSTRAINT_MODES)}")
+                f"unknown constraint handling {constraints!r}; expected one of {', '.join(CONSTRAINT_MODES)}"
+            )
         try:
             penalty = float(penalty)
         except (TypeError, ValueError):
@@ -105,9 +114,11 @@ class FreePathProblem(Problem):
         if not np.isfinite(penalty) or penalty < 0:
             raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}")
         if encoding not in FREE_ENCODINGS:
-            raise ConfigError(f"unknown encoding {encoding!r} for free paths; expected one of "
-                              f"{', '.join(FREE_ENCODINGS)} (integer, binary, mixed and absolute "
-                              f"describe monotone paths)")
+            raise ConfigError(
+                f"unknown encoding {encoding!r} for free paths; expected one of "
+                f"{', '.join(FREE_ENCODINGS)} (integer, binary, mixed and absolute "
+                f"describe monotone paths)"
+            )
         self.workspace = workspace
         self.costmap = costmap
         self._layer_stack = self._layer_agg = None
@@ -115,8 +126,9 @@ class FreePathProblem(Problem):
         if self.layer_objectives:
             costmap.check_objectives(self.layer_objectives)
             if tuple(costmap.shape) != tuple(workspace.shape):
-                raise ConfigError(f"the costmap's grid {costmap.shape} differs from the "
-                                  f"workspace's {workspace.shape}")
+                raise ConfigError(
+                    f"the costmap's grid {costmap.shape} differs from the workspace's {workspace.shape}"
+                )
             h, w = workspace.shape
             stack = np.zeros((len(self.layer_objectives), h, w))
             agg = np.empty(len(self.layer_objectives), np.int64)
@@ -133,9 +145,14 @@ class FreePathProblem(Problem):
         self.encoding = make_free_encoding(encoding, workspace, extra=extra, **options)
         self.constraints = constraints
         self.penalty = penalty
-        super().__init__(n_var=self.encoding.n_var, n_obj=len(self.objectives),
-                         n_ieq_constr=1 if constraints == "constraint" else 0,
-                         xl=self.encoding.xl, xu=self.encoding.xu, vtype=float)
+        super().__init__(
+            n_var=self.encoding.n_var,
+            n_obj=len(self.objectives),
+            n_ieq_constr=1 if constraints == "constraint" else 0,
+            xl=self.encoding.xl,
+            xu=self.encoding.xu,
+            vtype=float,
+        )
 
     # -- evaluation --------------------------------------------------------
     def padded_paths(self, X):
@@ -151,8 +168,9 @@ class FreePathProblem(Problem):
         M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
         if self._layer_stack is not None:
             cm = self.costmap
-            M = np.hstack([M, K.layer_values(P, L, self._layer_stack, self._layer_agg,
-                                             cm.solar_angle0, cm.solar_rate)])
+            M = np.hstack(
+                [M, K.layer_values(P, L, self._layer_stack, self._layer_agg, cm.solar_angle0, cm.solar_rate)]
+            )
         return M
 
     def _evaluate(self, X, out, *args, **kwargs):
@@ -171,7 +189,7 @@ class FreePathProblem(Problem):
     def decode(self, X) -> list[np.ndarray]:
         """The paths ``[(m_i, 2) int arrays]`` (workspace cells) of genomes ``X``."""
         P, L = self.encoding.decode(X)
-        return [P[i, :L[i]].copy() for i in range(len(L))]
+        return [P[i, : L[i]].copy() for i in range(len(L))]
 
     def path_keys(self, X) -> np.ndarray:
         """Identity rows of the decoded paths (see
@@ -187,13 +205,16 @@ class FreePathProblem(Problem):
         return metrics[:, self._obj_idx]
 
     def __repr__(self) -> str:
-        return (f"FreePathProblem({self.workspace.name!r}, objectives={self.objectives}, "
-                f"encoding={self.encoding!r}, constraints={self.constraints!r}, "
-                f"penalty={self.penalty:g}, n_var={self.n_var})")
+        return (
+            f"FreePathProblem({self.workspace.name!r}, objectives={self.objectives}, "
+            f"encoding={self.encoding!r}, constraints={self.constraints!r}, "
+            f"penalty={self.penalty:g}, n_var={self.n_var})"
+        )
 
 
-def path_problem(workspace, objectives=("length", "vulnerability"), *, paths="monotone",
-                 encoding=None, **kwargs):
+def path_problem(
+    workspace, objectives=("length", "vulnerability"), *, paths="monotone", encoding=None, **kwargs
+):
     """The path problem over the path set ``paths``: ``"monotone"``
     (:class:`~gapath.problems.GridPathProblem`, default encoding
     ``"integer"``) or ``"free"`` (:class:`FreePathProblem`, default encoding
@@ -211,8 +232,7 @@ def path_problem(workspace, objectives=("length", "vulnerability"), *, paths="mo
     'FreePathProblem'
     """
     if paths == "free":
-        return FreePathProblem(workspace, objectives,
-                               encoding=encoding or DEFAULT_FREE_ENCODING, **kwargs)
+        return FreePathProblem(workspace, objectives, encoding=encoding or DEFAULT_FREE_ENCODING, **kwargs)
     if paths == "monotone":
         from gapath.problems.grid_path import GridPathProblem
 

@@ -90,37 +90,48 @@ class GridPathProblem(Problem):
     (31, 2)
     """
 
-    def __init__(self, workspace, objectives=("length", "vulnerability"), encoding="integer",
-                 constraints="penalty", penalty=1000.0, costmap=None, **kwargs):
+    def __init__(
+        self,
+        workspace,
+        objectives=("length", "vulnerability"),
+        encoding="integer",
+        constraints="penalty",
+        penalty=1000.0,
+        costmap=None,
+        **kwargs,
+    ):
         from gapath.workspace import Workspace
 
         if not isinstance(workspace, Workspace):
             raise ConfigError(
                 f"GridPathProblem expects a gapath.Workspace, got {type(workspace).__name__}; "
                 f"build one from an array with gapath.loaders.from_array(array, start, goal) "
-                f"(or gapath.Workspace(occ, start, goal))")
+                f"(or gapath.Workspace(occ, start, goal))"
+            )
         names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
         names = [n.strip() for n in names]
         layer_names = () if costmap is None else costmap.objective_names
         for n in names:
             if n not in OBJECTIVE_NAMES and n not in layer_names:
                 expected = OBJECTIVE_NAMES + tuple(x for x in layer_names if x not in OBJECTIVE_NAMES)
-                raise ConfigError(
-                    f"unknown objective {n!r}; expected some of {', '.join(expected)}")
+                raise ConfigError(f"unknown objective {n!r}; expected some of {', '.join(expected)}")
         self.objectives = tuple(names)
         # layer objectives: metrics columns 4, 5, ... (after OBJECTIVES)
         self.layer_objectives = tuple(n for n in names if n not in OBJECTIVE_NAMES)
         base = [n for n in names if n in OBJECTIVE_NAMES]
         if base or not names:
-            objective_index(base)                    # "at least one", "given twice"
+            objective_index(base)  # "at least one", "given twice"
         if len(set(self.layer_objectives)) != len(self.layer_objectives):
             dup = next(n for n in self.layer_objectives if names.count(n) > 1)
             raise ConfigError(f"objective {dup!r} is given twice")
-        self._obj_idx = [OBJECTIVES.index(n) if n in OBJECTIVE_NAMES
-                         else len(OBJECTIVES) + self.layer_objectives.index(n) for n in names]
+        self._obj_idx = [
+            OBJECTIVES.index(n) if n in OBJECTIVE_NAMES else len(OBJECTIVES) + self.layer_objectives.index(n)
+            for n in names
+        ]
         if constraints not in CONSTRAINT_MODES:
             raise ConfigError(
-                f"unknown constraint handling {constraints!r}; expected one of {', '.join(CONSTRAINT_MODES)}")
+                f"unknown constraint handling {constraints!r}; expected one of {', '.join(CONSTRAINT_MODES)}"
+            )
         try:
             penalty = float(penalty)
         except (TypeError, ValueError):
@@ -130,19 +141,25 @@ class GridPathProblem(Problem):
         self.workspace = workspace
         self.frame = Frame.of(workspace)
         self.costmap = costmap
-        self._layers = (costmap.profile_evaluator(self.frame, self.layer_objectives)
-                        if self.layer_objectives else None)
+        self._layers = (
+            costmap.profile_evaluator(self.frame, self.layer_objectives) if self.layer_objectives else None
+        )
         self.encoding = make_encoding(encoding, self.frame)
         self.constraints = constraints
         self.penalty = penalty
         # pymoo passes evaluate()'s keyword arguments (``profiles``) through
         kwargs.setdefault("requires_kwargs", True)
-        super().__init__(n_var=self.encoding.n_var, n_obj=len(self.objectives),
-                         n_ieq_constr=1 if constraints == "constraint" else 0,
-                         xl=self.encoding.xl, xu=self.encoding.xu,
-                         vtype=self.encoding.vtype, **kwargs)
-        self._exact_front = None          # ExactFront or the NoPathError, once computed
-        self._genome_warned = self.encoding.vtype is not int   # only integer genomes checked
+        super().__init__(
+            n_var=self.encoding.n_var,
+            n_obj=len(self.objectives),
+            n_ieq_constr=1 if constraints == "constraint" else 0,
+            xl=self.encoding.xl,
+            xu=self.encoding.xu,
+            vtype=self.encoding.vtype,
+            **kwargs,
+        )
+        self._exact_front = None  # ExactFront or the NoPathError, once computed
+        self._genome_warned = self.encoding.vtype is not int  # only integer genomes checked
 
     # -- evaluation --------------------------------------------------------
     #: :meth:`evaluate` takes ``profiles=(entries, exits)``, the decoded
@@ -188,8 +205,10 @@ class GridPathProblem(Problem):
             entries, exits = profiles
             shape = (len(X), self.frame.n_cols)
             if entries.shape != shape or exits.shape != shape:
-                raise ConfigError(f"profiles must be two {shape} arrays (entries, exits) of the "
-                                  f"genomes, got {entries.shape} and {exits.shape}")
+                raise ConfigError(
+                    f"profiles must be two {shape} arrays (entries, exits) of the "
+                    f"genomes, got {entries.shape} and {exits.shape}"
+                )
         M = self.frame.evaluate(entries, exits)
         if self._layers is not None:
             M = np.hstack([M, self._layers(entries, exits)])
@@ -215,9 +234,9 @@ class GridPathProblem(Problem):
     def _check_genes(self, X) -> None:
         """Warn (once) when an integer encoding gets non-integral genes."""
         X = np.asarray(X)
-        if X.dtype.kind != "f":                     # integer and bool genomes are integral
+        if X.dtype.kind != "f":  # integer and bool genomes are integral
             return
-        bad = np.rint(X) != X                       # NaN is never integral either
+        bad = np.rint(X) != X  # NaN is never integral either
         if not bad.any():
             return
         self._genome_warned = True
@@ -230,7 +249,10 @@ class GridPathProblem(Problem):
             "but these operators give almost only paths through obstacles. Use "
             "gapath.algorithms.paper_nsga2() or FastNSGA2(), or the operators of "
             f"gapath.operators.default_operators({self.encoding.name!r}). "
-            "(Warned once per problem.)", GenomeWarning, stacklevel=2)
+            "(Warned once per problem.)",
+            GenomeWarning,
+            stacklevel=2,
+        )
 
     # -- reference front -----------------------------------------------------
     def pareto_front(self, *args, force: bool = False, **kwargs) -> np.ndarray:
@@ -312,19 +334,22 @@ class GridPathProblem(Problem):
             raise ConfigError(
                 f"GridPathProblem.pareto_front: no exact front for the costmap layer "
                 f"objective(s) {', '.join(self.layer_objectives)} (the exact planners minimise "
-                "length, vulnerability and smoothness only)")
+                "length, vulnerability and smoothness only)"
+            )
         if self.encoding.name == "binary" and not self.workspace.corner_cutting:
             raise ConfigError(
                 "GridPathProblem.pareto_front: no exact front for the binary encoding without "
                 "corner cutting (its horizontal-then-vertical transitions are not in the "
-                "monotone path set and may be Pareto-optimal); use the integer encoding")
+                "monotone path set and may be Pareto-optimal); use the integer encoding"
+            )
         cells = int(np.asarray(self.frame.occ).size)
         if cells > EXACT_FRONT_AUTO_CELLS and not force:
             h, w = self.workspace.shape
             raise ConfigError(
                 f"GridPathProblem.pareto_front: the exact front of a {h}x{w} workspace may take "
                 f"from seconds to minutes (the automatic limit is {EXACT_FRONT_AUTO_CELLS} "
-                "cells); call problem.pareto_front(force=True) to compute it")
+                "cells); call problem.pareto_front(force=True) to compute it"
+            )
         try:
             return monotone_front(self.workspace, self.objectives)
         except NoPathError as exc:
@@ -346,10 +371,11 @@ class GridPathProblem(Problem):
         return metrics[:, self._obj_idx]
 
     def __repr__(self) -> str:
-        return (f"GridPathProblem({self.workspace.name!r}, objectives={self.objectives}, "
-                f"encoding={self.encoding.name!r}, constraints={self.constraints!r}, "
-                f"penalty={self.penalty:g}, n_var={self.n_var})")
+        return (
+            f"GridPathProblem({self.workspace.name!r}, objectives={self.objectives}, "
+            f"encoding={self.encoding.name!r}, constraints={self.constraints!r}, "
+            f"penalty={self.penalty:g}, n_var={self.n_var})"
+        )
 
 
-__all__ = ["EXACT_FRONT_AUTO_CELLS", "GenomeWarning", "GridPathProblem", "OBJECTIVES",
-           "OBJECTIVE_NAMES"]
+__all__ = ["EXACT_FRONT_AUTO_CELLS", "GenomeWarning", "GridPathProblem", "OBJECTIVES", "OBJECTIVE_NAMES"]

@@ -111,8 +111,11 @@ class DecayingBitflipMutation(BitflipMutation):
         initial = self.initial_rate(problem)
         if algorithm is None:
             return initial
-        return decayed_rate(initial, getattr(algorithm, "n_gen", None),
-                            final_generation(getattr(algorithm, "termination", None)))
+        return decayed_rate(
+            initial,
+            getattr(algorithm, "n_gen", None),
+            final_generation(getattr(algorithm, "termination", None)),
+        )
 
     def _do(self, problem, X, random_state=None, algorithm=None, **kwargs):
         if random_state is None:

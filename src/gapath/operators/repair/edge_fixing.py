@@ -41,8 +41,7 @@ class EdgeFixingRepair(Repair):
     def _do(self, problem, X, random_state=None, **kwargs):
         encoding = getattr(problem, "encoding", None)
         if encoding is None or not hasattr(encoding, "edge_fix"):
-            raise ConfigError(
-                f"EdgeFixingRepair needs a gapath path problem, got {type(problem).__name__}")
+            raise ConfigError(f"EdgeFixingRepair needs a gapath path problem, got {type(problem).__name__}")
         X = np.asarray(X)
         if len(X) == 0:
             return X

@@ -12,8 +12,7 @@ from gapath.operators.duplicates import duplicate_mask
 FREE_SEED_SOURCES = ("weighted", "exact", "none")
 
 
-def free_seed_genomes(problem, source: str = "weighted", n_weights: int = 17,
-                      max_exact: int = 200):
+def free_seed_genomes(problem, source: str = "weighted", n_weights: int = 17, max_exact: int = 200):
     """Genomes of planner paths in a :class:`~gapath.problems.FreePathProblem`'s encoding.
 
     * ``"weighted"``: the optimal paths of ``n_weights`` weight genes evenly
@@ -30,8 +29,7 @@ def free_seed_genomes(problem, source: str = "weighted", n_weights: int = 17,
     * ``"none"``: no genomes.
     """
     if source not in FREE_SEED_SOURCES:
-        raise ConfigError(f"unknown seed source {source!r}; expected one of "
-                          f"{', '.join(FREE_SEED_SOURCES)}")
+        raise ConfigError(f"unknown seed source {source!r}; expected one of {', '.join(FREE_SEED_SOURCES)}")
     enc = problem.encoding
     if source == "none":
         return np.zeros((0, problem.n_var))
@@ -79,8 +77,9 @@ class FreeSampling(Sampling):
     def __init__(self, source: str = "weighted", n_weights: int = 17, max_share: float = 0.5):
         super().__init__()
         if source not in FREE_SEED_SOURCES:
-            raise ConfigError(f"unknown seed source {source!r}; expected one of "
-                              f"{', '.join(FREE_SEED_SOURCES)}")
+            raise ConfigError(
+                f"unknown seed source {source!r}; expected one of {', '.join(FREE_SEED_SOURCES)}"
+            )
         self.source = source
         self.n_weights = n_weights
         self.max_share = max_share
@@ -98,8 +97,9 @@ class FreeSampling(Sampling):
                 break
             R = random_state.random((max(2 * missing, 50), problem.n_var))
             keys = problem.path_keys(R)
-            R = R[~duplicate_mask(keys, problem.path_keys(X) if len(X) else None)
-                  & ~duplicate_mask(keys)][:missing]
+            R = R[~duplicate_mask(keys, problem.path_keys(X) if len(X) else None) & ~duplicate_mask(keys)][
+                :missing
+            ]
             X = np.concatenate([X, R])
         return X
 

@@ -13,8 +13,9 @@ from gapath.operators.duplicates import duplicate_mask
 SEED_SOURCES = ("weighted", "exact", "astar", "none")
 
 
-def planner_paths(workspace, source: str, objectives=("length", "vulnerability"),
-                  n_weights: int = 9) -> list[np.ndarray]:
+def planner_paths(
+    workspace, source: str, objectives=("length", "vulnerability"), n_weights: int = 9
+) -> list[np.ndarray]:
     """Seed paths for ``source``:
 
     * ``"weighted"``: the shortest, the safest and weighted-sum optimal
@@ -98,8 +99,13 @@ class PlannerSampling(Sampling):
     #: Random rounds in a row without a new path after which sampling stops.
     stall_rounds = 10
 
-    def __init__(self, source: str = "weighted", n_weights: int = 9, max_share: float = 0.5,
-                 random: Sampling | None = None):
+    def __init__(
+        self,
+        source: str = "weighted",
+        n_weights: int = 9,
+        max_share: float = 0.5,
+        random: Sampling | None = None,
+    ):
         super().__init__()
         if source not in SEED_SOURCES:
             raise ConfigError(f"unknown seed source {source!r}; expected one of {', '.join(SEED_SOURCES)}")

@@ -11,17 +11,25 @@ from gapath.operators._columns import ColumnCache, column
 def tournament_keys(pop, tiebreak=True) -> list[tuple[np.ndarray, int]]:
     """The comparison keys, most important first, as (values, sign) with
     smaller ``sign * value`` better."""
-    keys = [(column(pop, "CV")[:, 0].astype(float), 1), (column(pop, "rank").astype(float), 1)]
+    keys = [(_required(pop, "CV")[:, 0].astype(float), 1), (_required(pop, "rank").astype(float), 1)]
     if tiebreak:
         smooth = column(pop, "smoothness")
         if smooth is not None:
             keys.append((smooth.astype(float), 1))
-    keys.append((column(pop, "crowding").astype(float), -1))
+    keys.append((_required(pop, "crowding").astype(float), -1))
     return keys
 
 
-def compare_rank_smoothness_crowding(pop, P, random_state=None, algorithm=None, tiebreak=True,
-                                     keys=None, **kwargs):
+def _required(pop, name: str) -> np.ndarray:
+    values = column(pop, name)
+    if values is None:  # survival sets rank and crowding, evaluation CV
+        raise ValueError(f"the population has no {name!r}: run a survival that sets it first")
+    return values
+
+
+def compare_rank_smoothness_crowding(
+    pop, P, random_state=None, algorithm=None, tiebreak=True, keys=None, **kwargs
+):
     """Winners of binary tournaments ``P`` (n, 2), all at once.
 
     Smaller constraint violation wins; between equals, smaller rank; then
@@ -79,8 +87,7 @@ class TournamentComparison:
 
     def __call__(self, pop, P, **kwargs):
         keys = self._cache.get(pop, self._keys)
-        return compare_rank_smoothness_crowding(pop, P, tiebreak=self.tiebreak, keys=keys,
-                                                **kwargs)
+        return compare_rank_smoothness_crowding(pop, P, tiebreak=self.tiebreak, keys=keys, **kwargs)
 
     def __getstate__(self):
         return {"tiebreak": self.tiebreak}

@@ -55,8 +55,11 @@ def survival_order(F, smoothness=None, CV=None, n_survive=None):
     order.append(infeasible)
     rank.append(n_fronts + np.arange(len(infeasible)))
     crowding.append(np.zeros(len(infeasible)))
-    return (np.concatenate(order)[:n_survive], np.concatenate(rank)[:n_survive].astype(np.int64),
-            np.concatenate(crowding)[:n_survive])
+    return (
+        np.concatenate(order)[:n_survive],
+        np.concatenate(rank)[:n_survive].astype(np.int64),
+        np.concatenate(crowding)[:n_survive],
+    )
 
 
 class RankAndSmoothnessSurvival(Survival):
