@@ -50,7 +50,7 @@ from pymoo.core.callback import Callback
 import gapath.callbacks
 from gapath import default_workspace
 from gapath.callbacks import Callbacks
-from gapath.cli import build_parser
+from gapath.cli.main import build_parser
 from gapath.convergence import HypervolumeRatioCallback
 from gapath.reference import reference_front
 from gapath.solver import solve

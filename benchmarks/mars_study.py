@@ -22,7 +22,7 @@ from __future__ import annotations
 import argparse
 import sys
 
-from gapath.experiments.mars import add_arguments, run
+from gapath.cli.studies.mars import add_arguments, run
 
 
 def main(argv=None) -> int:

@@ -1,6 +1,7 @@
 """Every bad input gives one message and exit 2; every search that finds
 nothing gives its reason and exit 1 (README, "Exit status")."""
 
+import importlib
 import json
 import os
 import stat
@@ -11,8 +12,7 @@ import warnings
 import numpy as np
 import pytest
 
-import gapath.cli
-from gapath.cli import build_parser, main
+from gapath.cli.main import build_parser, main
 from gapath.errors import EXIT_BAD_INPUT, EXIT_INTERNAL, EXIT_INTERRUPTED, EXIT_NO_RESULT
 from gapath.loaders import load_map
 from gapath.objectives import evaluate_path
@@ -401,7 +401,7 @@ def test_internal_error_and_interrupt(tmp_path, capsys, monkeypatch):
     def crash(args, workspace):
         raise ZeroDivisionError("division by zero")
 
-    monkeypatch.setattr(gapath.cli, "_run", crash)
+    monkeypatch.setattr(importlib.import_module("gapath.cli.main"), "_run", crash)
     monkeypatch.delenv("GAPATH_TRACEBACK", raising=False)
     code, _, err = run(capsys, ["solve", "default", "--out", tmp_path / "o"])
     assert code == EXIT_INTERNAL
@@ -410,7 +410,7 @@ def test_internal_error_and_interrupt(tmp_path, capsys, monkeypatch):
     def interrupted(args, workspace):
         raise KeyboardInterrupt
 
-    monkeypatch.setattr(gapath.cli, "_run", interrupted)
+    monkeypatch.setattr(importlib.import_module("gapath.cli.main"), "_run", interrupted)
     code, _, err = run(capsys, ["solve", "default", "--out", tmp_path / "o"])
     assert code == EXIT_INTERRUPTED and "interrupted" in err
 

@@ -18,8 +18,8 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from gapath.cli import build_parser, main
-from gapath.commands._args import matches_optimum
+from gapath.cli._args import matches_optimum
+from gapath.cli.main import build_parser, main
 from gapath.loaders import load_map, load_occupancy, load_scenarios
 
 SCEN = "movingai/mapf/random-32-32-20-random-1.scen"
@@ -530,7 +530,7 @@ def test_plots_have_axis_labels_with_units(data_dir):
     import matplotlib.pyplot as plt
 
     from gapath import default_workspace
-    from gapath.commands.exact import exact_path_front
+    from gapath.cli.exact import exact_path_front
     from gapath.dynamic_plots import _base
     from gapath.plotting import plot_front, plot_paths
 

@@ -281,7 +281,7 @@ def test_cli_simulate(text_map, tmp_path, capsys):
 
 
 def test_plan_helpers_for_gapath_plan(tmp_path):
-    from gapath.commands.dynamic import add_planner_choices, plan_with, write_plan
+    from gapath.cli.simulate import add_planner_choices, plan_with, write_plan
 
     parser = argparse.ArgumentParser()
     parser.add_argument("--seed", type=int, default=7)  # already there: kept
@@ -308,7 +308,7 @@ def test_plan_helpers_for_gapath_plan(tmp_path):
 
 
 def test_experiment_command(tmp_path, capsys):
-    from gapath.experiments.dynamic import register_experiment
+    from gapath.cli.studies.dynamic import register as register_experiment
 
     parser = argparse.ArgumentParser()
     register_experiment(parser.add_subparsers(dest="command"))

@@ -250,7 +250,7 @@ def test_cli_ctrl_c_exits_130_and_writes_no_front(text_map, tmp_path, capsys, mo
 def test_progress_line_is_throttled_and_names_the_counts():
     import io
 
-    from gapath.commands.exact import _ProgressLine
+    from gapath.cli.exact import _ProgressLine
 
     line = _ProgressLine("free")
     line.stream, line.tty, line.every = io.StringIO(), False, 0.0

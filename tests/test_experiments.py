@@ -637,7 +637,7 @@ def test_cli_run_status_report(tmp_path, capsys):
 def test_experiment_group_is_extensible(monkeypatch, tmp_path, capsys):
     import types
 
-    from gapath.commands import experiment
+    from gapath.cli import experiment
 
     mod = types.ModuleType("gapath_test_hello")
 

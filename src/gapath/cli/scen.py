@@ -72,7 +72,7 @@ def check_scenarios(scenarios, planner="astar", map_path=None, on_line=None):
     ConfigError
         If a map's size differs from its scenario's.
     """
-    from gapath.commands._args import matches_optimum
+    from gapath.cli._args import matches_optimum
     from gapath.costmap import Costmap
     from gapath.errors import ConfigError, NoPathError
     from gapath.loaders import load_occupancy
@@ -108,7 +108,7 @@ def check_scenarios(scenarios, planner="astar", map_path=None, on_line=None):
 
 
 def run(args) -> int:
-    from gapath.commands.plan import _warm_up
+    from gapath.cli.plan import _warm_up
     from gapath.errors import ConfigError
     from gapath.loaders import load_scenarios
 

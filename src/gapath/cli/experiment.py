@@ -9,11 +9,12 @@ Sub-commands::
 
 ``SPEC`` is a YAML, TOML or JSON experiment file (schema:
 :mod:`gapath.experiments.spec`, docs/EXPERIMENTS.md) or a store directory
-(its saved ``experiment.json``, to resume). The group is extensible: every
-module named in :data:`EXPERIMENT_MODULES` defines
-``register_experiment(subparsers)``, which adds its parser(s) to the
-experiment group and sets ``func=run`` (``run(args) -> int``) with
-``set_defaults``, like the top-level plug-ins of :mod:`gapath.commands`.
+(its saved ``experiment.json``, to resume). The paper studies' sub-commands
+live in :mod:`gapath.cli.studies` (encodings, dense, mars, dynamic). The
+group is extensible: every module named in :data:`EXPERIMENT_MODULES` (none
+by default) defines ``register_experiment(subparsers)``, which adds its
+parser(s) to the experiment group and sets ``func=run`` (``run(args) ->
+int``) with ``set_defaults``.
 """
 
 from __future__ import annotations
@@ -22,13 +23,9 @@ import importlib
 import sys
 from pathlib import Path
 
-#: Modules that add ``gapath experiment`` sub-commands, in help order.
-EXPERIMENT_MODULES: list[str] = [
-    "gapath.experiments.encodings",
-    "gapath.experiments.dense",
-    "gapath.experiments.mars",
-    "gapath.experiments.dynamic",
-]
+#: Modules of other packages that add ``gapath experiment`` sub-commands
+#: after gapath's own studies (a plug-in point; empty in gapath itself).
+EXPERIMENT_MODULES: list[str] = []
 
 
 def add_executor_options(p) -> None:
@@ -97,6 +94,10 @@ def register(subparsers) -> None:
     rep.add_argument("--quiet", action="store_true")
     rep.set_defaults(func=report_command)
 
+    from gapath.cli.studies import dense, dynamic, encodings, mars
+
+    for study in (encodings, dense, mars, dynamic):  # help order
+        study.register(sub)
     for name in EXPERIMENT_MODULES:
         importlib.import_module(name).register_experiment(sub)
 

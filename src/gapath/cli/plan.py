@@ -24,8 +24,8 @@ LAYERS = ("elevation", "solar", "risk")
 
 
 def register(subparsers) -> None:
-    from gapath.commands._args import add_map_arguments, cell
-    from gapath.commands.dynamic import add_planner_choices
+    from gapath.cli._args import add_map_arguments, cell
+    from gapath.cli.simulate import add_planner_choices
     from gapath.planners.pareto import PLANNERS
 
     p = subparsers.add_parser(
@@ -176,7 +176,7 @@ def _warm_up(planner, objectives, layers, args, corner_cutting) -> float:
 def _warm_up_kinematic(planner) -> float:
     import argparse
 
-    from gapath.commands.dynamic import plan_with
+    from gapath.cli.simulate import plan_with
     from gapath.errors import GapathError
     from gapath.workspace import Workspace
 
@@ -189,8 +189,8 @@ def _warm_up_kinematic(planner) -> float:
 
 
 def _plan_kinematic(args, choice) -> int:
-    from gapath.commands._args import update_summary
-    from gapath.commands.dynamic import plan_with, write_plan
+    from gapath.cli._args import update_summary
+    from gapath.cli.simulate import plan_with, write_plan
 
     ws = choice.workspace
     compile_s = _warm_up_kinematic(args.planner)
@@ -215,8 +215,8 @@ def _plan_kinematic(args, choice) -> int:
 
 
 def run(args) -> int:
-    from gapath.commands._args import load_workspace
-    from gapath.commands.dynamic import PLANNER_CHOICES
+    from gapath.cli._args import load_workspace
+    from gapath.cli.simulate import PLANNER_CHOICES
     from gapath.front import PathFront
     from gapath.objectives import evaluate_paths, pad_paths
     from gapath.planners.pareto import plan

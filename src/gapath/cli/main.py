@@ -33,7 +33,7 @@ from gapath.errors import (
 
 
 def _cell(text: str) -> tuple[int, int]:
-    from gapath.commands._args import cell
+    from gapath.cli._args import cell
 
     return cell(text)
 
@@ -41,9 +41,9 @@ def _cell(text: str) -> tuple[int, int]:
 def _load(map_arg, start=None, goal=None, corner_cutting=None):
     """The workspace of the map arguments: ``_load(args)`` with a parsed
     namespace (MAP, --start/--goal, --start-xy/--goal-xy, --scen, corner
-    rule: :func:`gapath.commands._args.load_workspace`), or
+    rule: :func:`gapath.cli._args.load_workspace`), or
     ``_load(MAP, start, goal, corner_cutting)``."""
-    from gapath.commands._args import load_workspace
+    from gapath.cli._args import load_workspace
 
     if isinstance(map_arg, argparse.Namespace):
         return load_workspace(map_arg).workspace
@@ -62,7 +62,7 @@ def _load(map_arg, start=None, goal=None, corner_cutting=None):
 def _solve(args) -> int:
     """``gapath solve``: the map arguments, the run, then the corner rule and
     the ``--scen`` optimum in the report and in ``summary.json``."""
-    from gapath.commands._args import load_workspace, shortest_in_csv, update_summary
+    from gapath.cli._args import load_workspace, shortest_in_csv, update_summary
 
     choice = load_workspace(args)
     code = _run(args, choice.workspace)
@@ -168,7 +168,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("solve", help="run NSGA-II on a map and write its Pareto front")
-    from gapath.commands._args import add_map_arguments
+    from gapath.cli._args import add_map_arguments
 
     add_map_arguments(p)
     _add_run_options(p, pop=500, gen=500, out="gapath-out")
@@ -184,9 +184,10 @@ def build_parser() -> argparse.ArgumentParser:
     d = sub.add_parser("demo", help="the bundled scenario with Ahmed & Deb's settings")
     _add_run_options(d, pop=500, gen=500, out="gapath-demo")
 
-    from gapath.commands import register_all
+    from gapath.cli import exact, experiment, plan, scen, simulate
 
-    register_all(sub)
+    for command in (exact, experiment, simulate, plan, scen):  # help order
+        command.register(sub)
     return parser
 
 

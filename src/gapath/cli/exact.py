@@ -9,7 +9,7 @@ import numpy as np
 
 
 def register(subparsers) -> None:
-    from gapath.commands._args import add_map_arguments
+    from gapath.cli._args import add_map_arguments
 
     p = subparsers.add_parser("exact", help="compute the exact Pareto front (monotone or free paths)")
     add_map_arguments(p)
@@ -114,7 +114,7 @@ def _path_front(workspace, ef):
 
 
 def run(args) -> int:
-    from gapath.commands._args import load_workspace
+    from gapath.cli._args import load_workspace
     from gapath.errors import NoPathError
     from gapath.results import versions, write_front
 
@@ -126,7 +126,7 @@ def run(args) -> int:
     try:
         ef = _exact_front(ws, objectives, args.mode, max_labels=args.max_labels, progress=bar)
     except NoPathError as exc:  # exit status 1, with the reason and what to try
-        from gapath.cli import no_path_error
+        from gapath.cli.main import no_path_error
 
         why = no_path_error(
             ws,

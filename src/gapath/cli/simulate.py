@@ -10,7 +10,7 @@ reach it (its reason is printed, also with ``--quiet``, and stored); no path
 between start and goal exits with 1 too, bad input with 2 (README, "Exit
 status").
 
-``gapath plan`` (:mod:`gapath.commands.plan`, another module) plans one path
+``gapath plan`` (:mod:`gapath.cli.plan`, another module) plans one path
 on a map. This module does not register a ``plan`` parser; it offers the
 hybrid A* and RRT / RRT* planners to it:
 
@@ -42,7 +42,7 @@ SIMULATE_PLANNERS = ("hybrid-astar", "rrt", "rrt-star", "astar", "dstar-lite")
 
 
 def _cell_arg(text):
-    from gapath.cli import _cell
+    from gapath.cli.main import _cell
 
     return _cell(text)
 
