@@ -173,13 +173,17 @@ def front_from_dict(d: dict):
     )
 
 
+#: A spec's engine names (:data:`gapath.experiments.spec.ENGINES`, as stored
+#: in run records) -> :func:`gapath.solver.solve`'s ``engine``.
+SOLVE_ENGINES = {"paper": "pymoo", "fast": "fast"}
+
+
 def _solve_kwargs(run: dict) -> dict:
-    import inspect
-
-    from gapath.solver import solve
-
     s = dict(run["settings"])
-    kwargs = dict(
+    engine = run.get("engine", "paper")
+    if engine not in SOLVE_ENGINES:
+        raise ConfigError(f"unknown engine {engine!r} in a run; expected one of {', '.join(SOLVE_ENGINES)}")
+    return dict(
         objectives=tuple(s["objectives"]),
         constraints=s["constraints"],
         penalty=s["penalty"],
@@ -189,20 +193,8 @@ def _solve_kwargs(run: dict) -> dict:
         sbx_eta=s["sbx_eta"],
         seed_from=s["seed_from"],
         paths=s.get("paths", "monotone"),
+        engine=SOLVE_ENGINES[engine],
     )
-    engine = run.get("engine", "paper")
-    if "engine" in inspect.signature(solve).parameters:
-        # solve's names: "fast" (FastNSGA2) and "pymoo" (paper_nsga2, pymoo's NSGA2)
-        import gapath.solver
-
-        names = getattr(gapath.solver, "ENGINES", {})
-        kwargs["engine"] = "pymoo" if engine == "paper" and "pymoo" in names else engine
-    elif engine != "paper":
-        raise ConfigError(
-            f"engine {engine!r} needs gapath.solver.solve(engine=...), "
-            "which this gapath does not have; use engine 'paper' or 'auto'"
-        )
-    return kwargs
 
 
 def run_one(run: dict) -> dict:
