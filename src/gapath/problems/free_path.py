@@ -9,8 +9,8 @@ from gapath.costmap import CELL_MEAN, STEP_SUM
 from gapath.encodings import _free_kernels as K
 from gapath.encodings.free import DEFAULT_FREE_ENCODING, FREE_ENCODINGS, make_free_encoding
 from gapath.errors import ConfigError
-from gapath.objectives import INTERFERING, OBJECTIVES, SMOOTHNESS, evaluate_paths, objective_index
-from gapath.problems.grid_path import CONSTRAINT_MODES, OBJECTIVE_NAMES
+from gapath.objectives import INTERFERING, SMOOTHNESS, evaluate_paths
+from gapath.problems.grid_path import problem_settings
 
 
 class FreePathProblem(Problem):
@@ -84,35 +84,9 @@ class FreePathProblem(Problem):
         costmap=None,
         **options,
     ):
-        names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
-        names = [n.strip() for n in names]
-        layer_names = () if costmap is None else costmap.objective_names
-        for n in names:
-            if n not in OBJECTIVE_NAMES and n not in layer_names:
-                expected = OBJECTIVE_NAMES + tuple(x for x in layer_names if x not in OBJECTIVE_NAMES)
-                raise ConfigError(f"unknown objective {n!r}; expected some of {', '.join(expected)}")
-        self.objectives = tuple(names)
-        self.layer_objectives = tuple(n for n in names if n not in OBJECTIVE_NAMES)
-        base = [n for n in names if n in OBJECTIVE_NAMES]
-        if base or not names:
-            objective_index(base)
-        if len(set(self.layer_objectives)) != len(self.layer_objectives):
-            dup = next(n for n in self.layer_objectives if names.count(n) > 1)
-            raise ConfigError(f"objective {dup!r} is given twice")
-        self._obj_idx = [
-            OBJECTIVES.index(n) if n in OBJECTIVE_NAMES else len(OBJECTIVES) + self.layer_objectives.index(n)
-            for n in names
-        ]
-        if constraints not in CONSTRAINT_MODES:
-            raise ConfigError(
-                f"unknown constraint handling {constraints!r}; expected one of {', '.join(CONSTRAINT_MODES)}"
-            )
-        try:
-            penalty = float(penalty)
-        except (TypeError, ValueError):
-            raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}") from None
-        if not np.isfinite(penalty) or penalty < 0:
-            raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}")
+        self.objectives, self.layer_objectives, self._obj_idx, penalty = problem_settings(
+            objectives, constraints, penalty, costmap
+        )
         if encoding not in FREE_ENCODINGS:
             raise ConfigError(
                 f"unknown encoding {encoding!r} for free paths; expected one of "

@@ -28,6 +28,49 @@ class GenomeWarning(UserWarning):
     probably at work. Issued once per problem."""
 
 
+def problem_settings(objectives, constraints, penalty, costmap=None):
+    """The checked settings of a grid path problem (monotone or free): the
+    objective names, the costmap layer objectives among them, each
+    objective's column in the metrics matrix (:data:`OBJECTIVES`, then the
+    layers) and the penalty as a float.
+
+    Raises
+    ------
+    ConfigError
+        On an unknown or repeated objective, an unknown constraint mode, or a
+        penalty that is not a finite number >= 0.
+    """
+    names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
+    names = [n.strip() for n in names]
+    layer_names = () if costmap is None else costmap.objective_names
+    for n in names:
+        if n not in OBJECTIVE_NAMES and n not in layer_names:
+            expected = OBJECTIVE_NAMES + tuple(x for x in layer_names if x not in OBJECTIVE_NAMES)
+            raise ConfigError(f"unknown objective {n!r}; expected some of {', '.join(expected)}")
+    # layer objectives: metrics columns 4, 5, ... (after OBJECTIVES)
+    layers = tuple(n for n in names if n not in OBJECTIVE_NAMES)
+    base = [n for n in names if n in OBJECTIVE_NAMES]
+    if base or not names:
+        objective_index(base)  # "at least one", "given twice"
+    if len(set(layers)) != len(layers):
+        dup = next(n for n in layers if names.count(n) > 1)
+        raise ConfigError(f"objective {dup!r} is given twice")
+    columns = [
+        OBJECTIVES.index(n) if n in OBJECTIVE_NAMES else len(OBJECTIVES) + layers.index(n) for n in names
+    ]
+    if constraints not in CONSTRAINT_MODES:
+        raise ConfigError(
+            f"unknown constraint handling {constraints!r}; expected one of {', '.join(CONSTRAINT_MODES)}"
+        )
+    try:
+        penalty = float(penalty)
+    except (TypeError, ValueError):
+        raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}") from None
+    if not np.isfinite(penalty) or penalty < 0:
+        raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}")
+    return tuple(names), layers, columns, penalty
+
+
 class GridPathProblem(Problem):
     """Multi-objective path planning over column-monotone paths.
 
@@ -108,36 +151,9 @@ class GridPathProblem(Problem):
                 f"build one from an array with gapath.loaders.from_array(array, start, goal) "
                 f"(or gapath.Workspace(occ, start, goal))"
             )
-        names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
-        names = [n.strip() for n in names]
-        layer_names = () if costmap is None else costmap.objective_names
-        for n in names:
-            if n not in OBJECTIVE_NAMES and n not in layer_names:
-                expected = OBJECTIVE_NAMES + tuple(x for x in layer_names if x not in OBJECTIVE_NAMES)
-                raise ConfigError(f"unknown objective {n!r}; expected some of {', '.join(expected)}")
-        self.objectives = tuple(names)
-        # layer objectives: metrics columns 4, 5, ... (after OBJECTIVES)
-        self.layer_objectives = tuple(n for n in names if n not in OBJECTIVE_NAMES)
-        base = [n for n in names if n in OBJECTIVE_NAMES]
-        if base or not names:
-            objective_index(base)  # "at least one", "given twice"
-        if len(set(self.layer_objectives)) != len(self.layer_objectives):
-            dup = next(n for n in self.layer_objectives if names.count(n) > 1)
-            raise ConfigError(f"objective {dup!r} is given twice")
-        self._obj_idx = [
-            OBJECTIVES.index(n) if n in OBJECTIVE_NAMES else len(OBJECTIVES) + self.layer_objectives.index(n)
-            for n in names
-        ]
-        if constraints not in CONSTRAINT_MODES:
-            raise ConfigError(
-                f"unknown constraint handling {constraints!r}; expected one of {', '.join(CONSTRAINT_MODES)}"
-            )
-        try:
-            penalty = float(penalty)
-        except (TypeError, ValueError):
-            raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}") from None
-        if not np.isfinite(penalty) or penalty < 0:
-            raise ConfigError(f"penalty must be a number >= 0, got {penalty!r}")
+        self.objectives, self.layer_objectives, self._obj_idx, penalty = problem_settings(
+            objectives, constraints, penalty, costmap
+        )
         self.workspace = workspace
         self.frame = Frame.of(workspace)
         self.costmap = costmap
