@@ -56,8 +56,14 @@ def _decode(X, start_row, goal_row, height):
 
 
 @numba.njit(cache=True)
-def _edge_fix(X, U, start_row, height):
-    n, n_var = X.shape
+def _edge_fix(G, U, xl, xu, start_row, height):
+    """Edge-fixed copy of the integer genes ``G`` (clipped to ``xl``/``xu``
+    first), with the draws ``U`` (one per gene)."""
+    n, n_var = G.shape
+    X = np.empty((n, n_var), np.int64)
+    for i in range(n):
+        for k in range(n_var):
+            X[i, k] = min(max(G[i, k], xl[k]), xu[k])
     for i in range(n):
         r = start_row - X[i, 0]
         for k in range(1, n_var):
@@ -103,6 +109,8 @@ class IntegerEncoding:
         X = np.atleast_2d(np.asarray(X))
         if X.shape[1] != self.n_var:
             raise ConfigError(f"integer genomes need {self.n_var} genes, got {X.shape[1]}")
+        if X.dtype.kind in "iub":  # already integers: no rounding pass
+            return np.ascontiguousarray(X, dtype=np.int64)
         return np.ascontiguousarray(np.rint(X).astype(np.int64))
 
     def decode(self, X) -> tuple[np.ndarray, np.ndarray]:
@@ -135,6 +143,6 @@ class IntegerEncoding:
         in which every move that would leave the grid is replaced by a row
         drawn with linear probability between the violated edge (highest)
         and the current row (zero)."""
-        X = np.clip(self._genes(X), self.xl, self.xu)
-        U = random_state.random(X.shape)
-        return _edge_fix(X, U, self.frame.start[0], self.frame.height)
+        G = self._genes(X)
+        U = random_state.random(G.shape)
+        return _edge_fix(G, U, self.xl, self.xu, self.frame.start[0], self.frame.height)
