@@ -38,21 +38,38 @@ from gapath.encodings.base import Frame, profiles_of_paths
 from gapath.errors import ConfigError
 
 
+@numba.njit(cache=True, inline="always")
+def _walk(X, i, start_row, goal_row, height, E, e0, T, t0):
+    """Decode genome ``i``: its entry rows into ``E[i, e0:]``, its exit rows
+    into ``T[i, t0:]``."""
+    n_var = X.shape[1]
+    r = start_row
+    for k in range(n_var):
+        t = min(max(r - X[i, k], 0), height - 1)
+        E[i, e0 + k] = r if k == 0 else r + np.sign(t - r)
+        T[i, t0 + k] = t
+        r = t
+    E[i, e0 + n_var] = r + np.sign(goal_row - r)
+    T[i, t0 + n_var] = goal_row
+
+
 @numba.njit(cache=True)
 def _decode(X, start_row, goal_row, height):
     n, n_var = X.shape
     entries = np.empty((n, n_var + 1), np.int64)
     exits = np.empty((n, n_var + 1), np.int64)
     for i in range(n):
-        r = start_row
-        for k in range(n_var):
-            t = min(max(r - X[i, k], 0), height - 1)
-            entries[i, k] = r if k == 0 else r + np.sign(t - r)
-            exits[i, k] = t
-            r = t
-        entries[i, n_var] = r + np.sign(goal_row - r)
-        exits[i, n_var] = goal_row
+        _walk(X, i, start_row, goal_row, height, entries, 0, exits, 0)
     return entries, exits
+
+
+@numba.njit(cache=True)
+def _decode_keys(X, start_row, goal_row, height):
+    n, n_var = X.shape
+    K = np.empty((n, 2 * (n_var + 1)), np.int64)
+    for i in range(n):
+        _walk(X, i, start_row, goal_row, height, K, 0, K, n_var + 1)
+    return K
 
 
 @numba.njit(cache=True)
@@ -119,6 +136,12 @@ class IntegerEncoding:
         edge are clamped."""
         f = self.frame
         return _decode(self._genes(X), f.start[0], f.goal[0], f.height)
+
+    def decode_keys(self, X) -> np.ndarray:
+        """The column profiles as one ``(N, 2 n_cols)`` int64 array,
+        ``[entries | exits]`` (the path keys of duplicate elimination)."""
+        f = self.frame
+        return _decode_keys(self._genes(X), f.start[0], f.goal[0], f.height)
 
     def encode(self, paths) -> np.ndarray:
         """Genomes ``(N, n_var)`` of column-monotone paths (workspace cells).
