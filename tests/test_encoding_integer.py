@@ -158,3 +158,14 @@ def test_edge_fix_of_integer_and_float_genes_agree(case, seed):
     a = enc.edge_fix(X, np.random.default_rng(seed))
     b = enc.edge_fix(X.astype(float), np.random.default_rng(seed))
     assert a.dtype == np.int64 and np.array_equal(a, b)
+
+
+@settings(max_examples=40, deadline=None)
+@given(workspace_and_genes(), st.integers(0, 2**32 - 1))
+def test_edge_fix_drawn_is_edge_fix_with_its_draws(case, seed):
+    _, enc, X = case
+    a = enc.edge_fix(X, np.random.default_rng(seed))
+    b = enc.edge_fix_drawn(X, np.random.default_rng(seed).random(X.shape))
+    assert np.array_equal(a, b)
+    with pytest.raises(ConfigError, match="one draw per gene"):
+        enc.edge_fix_drawn(X, np.zeros((len(X), enc.n_var + 1)))

@@ -416,14 +416,16 @@ def order_survivors(F, smooth, cv, feasible, ranks, n_survive):
 def take_rows(A, B, idx):
     """``np.concatenate([A, B])[idx]`` for 2-D ``A``, ``B`` of one dtype
     and width, without building the concatenation."""
-    n_a = A.shape[0]
-    out = np.empty((len(idx), A.shape[1]), A.dtype)
+    n_a, w = A.shape
+    out = np.empty((len(idx), w), A.dtype)
     for p in range(len(idx)):
         i = idx[p]
         if i < n_a:
-            out[p] = A[i]
+            for j in range(w):
+                out[p, j] = A[i, j]
         else:
-            out[p] = B[i - n_a]
+            for j in range(w):
+                out[p, j] = B[i - n_a, j]
     return out
 
 

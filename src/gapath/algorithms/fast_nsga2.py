@@ -576,9 +576,9 @@ class FastNSGA2(Algorithm):
             n_matings = math.ceil(n_remaining / self.crossover.n_offsprings)
             parents = self._selection(n_matings, criteria)
             t0 = self._tick("selection", t0)
-            X = self._variation(parents)
+            X, draws = self._variation(parents)
             t0 = self._tick("variation", t0)
-            X = self._repair(X)
+            X = self._repair(X, draws)
             t0 = self._tick("repair", t0)
             X = self._new_paths(X, seen, n_remaining)
             t0 = self._tick("dedupe", t0)
@@ -616,15 +616,20 @@ class FastNSGA2(Algorithm):
         coin = self.random_state.random(len(P))
         return binary_tournament(P, *criteria, coin).reshape(n_matings, n_parents)
 
-    def _variation(self, parents: np.ndarray) -> np.ndarray:
+    def _variation(self, parents: np.ndarray):
         """Crossover, then mutation, of the parents' genomes (for gapath's
-        DiscreteSBX and DiscretePM in one numba twin, see ``fast_operators``)."""
+        DiscreteSBX and DiscretePM in one numba twin, see ``fast_operators``):
+        ``(X, draws)``, ``draws`` the repair's uniform draws when they were
+        made with the mutation's (an edge-fixing repair of an encoding with
+        ``edge_fix_drawn``), else None."""
         if self._fast_discrete:
             X = self._arrays.X[parents.T]  # (n_parents, n_matings, n_var)
-            return discrete_variation(
-                self.crossover, self.mutation, self.problem, X, self.random_state, self._bounds
+            then = self.problem.n_var if self._drawn_repair else None
+            out = discrete_variation(
+                self.crossover, self.mutation, self.problem, X, self.random_state, self._bounds, then
             )
-        return self._mutation(self._crossover(parents))
+            return out if self._drawn_repair else (out, None)
+        return self._mutation(self._crossover(parents)), None
 
     def _crossover(self, parents: np.ndarray) -> np.ndarray:
         """pymoo's ``Crossover.do`` on arrays: each mating is crossed with
@@ -674,9 +679,12 @@ class FastNSGA2(Algorithm):
         out[mut] = Xm[mut]
         return self._after_operator(op, out)
 
-    def _repair(self, X: np.ndarray) -> np.ndarray:
+    def _repair(self, X: np.ndarray, draws=None) -> np.ndarray:
         """The algorithm's repair, called as pymoo's GA calls it (with the
-        random state and the algorithm)."""
+        random state and the algorithm); given its ``draws`` (see
+        :meth:`_variation`), the edge-fixing with them."""
+        if draws is not None:
+            return self.problem.encoding.edge_fix_drawn(X, draws)
         X = _repair_do(self.repair, self.problem, X, random_state=self.random_state, algorithm=self)
         return self._after_operator(self.repair, X)
 
@@ -912,6 +920,15 @@ class FastNSGA2(Algorithm):
             self.crossover, self.mutation, problem
         )
         self._bounds = (np.asarray(problem.xl, dtype=float), np.asarray(problem.xu, dtype=float))
+        # EdgeFixingRepair's first act is encoding.edge_fix's draw of one
+        # number per gene: drawn with the mutation's last, in one call
+        self._drawn_repair = (
+            self._fast_discrete
+            and type(self.repair) is EdgeFixingRepair
+            and self.repair.vtype is None
+            and getattr(self.repair, "repair", None) is None
+            and hasattr(getattr(problem, "encoding", None), "edge_fix_drawn")
+        )
 
     def _initialize(self):
         super()._initialize()

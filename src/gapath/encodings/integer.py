@@ -167,5 +167,15 @@ class IntegerEncoding:
         drawn with linear probability between the violated edge (highest)
         and the current row (zero)."""
         G = self._genes(X)
-        U = random_state.random(G.shape)
+        return self.edge_fix_drawn(G, random_state.random(G.shape))
+
+    def edge_fix_drawn(self, X, U) -> np.ndarray:
+        """:meth:`edge_fix` given its draws: ``U`` (N, n_var), the uniform
+        numbers ``edge_fix`` would draw (``random_state.random(X.shape)``),
+        e.g. drawn in one call with an operator's (see
+        :class:`gapath.algorithms.FastNSGA2`)."""
+        G = self._genes(X)
+        U = np.ascontiguousarray(U, dtype=float)
+        if U.shape != G.shape:
+            raise ConfigError(f"edge_fix_drawn needs one draw per gene, {G.shape}, got {U.shape}")
         return _edge_fix(G, U, self.xl, self.xu, self.frame.start[0], self.frame.height)
