@@ -201,13 +201,17 @@ def _count_decodes(monkeypatch, problem):
     """Rows decoded by problem.encoding outside and inside evaluations."""
     rows = {"outside": 0, "inside": 0}
     state = {"where": "outside"}
-    decode = problem.encoding.decode
 
-    def counting(X):
-        rows[state["where"]] += len(X)
-        return decode(X)
+    def counting(decode):
+        def counted(X):
+            rows[state["where"]] += len(X)
+            return decode(X)
 
-    monkeypatch.setattr(problem.encoding, "decode", counting)
+        return counted
+
+    for name in ("decode", "decode_keys"):  # decode_keys: the profiles as one array
+        if hasattr(problem.encoding, name):
+            monkeypatch.setattr(problem.encoding, name, counting(getattr(problem.encoding, name)))
     metrics = problem.metrics
 
     def watched(X, profiles=None):

@@ -137,3 +137,35 @@ def test_edge_fix_is_reproducible_for_a_seed():
 def test_unknown_encoding():
     with pytest.raises(ConfigError, match="unknown encoding 'gray'"):
         make_encoding("gray", Frame.of(_ws(3, 3)))
+
+
+@settings(max_examples=60, deadline=None)
+@given(workspace_and_genes())
+def test_decode_keys_are_the_profiles_side_by_side(case):
+    _, enc, X = case
+    entries, exits = enc.decode(X)
+    K = enc.decode_keys(X)
+    assert K.dtype == np.int64 and K.flags.c_contiguous
+    assert np.array_equal(K, np.hstack([entries, exits]))
+    assert np.array_equal(enc.decode_keys(X.astype(float) + 0.2), K)  # rounded, as decode
+
+
+@settings(max_examples=60, deadline=None)
+@given(workspace_and_genes(), st.integers(0, 2**32 - 1))
+def test_edge_fix_of_integer_and_float_genes_agree(case, seed):
+    """Integer genes skip the rounding pass; the result is the same."""
+    _, enc, X = case
+    a = enc.edge_fix(X, np.random.default_rng(seed))
+    b = enc.edge_fix(X.astype(float), np.random.default_rng(seed))
+    assert a.dtype == np.int64 and np.array_equal(a, b)
+
+
+@settings(max_examples=40, deadline=None)
+@given(workspace_and_genes(), st.integers(0, 2**32 - 1))
+def test_edge_fix_drawn_is_edge_fix_with_its_draws(case, seed):
+    _, enc, X = case
+    a = enc.edge_fix(X, np.random.default_rng(seed))
+    b = enc.edge_fix_drawn(X, np.random.default_rng(seed).random(X.shape))
+    assert np.array_equal(a, b)
+    with pytest.raises(ConfigError, match="one draw per gene"):
+        enc.edge_fix_drawn(X, np.zeros((len(X), enc.n_var + 1)))

@@ -14,7 +14,7 @@ from pymoo.optimize import minimize
 
 from gapath import ConfigError, default_workspace
 from gapath.algorithms import FastNSGA2, paper_nsga2
-from gapath.algorithms._kernels import binary_tournament
+from gapath.algorithms._kernels import binary_tournament, stable_argsort
 from gapath.algorithms._variation import (
     discrete_supported,
     discrete_variation,
@@ -22,7 +22,7 @@ from gapath.algorithms._variation import (
     sbx_crossover,
     sbx_supported,
 )
-from gapath.algorithms.fast_nsga2 import fast_survival_order, pareto_ranks, path_duplicate_mask
+from gapath.algorithms.fast_nsga2 import PathArrays, fast_survival_order, pareto_ranks, path_duplicate_mask
 from gapath.front import path_front
 from gapath.metrics import hv_ratio
 from gapath.objectives import evaluate_path
@@ -251,6 +251,56 @@ def test_survival_order_kernel_matches_survival_order():
         k = int(rng.integers(1, n + 1))
         for a, b in zip(fast_survival_order(F, smooth, CV, k), survival_order(F, smooth, CV, k)):
             np.testing.assert_array_equal(a, b)
+
+
+def test_survival_order_kernel_matches_survival_order_on_large_fronts():
+    """Fronts of more than 32 rows (the kernels' sorts change algorithm
+    there), with ties on both objectives and duplicate rows."""
+    rng = np.random.default_rng(4)
+    for trial in range(12):
+        n = int(rng.integers(60, 400))
+        f1 = rng.integers(0, 50, n).astype(float)
+        F = np.column_stack([f1, 50 - f1 + rng.integers(0, 3, n) * (trial % 2)])
+        smooth = rng.integers(0, 2, size=n).astype(float) if trial % 3 else None
+        k = int(rng.integers(1, n + 1))
+        for a, b in zip(fast_survival_order(F, smooth, None, k), survival_order(F, smooth, None, k)):
+            np.testing.assert_array_equal(a, b)
+
+
+def test_stable_argsort_is_numpys_stable_order():
+    rng = np.random.default_rng(6)
+    for n in (0, 1, 2, 5, 31, 32, 33, 80):
+        v = rng.integers(0, 4, n).astype(float)
+        v[rng.random(n) < 0.2] = np.nan
+        v[rng.random(n) < 0.2] = -np.inf
+        np.testing.assert_array_equal(stable_argsort(v), np.argsort(v, kind="stable"))
+
+
+def test_take_merged_is_concat_then_take():
+    rng = np.random.default_rng(8)
+
+    def arrays(n):
+        return PathArrays(
+            rng.integers(0, 9, (n, 4)),
+            rng.random((n, 2)),
+            np.zeros((n, 0)),
+            np.zeros((n, 0)),
+            rng.random(n),
+            rng.integers(0, 5, n),
+            data={"smoothness": rng.random(n), "interfering": rng.integers(0, 2, n) > 0},
+            keys=rng.integers(0, 9, (n, 6)),
+            hashes=rng.integers(0, 99, n),
+        )
+
+    a, b = arrays(7), arrays(5)
+    idx = rng.permutation(12)[:9]
+    got, want = a.take_merged(b, idx), a.concat(b).take(idx)
+    for k in (*PathArrays._ROWS, "keys", "hashes"):
+        np.testing.assert_array_equal(getattr(got, k), getattr(want, k))
+        assert getattr(got, k).dtype == getattr(want, k).dtype
+    assert got.data.keys() == want.data.keys()
+    for k in got.data:
+        np.testing.assert_array_equal(got.data[k], want.data[k])
 
 
 def test_pareto_ranks_match_moocore():

@@ -13,11 +13,16 @@ __all__ = [
     "accept_new_rows",
     "binary_tournament",
     "crowding_by_front",
+    "lexicographic_order",
     "order_survivors",
+    "path_table",
     "pareto_rank_2d",
     "profile_keys",
     "repeated_rows",
     "row_hashes",
+    "stable_argsort",
+    "take_rows",
+    "take_values",
 ]
 
 
@@ -100,32 +105,68 @@ def profile_keys(entries, exits):
     return K, row_hashes(K)
 
 
+@numba.njit(cache=True, inline="always")
+def _slot(h, mask):
+    return (h ^ (h >> 29)) & mask
+
+
 @numba.njit(cache=True)
-def accept_new_rows(K, h, pop_K, pop_h, pop_order, off_K, off_h, n_off, n_max, check):
+def path_table(h, capacity):
+    """An open-addressing hash table of the hashes ``h``: ``(table, mask)``,
+    ``table`` of a power-of-two size at least twice ``capacity`` (the rows
+    it will hold), each slot -1 (empty) or a row index; rows ``0 ..
+    len(h) - 1`` are inserted (linear probing)."""
+    size = 16
+    while size < 2 * capacity:
+        size *= 2
+    table = np.full(size, -1, np.int64)
+    mask = np.int64(size - 1)
+    for i in range(len(h)):
+        s = _slot(h[i], mask)
+        while table[s] != -1:
+            s = (s + 1) & mask
+        table[s] = i
+    return table, mask
+
+
+@numba.njit(cache=True)
+def accept_new_rows(K, h, pop_K, pop_h, table, mask, off_K, off_h, n_off, n_max, check):
     """Indices of the first ``n_max`` rows of ``K`` that are new: not in the
-    population ``pop_K`` (hashes ``pop_h``, sorted by ``pop_order``), not
-    among the ``n_off`` offspring of ``off_K`` accepted before, and not
-    repeating an earlier row of ``K`` (without ``check``: the first
-    ``n_max`` rows). The accepted rows and hashes are appended to
-    ``off_K``/``off_h`` in place."""
+    population ``pop_K`` (hashes ``pop_h``), not among the ``n_off``
+    offspring of ``off_K`` accepted before, and not repeating an earlier
+    row of ``K`` (without ``check``: the first ``n_max`` rows).
+
+    ``table``/``mask`` (see :func:`path_table`) hold the population's rows
+    as ``0 .. len(pop_K) - 1`` and the accepted offspring's as
+    ``len(pop_K) + j``; matches by hash are confirmed value by value. The
+    accepted rows and hashes are appended to ``off_K``/``off_h`` and to
+    the table, in place. O(n) expected."""
     n = K.shape[0]
-    dup = np.zeros(n, np.bool_)
-    if check:
-        dup = repeated_rows(h, K, pop_h, pop_K, pop_order)
-        if n_off:
-            dup |= repeated_rows(
-                h, K, off_h[:n_off], off_K[:n_off], np.argsort(off_h[:n_off], kind="mergesort")
-            )
+    n_pop = pop_K.shape[0]
     out = np.empty(min(n, n_max), np.int64)
     m = 0
     for i in range(n):
         if m == n_max:
             break
-        if not dup[i]:
-            out[m] = i
-            off_K[n_off + m] = K[i]
-            off_h[n_off + m] = h[i]
-            m += 1
+        if check:
+            s = _slot(h[i], mask)
+            dup = False
+            while table[s] != -1:
+                j = table[s]
+                if j < n_pop:
+                    dup = pop_h[j] == h[i] and _same_row(K, i, pop_K, j)
+                else:
+                    dup = off_h[j - n_pop] == h[i] and _same_row(K, i, off_K, j - n_pop)
+                if dup:
+                    break
+                s = (s + 1) & mask
+            if dup:
+                continue
+            table[s] = n_pop + n_off + m
+        out[m] = i
+        off_K[n_off + m] = K[i]
+        off_h[n_off + m] = h[i]
+        m += 1
     return out[:m]
 
 
@@ -174,6 +215,31 @@ def repeated_rows(h, K, h_old, K_old, old_order):
     return dup
 
 
+@numba.njit(cache=True, inline="always")
+def _lt(a, b):
+    """NumPy's sort order for floats: NaN after everything."""
+    return a < b or (b != b and a == a)
+
+
+@numba.njit(cache=True)
+def stable_argsort(vals):
+    """``np.argsort(vals, kind="mergesort")``: the stable order (unique, so
+    any stable sort gives it); insertion sort below 32 values, where the
+    fronts of a population mostly are, NumPy's mergesort above."""
+    c = len(vals)
+    if c > 32:
+        return np.argsort(vals, kind="mergesort")
+    order = np.empty(c, np.int64)
+    for a in range(c):
+        v = vals[a]
+        b = a - 1
+        while b >= 0 and _lt(v, vals[order[b]]):
+            order[b + 1] = order[b]
+            b -= 1
+        order[b + 1] = a
+    return order
+
+
 @numba.njit(cache=True)
 def crowding_by_front(F, front, n_fronts):
     """pymoo's ``calc_crowding_distance`` of every front, in one pass.
@@ -201,7 +267,7 @@ def crowding_by_front(F, front, n_fronts):
         for j in range(m):
             for p in range(c):
                 vals[p] = F[members[p], j]
-            srt = np.argsort(vals, kind="mergesort")
+            srt = stable_argsort(vals)
             norm = vals[srt[c - 1]] - vals[srt[0]]
             if norm == 0.0 or np.isnan(norm):
                 continue
@@ -224,19 +290,43 @@ def crowding_by_front(F, front, n_fronts):
 
 
 @numba.njit(cache=True)
-def pareto_rank_2d(F):
+def lexicographic_order(F, order):
+    """``order`` (sorting ``F[:, 0]``, any tie order) made lexicographic in
+    place: the rows of each run of equal ``F[:, 0]`` sorted by ``F[:, 1]``."""
+    n = len(order)
+    s = 0
+    while s < n:
+        f = F[order[s], 0]
+        e = s + 1
+        while e < n and F[order[e], 0] == f:
+            e += 1
+        if e - s > 1:
+            run = order[s:e].copy()
+            vals = np.empty(e - s)
+            for p in range(e - s):
+                vals[p] = F[run[p], 1]
+            o = stable_argsort(vals)
+            for p in range(e - s):
+                order[s + p] = run[o[p]]
+        s = e
+    return order
+
+
+@numba.njit(cache=True)
+def pareto_rank_2d(F, order):
     """Non-dominated rank of every row of ``F`` (n, 2), minimising both
     columns; the same ranks as moocore's ``pareto_rank`` (equal rows share
-    a rank, as neither dominates the other).
+    a rank, as neither dominates the other). ``order`` sorts ``F[:, 0]``
+    (ties in any order: e.g. ``np.argsort(F[:, 0])``); it is reordered.
 
     Rows are swept in lexicographic order; every dominator of a row comes
     before it, and the fronts that hold a dominator are a prefix of the
     fronts, so a binary search over the fronts' smallest second objective
-    places each row. O(n log n).
+    places each row. The ranks do not depend on the order of equal rows.
+    O(n log n).
     """
     n = F.shape[0]
-    order = np.argsort(F[:, 1], kind="mergesort")
-    order = order[np.argsort(F[order, 0], kind="mergesort")]  # lexicographic
+    order = lexicographic_order(F, order)
     rank = np.empty(n, np.int64)
     min_f2 = np.empty(n)  # per front: smallest f2, and the f1 of that point
     f1_at = np.empty(n)
@@ -247,18 +337,15 @@ def pareto_rank_2d(F):
         lo, hi = 0, n_fronts  # first front without a dominator of i
         while lo < hi:
             mid = (lo + hi) // 2
-            if min_f2[mid] < f2 or (min_f2[mid] == f2 and f1_at[mid] < f1):
-                lo = mid + 1
-            else:
-                hi = mid
+            dominated = (min_f2[mid] < f2) | ((min_f2[mid] == f2) & (f1_at[mid] < f1))
+            lo = mid + 1 if dominated else lo
+            hi = hi if dominated else mid
         rank[i] = lo
-        if lo == n_fronts:
+        new_front = lo == n_fronts
+        if new_front or f2 < min_f2[lo]:
             min_f2[lo] = f2
             f1_at[lo] = f1
-            n_fronts += 1
-        elif f2 < min_f2[lo]:
-            min_f2[lo] = f2
-            f1_at[lo] = f1
+        n_fronts += np.int64(new_front)
     return rank
 
 
@@ -302,9 +389,9 @@ def order_survivors(F, smooth, cv, feasible, ranks, n_survive):
             c = counts[k]
             members = by_front[start : start + c]
             start += c
-            o = np.argsort(-cd[members], kind="mergesort")
+            o = stable_argsort(-cd[members])
             members = members[o]
-            o = np.argsort(smooth[idx[members]], kind="mergesort")
+            o = stable_argsort(smooth[idx[members]])
             members = members[o]
             for p in range(c):
                 if m == n_survive:
@@ -323,3 +410,31 @@ def order_survivors(F, smooth, cv, feasible, ranks, n_survive):
             rank[m] = n_fronts + p
             m += 1
     return order, rank, crowd
+
+
+@numba.njit(cache=True)
+def take_rows(A, B, idx):
+    """``np.concatenate([A, B])[idx]`` for 2-D ``A``, ``B`` of one dtype
+    and width, without building the concatenation."""
+    n_a, w = A.shape
+    out = np.empty((len(idx), w), A.dtype)
+    for p in range(len(idx)):
+        i = idx[p]
+        if i < n_a:
+            for j in range(w):
+                out[p, j] = A[i, j]
+        else:
+            for j in range(w):
+                out[p, j] = B[i - n_a, j]
+    return out
+
+
+@numba.njit(cache=True)
+def take_values(a, b, idx):
+    """``np.concatenate([a, b])[idx]`` for 1-D ``a``, ``b`` of one dtype."""
+    n_a = len(a)
+    out = np.empty(len(idx), a.dtype)
+    for p in range(len(idx)):
+        i = idx[p]
+        out[p] = a[i] if i < n_a else b[i - n_a]
+    return out

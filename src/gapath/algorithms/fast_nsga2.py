@@ -62,9 +62,12 @@ from gapath.algorithms._kernels import (
     binary_tournament,
     order_survivors,
     pareto_rank_2d,
+    path_table,
     profile_keys,
     repeated_rows,
     row_hashes,
+    take_rows,
+    take_values,
 )
 from gapath.algorithms._variation import (
     discrete_supported,
@@ -168,8 +171,8 @@ def pareto_ranks(F) -> np.ndarray:
     F = np.ascontiguousarray(F, dtype=float)
     if len(F) == 0:
         return np.zeros(0, np.int64)
-    if F.shape[1] == 2:
-        return pareto_rank_2d(F)
+    if F.shape[1] == 2:  # NumPy's sort (its SIMD one, where the CPU has it): ties in any order
+        return pareto_rank_2d(F, np.argsort(F[:, 0]))
     return np.asarray(pareto_rank(F), np.int64)
 
 
@@ -272,6 +275,18 @@ class PathArrays:
             out.hashes = np.concatenate([self.hashes, other.hashes])
         return out
 
+    def take_merged(self, other: PathArrays, idx) -> PathArrays:
+        """``self.concat(other).take(idx)`` (``idx`` an integer array),
+        without building the concatenation."""
+        out = PathArrays(
+            *(_take2(getattr(self, k), getattr(other, k), idx) for k in self._ROWS),
+            data={k: _take2(v, other.data[k], idx) for k, v in self.data.items() if k in other.data},
+        )
+        if self.keys is not None and other.keys is not None:
+            out.keys = _take2(self.keys, other.keys, idx)
+            out.hashes = _take2(self.hashes, other.hashes, idx)
+        return out
+
     def to_population(self) -> Population:
         """A pymoo ``Population`` of evaluated individuals with the same
         values (``rank``, ``crowding``, the problem's extra outputs and
@@ -293,9 +308,21 @@ class PathArrays:
         return np.array(individuals, dtype=object).view(Population)
 
 
+def _take2(a: np.ndarray, b: np.ndarray, idx: np.ndarray) -> np.ndarray:
+    """``np.concatenate([a, b])[idx]``, by a numba gather when ``a`` and
+    ``b`` are plain arrays of one dtype (and width)."""
+    if a.dtype == b.dtype and a.dtype.kind in "biuf" and a.ndim == b.ndim and a.shape[1:] == b.shape[1:]:
+        if a.ndim == 1:
+            return take_values(np.ascontiguousarray(a), np.ascontiguousarray(b), idx)
+        if a.ndim == 2:
+            return take_rows(np.ascontiguousarray(a), np.ascontiguousarray(b), idx)
+    return np.concatenate([a, b])[idx]
+
+
 class _SeenPaths:
-    """The paths of the population (hashes sorted once) and of the
-    offspring accepted so far in a generation (in preallocated buffers).
+    """The paths of the population and of the offspring accepted so far in
+    a generation: their keys (the offspring's in preallocated buffers) and
+    one hash table over both.
 
     A path is identified by its decoded column profile (entries then exits,
     see :mod:`gapath.encodings.base`), as in
@@ -303,7 +330,7 @@ class _SeenPaths:
 
     def __init__(self, pop_keys, pop_hashes, capacity: int, check: bool = True):
         self.pop_keys, self.pop_hashes = pop_keys, pop_hashes
-        self.pop_order = np.argsort(pop_hashes, kind="stable")
+        self.table, self.mask = path_table(pop_hashes, len(pop_hashes) + capacity)
         self.keys = np.empty((capacity, pop_keys.shape[1]), np.int64)
         self.hashes = np.empty(capacity, np.int64)
         self.n, self.check = 0, check
@@ -316,7 +343,8 @@ class _SeenPaths:
             hashes,
             self.pop_keys,
             self.pop_hashes,
-            self.pop_order,
+            self.table,
+            self.mask,
             self.keys,
             self.hashes,
             self.n,
@@ -514,8 +542,7 @@ class FastNSGA2(Algorithm):
             self.is_initialized = True
         else:
             offspring = self._offspring_population()
-            merged = self._arrays if offspring is None else self._arrays.concat(offspring)
-            survivors = self._survival(merged, self.pop_size)
+            survivors = self._survival(self._arrays, self.pop_size, offspring)
         self._set_arrays(survivors, offspring)
         self._post_advance()  # optimum, termination, display, history, callback
         if self.termination.has_terminated():
@@ -549,9 +576,9 @@ class FastNSGA2(Algorithm):
             n_matings = math.ceil(n_remaining / self.crossover.n_offsprings)
             parents = self._selection(n_matings, criteria)
             t0 = self._tick("selection", t0)
-            X = self._variation(parents)
+            X, draws = self._variation(parents)
             t0 = self._tick("variation", t0)
-            X = self._repair(X)
+            X = self._repair(X, draws)
             t0 = self._tick("repair", t0)
             X = self._new_paths(X, seen, n_remaining)
             t0 = self._tick("dedupe", t0)
@@ -589,15 +616,20 @@ class FastNSGA2(Algorithm):
         coin = self.random_state.random(len(P))
         return binary_tournament(P, *criteria, coin).reshape(n_matings, n_parents)
 
-    def _variation(self, parents: np.ndarray) -> np.ndarray:
+    def _variation(self, parents: np.ndarray):
         """Crossover, then mutation, of the parents' genomes (for gapath's
-        DiscreteSBX and DiscretePM in one numba twin, see ``fast_operators``)."""
+        DiscreteSBX and DiscretePM in one numba twin, see ``fast_operators``):
+        ``(X, draws)``, ``draws`` the repair's uniform draws when they were
+        made with the mutation's (an edge-fixing repair of an encoding with
+        ``edge_fix_drawn``), else None."""
         if self._fast_discrete:
             X = self._arrays.X[parents.T]  # (n_parents, n_matings, n_var)
-            return discrete_variation(
-                self.crossover, self.mutation, self.problem, X, self.random_state, self._bounds
+            then = self.problem.n_var if self._drawn_repair else None
+            out = discrete_variation(
+                self.crossover, self.mutation, self.problem, X, self.random_state, self._bounds, then
             )
-        return self._mutation(self._crossover(parents))
+            return out if self._drawn_repair else (out, None)
+        return self._mutation(self._crossover(parents)), None
 
     def _crossover(self, parents: np.ndarray) -> np.ndarray:
         """pymoo's ``Crossover.do`` on arrays: each mating is crossed with
@@ -647,9 +679,12 @@ class FastNSGA2(Algorithm):
         out[mut] = Xm[mut]
         return self._after_operator(op, out)
 
-    def _repair(self, X: np.ndarray) -> np.ndarray:
+    def _repair(self, X: np.ndarray, draws=None) -> np.ndarray:
         """The algorithm's repair, called as pymoo's GA calls it (with the
-        random state and the algorithm)."""
+        random state and the algorithm); given its ``draws`` (see
+        :meth:`_variation`), the edge-fixing with them."""
+        if draws is not None:
+            return self.problem.encoding.edge_fix_drawn(X, draws)
         X = _repair_do(self.repair, self.problem, X, random_state=self.random_state, algorithm=self)
         return self._after_operator(self.repair, X)
 
@@ -693,18 +728,30 @@ class FastNSGA2(Algorithm):
         self._tick("evaluation", t0)
         return arrays
 
-    def _survival(self, arrays: PathArrays, n_survive: int) -> PathArrays:
-        """Elitist survival: the ``n_survive`` best by feasibility, rank,
-        smoothness (when the tie-break is on) and crowding, best first, with
-        ``rank`` and ``crowding`` set."""
+    def _survival(
+        self, arrays: PathArrays, n_survive: int, offspring: PathArrays | None = None
+    ) -> PathArrays:
+        """Elitist survival: the ``n_survive`` best of ``arrays`` (followed
+        by ``offspring``, if given) by feasibility, rank, smoothness (when
+        the tie-break is on) and crowding, best first, with ``rank`` and
+        ``crowding`` set."""
         t0 = self.clock()
-        feasible = np.flatnonzero(arrays.CV <= 0)
-        ranks = pareto_ranks(arrays.F[feasible])
+        if offspring is None:
+            F, CV, data = arrays.F, arrays.CV, arrays.data
+        else:
+            F, CV = np.concatenate([arrays.F, offspring.F]), np.concatenate([arrays.CV, offspring.CV])
+            data = {
+                k: np.concatenate([v, offspring.data[k]])
+                for k, v in arrays.data.items()
+                if k == "smoothness" and k in offspring.data
+            }
+        feasible = np.flatnonzero(CV <= 0)
+        ranks = pareto_ranks(F[feasible])
         t0 = self._tick("sorting", t0)
-        smooth = arrays.data.get("smoothness") if self.tiebreak is not None else None
-        smooth = np.zeros(len(arrays)) if smooth is None else np.asarray(smooth, dtype=float)
-        order, rank, crowding = order_survivors(arrays.F, smooth, arrays.CV, feasible, ranks, n_survive)
-        survivors = arrays.take(order)
+        smooth = data.get("smoothness") if self.tiebreak is not None else None
+        smooth = np.zeros(len(F)) if smooth is None else np.asarray(smooth, dtype=float)
+        order, rank, crowding = order_survivors(F, smooth, CV, feasible, ranks, n_survive)
+        survivors = arrays.take(order) if offspring is None else arrays.take_merged(offspring, order)
         survivors.rank, survivors.crowding = rank, crowding
         self._tick("survival", t0)
         return survivors
@@ -761,7 +808,11 @@ class FastNSGA2(Algorithm):
         if hasattr(self.problem, "path_keys"):  # free paths: identity rows
             K = np.ascontiguousarray(self.problem.path_keys(X), dtype=np.int64)
             return K, row_hashes(K)
-        entries, exits = self.problem.encoding.decode(X)
+        encoding = self.problem.encoding
+        if hasattr(encoding, "decode_keys"):  # the keys in one pass
+            K = encoding.decode_keys(X)
+            return K, row_hashes(K)
+        entries, exits = encoding.decode(X)
         return profile_keys(np.asarray(entries, np.int64), np.asarray(exits, np.int64))
 
     def _after_operator(self, op, X) -> np.ndarray:
@@ -869,6 +920,15 @@ class FastNSGA2(Algorithm):
             self.crossover, self.mutation, problem
         )
         self._bounds = (np.asarray(problem.xl, dtype=float), np.asarray(problem.xu, dtype=float))
+        # EdgeFixingRepair's first act is encoding.edge_fix's draw of one
+        # number per gene: drawn with the mutation's last, in one call
+        self._drawn_repair = (
+            self._fast_discrete
+            and type(self.repair) is EdgeFixingRepair
+            and self.repair.vtype is None
+            and getattr(self.repair, "repair", None) is None
+            and hasattr(getattr(problem, "encoding", None), "edge_fix_drawn")
+        )
 
     def _initialize(self):
         super()._initialize()
@@ -902,5 +962,4 @@ class FastNSGA2(Algorithm):
 
     def _advance(self, infills=None, **kwargs):
         offspring = None if infills is None else self._from_population(infills)
-        merged = self._arrays if offspring is None else self._arrays.concat(offspring)
-        self._set_arrays(self._survival(merged, self.pop_size), offspring)
+        self._set_arrays(self._survival(self._arrays, self.pop_size, offspring), offspring)

@@ -38,26 +38,49 @@ from gapath.encodings.base import Frame, profiles_of_paths
 from gapath.errors import ConfigError
 
 
+@numba.njit(cache=True, inline="always")
+def _walk(X, i, start_row, goal_row, height, E, e0, T, t0):
+    """Decode genome ``i``: its entry rows into ``E[i, e0:]``, its exit rows
+    into ``T[i, t0:]``."""
+    n_var = X.shape[1]
+    r = start_row
+    for k in range(n_var):
+        t = min(max(r - X[i, k], 0), height - 1)
+        E[i, e0 + k] = r if k == 0 else r + np.sign(t - r)
+        T[i, t0 + k] = t
+        r = t
+    E[i, e0 + n_var] = r + np.sign(goal_row - r)
+    T[i, t0 + n_var] = goal_row
+
+
 @numba.njit(cache=True)
 def _decode(X, start_row, goal_row, height):
     n, n_var = X.shape
     entries = np.empty((n, n_var + 1), np.int64)
     exits = np.empty((n, n_var + 1), np.int64)
     for i in range(n):
-        r = start_row
-        for k in range(n_var):
-            t = min(max(r - X[i, k], 0), height - 1)
-            entries[i, k] = r if k == 0 else r + np.sign(t - r)
-            exits[i, k] = t
-            r = t
-        entries[i, n_var] = r + np.sign(goal_row - r)
-        exits[i, n_var] = goal_row
+        _walk(X, i, start_row, goal_row, height, entries, 0, exits, 0)
     return entries, exits
 
 
 @numba.njit(cache=True)
-def _edge_fix(X, U, start_row, height):
+def _decode_keys(X, start_row, goal_row, height):
     n, n_var = X.shape
+    K = np.empty((n, 2 * (n_var + 1)), np.int64)
+    for i in range(n):
+        _walk(X, i, start_row, goal_row, height, K, 0, K, n_var + 1)
+    return K
+
+
+@numba.njit(cache=True)
+def _edge_fix(G, U, xl, xu, start_row, height):
+    """Edge-fixed copy of the integer genes ``G`` (clipped to ``xl``/``xu``
+    first), with the draws ``U`` (one per gene)."""
+    n, n_var = G.shape
+    X = np.empty((n, n_var), np.int64)
+    for i in range(n):
+        for k in range(n_var):
+            X[i, k] = min(max(G[i, k], xl[k]), xu[k])
     for i in range(n):
         r = start_row - X[i, 0]
         for k in range(1, n_var):
@@ -103,6 +126,8 @@ class IntegerEncoding:
         X = np.atleast_2d(np.asarray(X))
         if X.shape[1] != self.n_var:
             raise ConfigError(f"integer genomes need {self.n_var} genes, got {X.shape[1]}")
+        if X.dtype.kind in "iub":  # already integers: no rounding pass
+            return np.ascontiguousarray(X, dtype=np.int64)
         return np.ascontiguousarray(np.rint(X).astype(np.int64))
 
     def decode(self, X) -> tuple[np.ndarray, np.ndarray]:
@@ -111,6 +136,12 @@ class IntegerEncoding:
         edge are clamped."""
         f = self.frame
         return _decode(self._genes(X), f.start[0], f.goal[0], f.height)
+
+    def decode_keys(self, X) -> np.ndarray:
+        """The column profiles as one ``(N, 2 n_cols)`` int64 array,
+        ``[entries | exits]`` (the path keys of duplicate elimination)."""
+        f = self.frame
+        return _decode_keys(self._genes(X), f.start[0], f.goal[0], f.height)
 
     def encode(self, paths) -> np.ndarray:
         """Genomes ``(N, n_var)`` of column-monotone paths (workspace cells).
@@ -135,6 +166,16 @@ class IntegerEncoding:
         in which every move that would leave the grid is replaced by a row
         drawn with linear probability between the violated edge (highest)
         and the current row (zero)."""
-        X = np.clip(self._genes(X), self.xl, self.xu)
-        U = random_state.random(X.shape)
-        return _edge_fix(X, U, self.frame.start[0], self.frame.height)
+        G = self._genes(X)
+        return self.edge_fix_drawn(G, random_state.random(G.shape))
+
+    def edge_fix_drawn(self, X, U) -> np.ndarray:
+        """:meth:`edge_fix` given its draws: ``U`` (N, n_var), the uniform
+        numbers ``edge_fix`` would draw (``random_state.random(X.shape)``),
+        e.g. drawn in one call with an operator's (see
+        :class:`gapath.algorithms.FastNSGA2`)."""
+        G = self._genes(X)
+        U = np.ascontiguousarray(U, dtype=float)
+        if U.shape != G.shape:
+            raise ConfigError(f"edge_fix_drawn needs one draw per gene, {G.shape}, got {U.shape}")
+        return _edge_fix(G, U, self.xl, self.xu, self.frame.start[0], self.frame.height)
