@@ -54,7 +54,7 @@ def slice_spec(quick: bool, which: str = "table1"):
     Table 1 at p0 0.3-1.0, seeds 1-20), ``dense32`` (32 runs, 32x32, 0.04-2 s
     each), ``short`` (64 runs, 16x16, p0 0.2-0.8, mostly 10-50 ms each: where
     a task's cost shows), or with ``quick`` 8 runs of 16x16."""
-    from gapath.experiments.dense import table1_spec
+    from gapath.studies.dense import table1_spec
 
     if quick:
         return table1_spec(grids=(16,), p0s=(0.4, 0.6), runs=4, engine="auto", name="bench-slice")

@@ -151,7 +151,7 @@ def test_layer_options_without_their_layer(flag, fragment, tmp_path, capsys, mon
 
 
 def test_mars_study_sets_its_own_layers():
-    from gapath.experiments import mars
+    from gapath.studies import mars
 
     assert tuple(mars.OBJECTIVES) == ("length", "elevation", "solar", "risk")
 

@@ -7,7 +7,7 @@ import pytest
 
 from gapath import dense_workspace
 from gapath.cli import main
-from gapath.experiments import dense
+from gapath.studies import dense
 from gapath.experiments.runner import FirstFeasible, run_experiment
 from gapath.experiments.store import ResultStore
 from gapath.solver import solve

@@ -217,7 +217,7 @@ def test_bad_inputs(open_ws):
 
 
 def test_experiment_tables_and_outputs(tmp_path):
-    from gapath.experiments.dynamic import run, write_outputs
+    from gapath.studies.dynamic import run, write_outputs
 
     study = run(2, scenarios=("maze",), planners=("astar", "hybrid-astar"))
     assert [r["planner"] for r in study.table] == ["astar", "hybrid-astar"]

@@ -1,6 +1,6 @@
 import csv
 
-from gapath.experiments import encodings
+from gapath.studies import encodings
 from gapath.metrics import hv_ratio
 from gapath.workspace import random_workspace
 

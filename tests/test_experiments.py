@@ -655,7 +655,7 @@ def test_experiment_group_is_extensible(monkeypatch, tmp_path, capsys):
 
 
 def test_dense_quick(tmp_path):
-    from gapath.experiments import dense
+    from gapath.studies import dense
 
     assert main(["experiment", "dense", "--quick", "--out", str(tmp_path), "--workers", "0", "--quiet"]) == 0
     md = (tmp_path / "dense.md").read_text()

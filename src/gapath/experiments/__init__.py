@@ -7,7 +7,7 @@
   -- runs on a local process pool or a Dask cluster, into a resumable
   :class:`ResultStore` (:mod:`gapath.experiments.store`).
 * :func:`gapath.experiments.report.report` -- tables and plots.
-* :mod:`gapath.experiments.dense` -- Ahmed & Deb's Table 1.
+* :mod:`gapath.studies.dense` -- Ahmed & Deb's Table 1.
 
 The runner, store and report names are imported on first use, so that
 ``import gapath.experiments`` stays light.

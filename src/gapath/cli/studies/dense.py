@@ -1,11 +1,11 @@
-"""``gapath experiment dense``: the command line of :mod:`gapath.experiments.dense`."""
+"""``gapath experiment dense``: the command line of :mod:`gapath.studies.dense`."""
 
 from __future__ import annotations
 
 import time
 from pathlib import Path
 
-from gapath.experiments.dense import (
+from gapath.studies.dense import (
     MAP_SEED,
     P0S,
     QUICK,

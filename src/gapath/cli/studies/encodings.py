@@ -1,8 +1,8 @@
-"""``gapath experiment encodings``: the command line of :mod:`gapath.experiments.encodings`."""
+"""``gapath experiment encodings``: the command line of :mod:`gapath.studies.encodings`."""
 
 from __future__ import annotations
 
-from gapath.experiments.encodings import (
+from gapath.studies.encodings import (
     QUICK,
     run,
     write_outputs,

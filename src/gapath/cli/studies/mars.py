@@ -1,12 +1,12 @@
-"""``gapath experiment mars``: the command line of :mod:`gapath.experiments.mars`."""
+"""``gapath experiment mars``: the command line of :mod:`gapath.studies.mars`."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 from gapath.errors import ConfigError
-from gapath.experiments import mars as _study  # find_mars_dtm looked up at call time
-from gapath.experiments.mars import (
+from gapath.studies import mars as _study  # find_mars_dtm looked up at call time
+from gapath.studies.mars import (
     FULL,
     QUICK,
     mars_study,
