@@ -234,7 +234,7 @@ def test_experiment_tables_and_outputs(tmp_path):
 
 
 def test_animation_is_small(open_ws, tmp_path):
-    from gapath.dynamic_plots import animate_run
+    from gapath.dynamic.plots import animate_run
 
     res = simulate(open_ws, "hybrid-astar", moving=[crosser()])
     n = animate_run(open_ws, res, (), tmp_path / "run.gif", every=2.0)

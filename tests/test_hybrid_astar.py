@@ -22,7 +22,7 @@ from gapath.planners.hybrid_astar import (
     path_objectives,
     pose_cell,
 )
-from gapath.scenarios import complex_maze
+from gapath.dynamic.scenarios import complex_maze
 
 
 @pytest.fixture(scope="module")

@@ -7,7 +7,7 @@ import pytest
 
 from gapath import ConfigError, Workspace
 from gapath.planners.astar import astar
-from gapath.scenarios import (
+from gapath.dynamic.scenarios import (
     SEED_DISTANCE,
     _grid_ratio,
     complex_maze,

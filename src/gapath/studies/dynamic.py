@@ -230,7 +230,7 @@ def run(
     """
     from gapath.dynamic import Robot, SimSettings, make_planner, simulate
     from gapath.planners.astar import astar
-    from gapath.scenarios import make_scenario
+    from gapath.dynamic.scenarios import make_scenario
 
     try:
         n = int(n_runs)
@@ -468,7 +468,7 @@ def write_outputs(
     if png and study.examples:
         written.append(_paths_png(study, out / f"{stem}_paths.png"))
     if gif:
-        from gapath.dynamic_plots import animate_run
+        from gapath.dynamic.plots import animate_run
 
         for scen, (sc, results) in study.examples.items():
             first = next(iter(results.values()))
@@ -481,7 +481,7 @@ def write_outputs(
 def _paths_png(study, path) -> Path:
     import matplotlib.pyplot as plt
 
-    from gapath.dynamic_plots import plot_paths
+    from gapath.dynamic.plots import plot_paths
     from gapath.results import atomic_write
 
     k = len(study.examples)
