@@ -23,7 +23,7 @@ from gapath.dynamic import (
     simulate,
     time_to_collision,
 )
-from gapath.planners._geometry import disc_free
+from gapath.planners.geometry import disc_free
 from gapath.planners.hybrid_astar import CarModel
 
 

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from gapath import ConfigError, NoPathError, Workspace
-from gapath.planners._geometry import (
+from gapath.planners.geometry import (
     arc_point,
     disc_free,
     dubins,
