@@ -31,8 +31,8 @@ import time
 
 import numpy as np
 
-from gapath.studies.mars import OBJECTIVES, mars_costmap, mars_workspace
 from gapath.planners.pareto import PLANNERS, DStarPO, WeightedSumDStar, plan
+from gapath.studies.mars import OBJECTIVES, mars_costmap, mars_workspace
 
 DSTAR = {"dstar-po": DStarPO, "dstar-lite": WeightedSumDStar}
 

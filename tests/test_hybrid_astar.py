@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from gapath import ConfigError, NoPathError, Workspace
+from gapath.dynamic.scenarios import complex_maze
 from gapath.planners.geometry import (
     arc_point,
     disc_free,
@@ -22,7 +23,6 @@ from gapath.planners.hybrid_astar import (
     path_objectives,
     pose_cell,
 )
-from gapath.dynamic.scenarios import complex_maze
 
 
 @pytest.fixture(scope="module")

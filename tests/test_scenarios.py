@@ -6,7 +6,6 @@ import numpy as np
 import pytest
 
 from gapath import ConfigError, Workspace
-from gapath.planners.astar import astar
 from gapath.dynamic.scenarios import (
     SEED_DISTANCE,
     _grid_ratio,
@@ -17,6 +16,7 @@ from gapath.dynamic.scenarios import (
     straight_line_distance,
     warehouse,
 )
+from gapath.planners.astar import astar
 
 
 @pytest.mark.parametrize("seed", [0, 1, 7])

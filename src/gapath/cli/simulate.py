@@ -537,9 +537,9 @@ def _warm_up_simulation(planner_name, planner_kw, robot, settings) -> float:
 
 def run(args) -> int:
     from gapath.dynamic import Robot, SimSettings, make_planner, simulate
+    from gapath.dynamic.scenarios import make_scenario
     from gapath.errors import EXIT_NO_RESULT, ConfigError, NoPathError
     from gapath.results import atomic_write, dumps, versions
-    from gapath.dynamic.scenarios import make_scenario
 
     if args.obstacles < 0 or args.stationary < 0:
         raise ConfigError("--obstacles and --stationary must be >= 0")

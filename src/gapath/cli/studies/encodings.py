@@ -2,12 +2,12 @@
 
 from __future__ import annotations
 
+from gapath.results import dumps
 from gapath.studies.encodings import (
     QUICK,
     run,
     write_outputs,
 )
-from gapath.results import dumps
 
 
 def register(subparsers) -> None:
