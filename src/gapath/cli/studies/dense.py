@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+from gapath.experiments.spec import ENGINE_ALIASES, ENGINES
 from gapath.studies import dense as _study
 from gapath.studies.dense import MAP_SEED, QUICK
 
@@ -53,9 +54,10 @@ def register(subparsers) -> None:
     )
     p.add_argument(
         "--engine",
-        choices=("auto", "paper", "fast"),
-        default="auto",
-        help="GA engine (default: fast when available, else paper)",
+        choices=(*ENGINES, *ENGINE_ALIASES),
+        default="fast",
+        help="GA engine: fast (default, FastNSGA2 on arrays) or pymoo (stock pymoo NSGA2), "
+        "as gapath solve; paper and auto, the former names, mean pymoo and fast",
     )
     add_executor_options(p)
     p.set_defaults(func=run)
