@@ -99,3 +99,47 @@ def test_an_unknown_engine_names_the_choices():
         ConfigError, match=r"engines\[0\]: unknown engine 'turbo'; expected one of fast, pymoo"
     ):
         _spec("turbo")
+
+
+# ---------------------------------------------------------------------------
+# the engines read the problem's encoding (no separate encoding= needed)
+# ---------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("encoding", ["integer", "binary", "mixed", "absolute"])
+def test_paper_nsga2_takes_its_operators_from_the_problems_encoding(encoding):
+    import numpy as np
+    from pymoo.optimize import minimize
+
+    from gapath.algorithms import FastNSGA2, paper_nsga2
+    from gapath.operators import default_operators
+    from gapath.problems import GridPathProblem
+    from gapath.workspace import default_workspace
+
+    p = GridPathProblem(default_workspace(), encoding=encoding)
+    algo = paper_nsga2(20)
+    told = minimize(p, paper_nsga2(20, encoding=encoding), ("n_gen", 4), seed=3)
+    read = minimize(p, algo, ("n_gen", 4), seed=3)
+    fast = minimize(p, FastNSGA2(20), ("n_gen", 4), seed=3)
+    for res in (read, fast):
+        np.testing.assert_array_equal(res.pop.get("X"), told.pop.get("X"))
+        np.testing.assert_array_equal(res.pop.get("F"), told.pop.get("F"))
+    ops, algo = default_operators(encoding), read.algorithm  # minimize set up a copy
+    assert type(algo.mating.crossover) is type(ops["crossover"])
+    assert type(algo.mating.mutation) is type(ops["mutation"])
+    assert type(algo.initialization.sampling) is type(ops["sampling"])
+
+
+def test_paper_nsga2_keeps_a_given_sampling_when_it_reads_the_encoding():
+    import numpy as np
+    from pymoo.optimize import minimize
+
+    from gapath.algorithms import paper_nsga2
+    from gapath.problems import GridPathProblem
+    from gapath.workspace import default_workspace
+
+    p = GridPathProblem(default_workspace(), encoding="binary")
+    rng = np.random.default_rng(0)
+    X = p.encoding.edge_fix(rng.random((12, p.n_var)) < 0.5, np.random.default_rng(1))
+    res = minimize(p, paper_nsga2(12, sampling=X), ("n_gen", 1), seed=1)
+    assert res.pop.get("X").dtype == bool and len(res.pop) == 12
