@@ -41,7 +41,6 @@ True
 """
 
 from gapath.planners._geometry import (
-    TWO_PI,
     angle_diff,
     arc_point,
     arcs_free,
@@ -60,7 +59,6 @@ from gapath.planners._geometry import (
 )
 
 __all__ = [
-    "TWO_PI",
     "angle_diff",
     "arc_point",
     "arcs_free",
