@@ -397,12 +397,12 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
     if plots:
         import matplotlib.pyplot as plt
 
-        from gapath.dynamic.plots import _base
+        from gapath.dynamic.plots import plot_map
         from gapath.plotting import png_bytes
 
         h, w = workspace.shape
         _, ax = plt.subplots(figsize=(6.0 * w / max(h, w) + 0.4, 6.0 * h / max(h, w) + 0.6))
-        _base(workspace, ax)
+        plot_map(workspace, ax)
         p = outcome.poses
         ax.plot(p[:, 0], p[:, 1], "-", color="tab:blue", lw=2)
         from gapath.plotting import length_unit
