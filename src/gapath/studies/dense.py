@@ -333,9 +333,9 @@ def _timing(store_dir) -> dict:
 
 
 def _f(v, digits=4):
-    from gapath.experiments.report import _num
+    from gapath.experiments.report import format_number
 
-    return _num(v, digits)
+    return format_number(v, digits)
 
 
 def _gens(row) -> str:
