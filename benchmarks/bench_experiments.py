@@ -3,7 +3,7 @@
 Prints one JSON object per line:
 
 * ``runs_per_minute`` of a slice of the dense-obstacle experiment (Table 1,
-  population 200, stop at the first feasible path, engine ``auto``):
+  population 200, stop at the first feasible path, engine ``fast``):
   by default ``--slice table1``, the 16x16 and 32x32 rows at p0 0.3 to 1.0,
   20 runs each (320 runs of 0.01-4 s; about 50 s on 2 workers); ``dense32``:
   the earlier 32 runs (32x32, p0 0.4/0.6/0.8/1.0, 8 each); ``short``: 64
@@ -54,15 +54,15 @@ def slice_spec(quick: bool, which: str = "table1"):
     Table 1 at p0 0.3-1.0, seeds 1-20), ``dense32`` (32 runs, 32x32, 0.04-2 s
     each), ``short`` (64 runs, 16x16, p0 0.2-0.8, mostly 10-50 ms each: where
     a task's cost shows), or with ``quick`` 8 runs of 16x16."""
-    from gapath.experiments.dense import table1_spec
+    from gapath.studies.dense import table1_spec
 
     if quick:
-        return table1_spec(grids=(16,), p0s=(0.4, 0.6), runs=4, engine="auto", name="bench-slice")
+        return table1_spec(grids=(16,), p0s=(0.4, 0.6), runs=4, engine="fast", name="bench-slice")
     if which == "short":
-        return table1_spec(grids=(16,), p0s=(0.2, 0.4, 0.6, 0.8), runs=16, engine="auto", name="bench-short")
+        return table1_spec(grids=(16,), p0s=(0.2, 0.4, 0.6, 0.8), runs=16, engine="fast", name="bench-short")
     if which == "dense32":
-        return table1_spec(grids=(32,), p0s=(0.4, 0.6, 0.8, 1.0), runs=8, engine="auto", name="bench-slice")
-    return table1_spec(grids=(16, 32), p0s=TABLE1_P0S, runs=20, engine="auto", name="bench-table1")
+        return table1_spec(grids=(32,), p0s=(0.4, 0.6, 0.8, 1.0), runs=8, engine="fast", name="bench-slice")
+    return table1_spec(grids=(16, 32), p0s=TABLE1_P0S, runs=20, engine="fast", name="bench-table1")
 
 
 def _cpu_seconds() -> float:
@@ -273,7 +273,7 @@ def bench_store(n: int = 300) -> None:
     from gapath.experiments.store import ResultStore
 
     # a realistic result: the default 32x32 scenario, a full front
-    spec = ExperimentSpec(engines=["auto"], settings={"pop_size": 100, "n_gen": 30}, seeds=1)
+    spec = ExperimentSpec(engines=["fast"], settings={"pop_size": 100, "n_gen": 30}, seeds=1)
     run = spec.runs()[0]
     result = run_one(run)
     size = len(json.dumps(result))
@@ -337,9 +337,7 @@ def main() -> None:
         "run_experiment's, 0.25 s on the pool and 1 s on Dask)",
     )
     args = ap.parse_args()
-    from gapath.experiments.spec import resolve_engine
-
-    line(bench="setup", cpus=os.cpu_count(), engine=resolve_engine("auto"))
+    line(bench="setup", cpus=os.cpu_count(), engine="fast")
     if not args.no_store:
         bench_store(60 if args.quick else 300)
     if not args.no_throughput:

@@ -1,7 +1,7 @@
 """Timings of the costmap planners (gapath.planners.pareto), as JSON lines.
 
 On ``--maps`` random 100x100 workspaces of the Mars study
-(gapath.experiments.mars: ~23 % obstacles of three sizes, Mars DTM
+(gapath.studies.mars: ~23 % obstacles of three sizes, Mars DTM
 elevation, one risk cell, solar vector turning 1 rad per step) and the four
 objectives F1..F4, for every planner (weighted-sum A* and D* Lite, A*-PO,
 D*-PO):
@@ -31,8 +31,8 @@ import time
 
 import numpy as np
 
-from gapath.experiments.mars import OBJECTIVES, mars_costmap, mars_workspace
 from gapath.planners.pareto import PLANNERS, DStarPO, WeightedSumDStar, plan
+from gapath.studies.mars import OBJECTIVES, mars_costmap, mars_workspace
 
 DSTAR = {"dstar-po": DStarPO, "dstar-lite": WeightedSumDStar}
 

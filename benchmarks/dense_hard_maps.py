@@ -34,9 +34,9 @@ import time
 import numpy as np
 
 from gapath import Workspace, dense_workspace
-from gapath.experiments.dense import map_seed_of, unsuccessful_runs
 from gapath.experiments.runner import FirstFeasible
 from gapath.solver import solve
+from gapath.studies.dense import map_seed_of, unsuccessful_runs
 from gapath.workspace import _column_run
 
 POP, GENS = 200, 500

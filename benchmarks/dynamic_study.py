@@ -6,7 +6,7 @@ Usage::
     python benchmarks/dynamic_study.py --quick         # 5 runs per row, no FOV study
     python benchmarks/dynamic_study.py --runs 20 --docs /tmp/out
 
-Runs :func:`gapath.experiments.dynamic.run` (hybrid A* = NO-MOPP, RRT, RRT*,
+Runs :func:`gapath.studies.dynamic.run` (hybrid A* = NO-MOPP, RRT, RRT*,
 A*, D* Lite on the complex maze and the warehouse, the same obstacles for
 every planner in run *i*) and, unless ``--quick`` or ``--no-fov``, the
 field-of-view study of NO-MOPP (+-45, +-90, +-180 degrees). Prints one JSON
@@ -28,7 +28,7 @@ import sys
 import time
 from pathlib import Path
 
-from gapath.experiments.dynamic import run, run_fov, targets, write_outputs
+from gapath.studies.dynamic import run, run_fov, targets, write_outputs
 
 
 def main(argv=None) -> int:

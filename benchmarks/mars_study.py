@@ -5,7 +5,7 @@ Mars DTM elevation windows tiled with reflection, a random risk cell, the
 solar vector turning 1 rad per step); A* and D* (weighted sums), D*-PO and
 the GA front (paper_nsga2, pop 100 x 150 generations). Writes
 docs/results/mars.md and mars.csv and prints one JSON line per workspace,
-per table row and for the statistics (see gapath.experiments.mars).
+per table row and for the statistics (see gapath.studies.mars).
 
 Usage::
 

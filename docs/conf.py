@@ -58,6 +58,7 @@ API_MODULES = [
             "gapath.planners.weighted_sum",
             "gapath.planners.hybrid_astar",
             "gapath.planners.rrt",
+            "gapath.planners.geometry",
         ],
     ),
     (
@@ -69,6 +70,8 @@ API_MODULES = [
             "gapath.dynamic.planners",
             "gapath.dynamic.results",
             "gapath.dynamic.simulation",
+            "gapath.dynamic.scenarios",
+            "gapath.dynamic.plots",
         ],
     ),
     (
@@ -81,6 +84,16 @@ API_MODULES = [
             "gapath.experiments.report",
             "gapath.experiments.multirun",
             "gapath.experiments.dask_config",
+        ],
+    ),
+    (
+        "The paper studies",
+        [
+            "gapath.studies",
+            "gapath.studies.encodings",
+            "gapath.studies.dense",
+            "gapath.studies.mars",
+            "gapath.studies.dynamic",
         ],
     ),
 ]

@@ -637,7 +637,7 @@ def test_experiment_with_failed_runs_exits_1(tmp_path, capsys, monkeypatch):
 
 
 def test_mars_terrain_is_labelled_and_a_missing_dtm_fails(tmp_path, capsys, monkeypatch):
-    from gapath.experiments import mars
+    from gapath.studies import mars
 
     monkeypatch.setattr(mars, "find_mars_dtm", lambda: None)
     code, _, err = run(

@@ -151,7 +151,7 @@ def test_layer_options_without_their_layer(flag, fragment, tmp_path, capsys, mon
 
 
 def test_mars_study_sets_its_own_layers():
-    from gapath.experiments import mars
+    from gapath.studies import mars
 
     assert tuple(mars.OBJECTIVES) == ("length", "elevation", "solar", "risk")
 
@@ -531,7 +531,7 @@ def test_plots_have_axis_labels_with_units(data_dir):
 
     from gapath import default_workspace
     from gapath.cli.exact import exact_path_front
-    from gapath.dynamic_plots import _base
+    from gapath.dynamic.plots import plot_map as _base
     from gapath.plotting import plot_front, plot_paths
 
     ws = default_workspace()

@@ -7,10 +7,10 @@ import pytest
 
 from gapath import dense_workspace
 from gapath.cli import main
-from gapath.experiments import dense
 from gapath.experiments.runner import FirstFeasible, run_experiment
 from gapath.experiments.store import ResultStore
 from gapath.solver import solve
+from gapath.studies import dense
 
 
 def test_table1_spec_one_map_per_row_by_default():

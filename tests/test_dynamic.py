@@ -23,7 +23,7 @@ from gapath.dynamic import (
     simulate,
     time_to_collision,
 )
-from gapath.planners._geometry import disc_free
+from gapath.planners.geometry import disc_free
 from gapath.planners.hybrid_astar import CarModel
 
 
@@ -217,7 +217,7 @@ def test_bad_inputs(open_ws):
 
 
 def test_experiment_tables_and_outputs(tmp_path):
-    from gapath.experiments.dynamic import run, write_outputs
+    from gapath.studies.dynamic import run, write_outputs
 
     study = run(2, scenarios=("maze",), planners=("astar", "hybrid-astar"))
     assert [r["planner"] for r in study.table] == ["astar", "hybrid-astar"]
@@ -234,7 +234,7 @@ def test_experiment_tables_and_outputs(tmp_path):
 
 
 def test_animation_is_small(open_ws, tmp_path):
-    from gapath.dynamic_plots import animate_run
+    from gapath.dynamic.plots import animate_run
 
     res = simulate(open_ws, "hybrid-astar", moving=[crosser()])
     n = animate_run(open_ws, res, (), tmp_path / "run.gif", every=2.0)

@@ -1,7 +1,7 @@
 import csv
 
-from gapath.experiments import encodings
 from gapath.metrics import hv_ratio
+from gapath.studies import encodings
 from gapath.workspace import random_workspace
 
 

@@ -201,7 +201,7 @@ def test_run_keys_are_stable_canonical_hashes():
     run = spec.runs()[0]
     # pinned: a change here silently invalidates every stored result
     assert canonical_json(run) == (
-        '{"encoding":"integer","engine":"paper","map":{"dense":{"n":8,"p0":0.3,"seed":"run"}},'
+        '{"encoding":"integer","engine":"pymoo","map":{"dense":{"n":8,"p0":0.3,"seed":"run"}},'
         '"options":{"record_first_feasible":false,"reference":null,"stop_at_first_feasible":false},'
         '"seed":3,"settings":{"constraints":"penalty","n_gen":5,"objectives":["length",'
         '"vulnerability"],"penalty":1000.0,"pop_size":20,"sbx_eta":10.0,"seed_from":"none",'
@@ -655,7 +655,7 @@ def test_experiment_group_is_extensible(monkeypatch, tmp_path, capsys):
 
 
 def test_dense_quick(tmp_path):
-    from gapath.experiments import dense
+    from gapath.studies import dense
 
     assert main(["experiment", "dense", "--quick", "--out", str(tmp_path), "--workers", "0", "--quiet"]) == 0
     md = (tmp_path / "dense.md").read_text()
@@ -675,12 +675,14 @@ def test_dense_quick(tmp_path):
 
 
 def test_engines_auto_is_saved_resolved_and_fast_matches_paper():
-    from gapath.experiments.spec import fast_engine_available, resolve_engine
+    from gapath.experiments.spec import ENGINES, resolve_engine
+    from gapath.solver import ENGINES as SOLVE_ENGINES
 
+    assert set(ENGINES) == set(SOLVE_ENGINES)  # one vocabulary: solve's
     auto = ExperimentSpec(engines=["auto"]).to_dict()["engines"]
-    assert auto == [resolve_engine("auto")] == ["fast" if fast_engine_available() else "paper"]
-    assert ExperimentSpec(engines=["pymoo"]).to_dict()["engines"] == ["paper"]
-    assert fast_engine_available()  # FastNSGA2 and solve(engine=...) exist
+    assert auto == [resolve_engine("auto")] == ["fast"]
+    assert ExperimentSpec(engines=["paper"]).to_dict()["engines"] == ["pymoo"]
+    assert ExperimentSpec(engines=["pymoo", "paper"]).to_dict()["engines"] == ["pymoo"]
     spec = ExperimentSpec(
         maps=[{"dense": {"n": 16, "p0": 0.5, "seed": "run"}}],
         engines=["paper", "fast"],

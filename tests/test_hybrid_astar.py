@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from gapath import ConfigError, NoPathError, Workspace
-from gapath.planners._geometry import (
+from gapath.dynamic.scenarios import complex_maze
+from gapath.planners.geometry import (
     arc_point,
     disc_free,
     dubins,
@@ -22,7 +23,6 @@ from gapath.planners.hybrid_astar import (
     path_objectives,
     pose_cell,
 )
-from gapath.scenarios import complex_maze
 
 
 @pytest.fixture(scope="module")

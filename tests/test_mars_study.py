@@ -1,4 +1,4 @@
-"""A quick run of Lavin's Mars study (gapath.experiments.mars,
+"""A quick run of Lavin's Mars study (gapath.studies.mars,
 benchmarks/mars_study.py)."""
 
 import json
@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from gapath.experiments import mars
+from gapath.studies import mars
 
 
 def test_workspace_generator():

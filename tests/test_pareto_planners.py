@@ -186,7 +186,7 @@ def test_length_priority_gives_a_shortest_path():
 
 
 def test_planners_agree_on_a_mars_like_map():
-    from gapath.experiments.mars import mars_costmap, mars_workspace
+    from gapath.studies.mars import mars_costmap, mars_workspace
 
     ws = mars_workspace(3, size=40)
     cm = mars_costmap(ws, 3, dem="fractal")

@@ -4,9 +4,9 @@ import numpy as np
 import pytest
 
 from gapath import ConfigError, NoPathError, Workspace
-from gapath.planners._geometry import segment_free
+from gapath.dynamic.scenarios import complex_maze
+from gapath.planners.geometry import segment_free
 from gapath.planners.rrt import rrt, rrt_star
-from gapath.scenarios import complex_maze
 
 
 @pytest.fixture(scope="module")

@@ -6,8 +6,7 @@ import numpy as np
 import pytest
 
 from gapath import ConfigError, Workspace
-from gapath.planners.astar import astar
-from gapath.scenarios import (
+from gapath.dynamic.scenarios import (
     SEED_DISTANCE,
     _grid_ratio,
     complex_maze,
@@ -17,6 +16,7 @@ from gapath.scenarios import (
     straight_line_distance,
     warehouse,
 )
+from gapath.planners.astar import astar
 
 
 @pytest.mark.parametrize("seed", [0, 1, 7])

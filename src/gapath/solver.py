@@ -158,9 +158,7 @@ def solve(
         sampling = None if seed_from == "none" else PlannerSampling(seed_from)
     if engine not in ENGINES:
         raise ConfigError(f"unknown engine {engine!r}; expected one of {', '.join(ENGINES)}")
-    algorithm = ENGINES[engine](
-        pop_size, encoding=encoding, tiebreak=tiebreak, sbx_eta=sbx_eta, sampling=sampling
-    )
+    algorithm = ENGINES[engine](pop_size, tiebreak=tiebreak, sbx_eta=sbx_eta, sampling=sampling)
     bar = ProgressBar(n_gen, disable=not progress)
     callbacks = Callbacks(bar, callback)
 

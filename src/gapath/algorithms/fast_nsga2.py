@@ -52,7 +52,6 @@ from pymoo.core.population import Population
 from pymoo.core.repair import Repair
 from pymoo.core.sampling import Sampling
 from pymoo.core.variable import Variable, get
-from pymoo.operators.sampling.rnd import IntegerRandomSampling
 from pymoo.util.display.multi import MultiObjectiveOutput
 from pymoo.util.display.single import SingleObjectiveOutput
 from pymoo.util.misc import random_permutations
@@ -78,7 +77,7 @@ from gapath.algorithms._variation import (
     sbx_supported,
 )
 from gapath.errors import ConfigError
-from gapath.operators import DiscretePM, DiscreteSBX, EdgeFixingRepair
+from gapath.operators import EdgeFixingRepair, default_operators
 
 __all__ = ["FastNSGA2", "PathArrays", "PHASES", "fast_survival_order", "pareto_ranks", "path_duplicate_mask"]
 
@@ -373,24 +372,6 @@ def _check_problem(problem) -> None:
             f"{type(problem).__name__}; use gapath.algorithms.paper_nsga2 or pymoo's NSGA2 for "
             f"other problems"
         )
-
-
-def _default_operators(encoding: str, **settings) -> dict:
-    """Sampling, crossover and mutation for ``encoding`` (Ahmed & Deb's
-    settings) from :func:`gapath.operators.defaults.default_operators`."""
-    try:
-        from gapath.operators.defaults import default_operators
-    except ImportError:  # a gapath without per-encoding defaults: integer only
-        if encoding != "integer":
-            raise ConfigError(
-                f"no default operators for the {encoding!r} encoding; pass sampling, crossover and mutation"
-            ) from None
-        return dict(
-            sampling=IntegerRandomSampling(),
-            crossover=DiscreteSBX(prob=settings["sbx_prob"], eta=settings["sbx_eta"]),
-            mutation=DiscretePM(eta=settings["pm_eta"], prob_var=settings["pm_prob_var"]),
-        )
-    return default_operators(encoding, **settings)
 
 
 class FastNSGA2(Algorithm):
@@ -890,7 +871,7 @@ class FastNSGA2(Algorithm):
 
     def _default_operators(self, encoding: str) -> None:
         """Fill the operators not given with ``encoding``'s defaults."""
-        ops = _default_operators(encoding, **self.operator_settings)
+        ops = default_operators(encoding, **self.operator_settings)
         for name in ("sampling", "crossover", "mutation"):
             if getattr(self, name) is None:
                 setattr(self, name, ops[name])

@@ -397,12 +397,12 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
     if plots:
         import matplotlib.pyplot as plt
 
-        from gapath.dynamic_plots import _base
+        from gapath.dynamic.plots import plot_map
         from gapath.plotting import png_bytes
 
         h, w = workspace.shape
         _, ax = plt.subplots(figsize=(6.0 * w / max(h, w) + 0.4, 6.0 * h / max(h, w) + 0.6))
-        _base(workspace, ax)
+        plot_map(workspace, ax)
         p = outcome.poses
         ax.plot(p[:, 0], p[:, 1], "-", color="tab:blue", lw=2)
         from gapath.plotting import length_unit
@@ -537,9 +537,9 @@ def _warm_up_simulation(planner_name, planner_kw, robot, settings) -> float:
 
 def run(args) -> int:
     from gapath.dynamic import Robot, SimSettings, make_planner, simulate
+    from gapath.dynamic.scenarios import make_scenario
     from gapath.errors import EXIT_NO_RESULT, ConfigError, NoPathError
     from gapath.results import atomic_write, dumps, versions
-    from gapath.scenarios import make_scenario
 
     if args.obstacles < 0 or args.stationary < 0:
         raise ConfigError("--obstacles and --stationary must be >= 0")
@@ -624,13 +624,13 @@ def run(args) -> int:
     atomic_write(out / "summary.json", dumps(summary, indent=1, sort_keys=True, default=float) + "\n")
     written = ["trajectory.json", "summary.json"]
     if not args.no_plots:
-        from gapath.dynamic_plots import plot_run
+        from gapath.dynamic.plots import plot_run
         from gapath.plotting import png_bytes
 
         atomic_write(out / "run.png", png_bytes(plot_run(sc.workspace, res, sc.stationary)))
         written.append("run.png")
     if args.gif:
-        from gapath.dynamic_plots import animate_run
+        from gapath.dynamic.plots import animate_run
 
         animate_run(sc.workspace, res, sc.stationary, out / "run.gif")
         written.append("run.gif")

@@ -8,7 +8,7 @@ import numpy as np
 
 from gapath.dynamic.world import Robot
 from gapath.errors import ConfigError, NoPathError
-from gapath.planners._geometry import center_blocked
+from gapath.planners.geometry import center_blocked
 from gapath.planners.hybrid_astar import HybridAStar, pose_cell
 
 

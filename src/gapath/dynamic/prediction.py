@@ -7,7 +7,7 @@ import math
 import numba
 import numpy as np
 
-from gapath.planners._geometry import disc_free
+from gapath.planners.geometry import disc_free
 
 
 @numba.njit(cache=True)

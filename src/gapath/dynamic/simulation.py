@@ -19,14 +19,14 @@ from gapath.dynamic.prediction import (
 from gapath.dynamic.results import SimResult
 from gapath.dynamic.world import MovingObstacle, Robot, SimSettings, StationaryObstacle
 from gapath.errors import ConfigError, GapathError, NoPathError
-from gapath.planners._geometry import disc_free, first_blocked, segment_free
+from gapath.planners.geometry import disc_free, first_blocked, segment_free
 from gapath.planners.hybrid_astar import initial_heading
 
 
 def start_pose(workspace) -> tuple[float, float, float]:
     """World pose at the workspace's start cell, heading along the first
     steps of the grid shortest path to the goal."""
-    from gapath.planners._geometry import grid_dijkstra
+    from gapath.planners.geometry import grid_dijkstra
 
     cs = workspace.cell_size
     (sr, sc), (gr, gc) = workspace.start, workspace.goal

@@ -1,5 +1,7 @@
 """Experiments: seeded multi-run aggregation, and grids of runs that scale out.
 
+The infrastructure of the paper studies (:mod:`gapath.studies`):
+
 * :func:`multirun`, :func:`merge_fronts` -- several seeds of one setting.
 * :class:`ExperimentSpec`, :func:`load_spec` (:mod:`gapath.experiments.spec`)
   -- a grid of runs in Python, YAML or TOML.
@@ -7,7 +9,6 @@
   -- runs on a local process pool or a Dask cluster, into a resumable
   :class:`ResultStore` (:mod:`gapath.experiments.store`).
 * :func:`gapath.experiments.report.report` -- tables and plots.
-* :mod:`gapath.experiments.dense` -- Ahmed & Deb's Table 1.
 
 The runner, store and report names are imported on first use, so that
 ``import gapath.experiments`` stays light.

@@ -38,7 +38,7 @@ import numpy as np
 from gapath.experiments.spec import config_key, map_label
 from gapath.experiments.store import ResultStore
 
-__all__ = ["Report", "aggregate", "configuration_rows", "report"]
+__all__ = ["Report", "aggregate", "configuration_rows", "format_number", "report"]
 
 #: Indicators summarised by median and quartiles (when present in the runs).
 QUARTILE_FIELDS = (
@@ -190,7 +190,15 @@ def _csv_text(rows, columns) -> str:
     return buf.getvalue()
 
 
-def _num(v, digits: int = 4) -> str:
+def format_number(v, digits: int = 4) -> str:
+    """A number as the report tables print it: ``-`` for None, integral
+    floats without a decimal point, others to ``digits`` significant digits.
+
+    Examples
+    --------
+    >>> format_number(None), format_number(12.0), format_number(3.14159, 3)
+    ('-', '12', '3.14')
+    """
     if v is None:
         return "-"
     if isinstance(v, float) and v.is_integer() and abs(v) < 1e15:
@@ -202,7 +210,7 @@ def _mq(row, name, digits=4) -> str:
     med = row.get(f"{name}_median")
     if med is None:
         return "-"
-    return f"{_num(med, digits)} [{_num(row[f'{name}_q1'], digits)}, {_num(row[f'{name}_q3'], digits)}]"
+    return f"{format_number(med, digits)} [{format_number(row[f'{name}_q1'], digits)}, {format_number(row[f'{name}_q3'], digits)}]"
 
 
 def markdown_table(header: list[str], body: list[list[str]]) -> str:
@@ -239,13 +247,13 @@ def _markdown(norm: dict, rows, columns, status: dict, versions: list[dict]) -> 
             row["engine"],
             *[row[a] for a in axes],
             f"{row['done']}/{row['runs']} ({row['failed']})",
-            _num(row["success_pct"], 3),
+            format_number(row["success_pct"], 3),
         ]
         line += [_mq(row, n) for n, _ in labels]
         if "min_length_mean" in columns:
-            line.append(_num(row["min_length_mean"]))
+            line.append(format_number(row["min_length_mean"]))
         if "merged_front_size" in columns:
-            line.append(_num(row["merged_front_size"]))
+            line.append(format_number(row["merged_front_size"]))
         body.append(line)
     text = [f"# Experiment {norm['name']}", ""]
     if norm.get("description"):

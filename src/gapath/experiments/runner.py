@@ -71,7 +71,16 @@ from pymoo.core.callback import Callback
 
 from gapath.errors import ConfigError
 from gapath.experiments.dask_config import LOCAL_SCHEDULER  # "local": see make_executor
-from gapath.experiments.spec import ExperimentSpec, build_workspace, config_key, load_spec, map_label, run_key
+from gapath.experiments.spec import (
+    ENGINES,
+    ExperimentSpec,
+    build_workspace,
+    config_key,
+    load_spec,
+    map_label,
+    resolve_engine,
+    run_key,
+)
 from gapath.experiments.store import ResultStore, store_versions
 
 __all__ = [
@@ -173,16 +182,11 @@ def front_from_dict(d: dict):
     )
 
 
-#: A spec's engine names (:data:`gapath.experiments.spec.ENGINES`, as stored
-#: in run records) -> :func:`gapath.solver.solve`'s ``engine``.
-SOLVE_ENGINES = {"paper": "pymoo", "fast": "fast"}
-
-
 def _solve_kwargs(run: dict) -> dict:
     s = dict(run["settings"])
-    engine = run.get("engine", "paper")
-    if engine not in SOLVE_ENGINES:
-        raise ConfigError(f"unknown engine {engine!r} in a run; expected one of {', '.join(SOLVE_ENGINES)}")
+    engine = resolve_engine(run.get("engine", "pymoo"))  # runs stored before: "paper"
+    if engine not in ENGINES:
+        raise ConfigError(f"unknown engine {engine!r} in a run; expected one of {', '.join(ENGINES)}")
     return dict(
         objectives=tuple(s["objectives"]),
         constraints=s["constraints"],
@@ -193,7 +197,7 @@ def _solve_kwargs(run: dict) -> dict:
         sbx_eta=s["sbx_eta"],
         seed_from=s["seed_from"],
         paths=s.get("paths", "monotone"),
-        engine=SOLVE_ENGINES[engine],
+        engine=engine,
     )
 
 

@@ -16,7 +16,7 @@ or in a YAML / TOML file (:func:`load_spec`)::
       - {dense: {n: [16, 32], p0: 1.0, seed: run}}  # seed "run": the run's seed
       - {random: {shape: [32, 32], obstacles: 173, seed: 2013}}  # random_workspace
     encodings: [integer]              # default [integer]; field or via with paths: free
-    engines: [auto]                   # paper (alias pymoo) | fast | auto (default [auto]); alias: algorithms
+    engines: [fast]                   # fast | pymoo (default [fast]; former names auto, paper); alias: algorithms
     settings:                         # fixed gapath.solver.solve settings
       objectives: length,vulnerability   # or a list
       pop_size: 200
@@ -52,13 +52,14 @@ only when given, so the keys of runs stored before it existed stay the
 same), and the
 objective mode's defaults (``constraints``, ``sbx_eta``) are resolved, so
 every run records every value it ran with. Map generators accept ``start``,
-``goal`` and ``corner_cutting`` too. Engines: ``paper`` is
-:func:`gapath.algorithms.paper_nsga2` through ``solve``; ``fast`` the
-vectorised :class:`gapath.algorithms.FastNSGA2` (solve's ``engine="fast"``);
-``auto`` resolves to ``fast`` when available, else ``paper``, when the spec
-is built, and the saved spec (``experiment.json``) holds the resolved name,
-so a store keeps meaning what it ran. The engine is part of a run's
-identity, although ``fast`` is meant to be bit-identical to ``paper``.
+``goal`` and ``corner_cutting`` too. Engines are :func:`gapath.solver.solve`'s
+(:data:`ENGINES`): ``fast``, the vectorised :class:`gapath.algorithms.FastNSGA2`,
+and ``pymoo``, :func:`gapath.algorithms.paper_nsga2` on stock pymoo. The
+former spec names are accepted as aliases (:data:`ENGINE_ALIASES`):
+``paper`` means ``pymoo`` and ``auto`` means ``fast``; the saved spec
+(``experiment.json``) and the runs hold the engine's name. The engine is
+part of a run's identity, although ``fast`` is meant to be bit-identical to
+``pymoo``.
 
 Identity of a run
     :func:`run_key` is the sha256 of the run's canonical JSON
@@ -67,7 +68,10 @@ Identity of a run
     than its path. Runs with equal keys are the same computation; the result
     store (:mod:`gapath.experiments.store`) names each result by its key.
     :func:`config_key` leaves the seed out: runs with the same config key are
-    repetitions of one configuration (the rows of a report).
+    repetitions of one configuration (the rows of a report). The ``pymoo``
+    engine enters the key under its former spec name ``paper``
+    (:data:`KEY_ENGINE_NAMES`), so the runs stored before the engine names
+    became solve's keep their keys.
 
 Errors name the spec file (or ``<spec>``) and the key, e.g.
 ``exp.yaml: settings.pop_sise: unknown setting``.
@@ -88,6 +92,8 @@ from gapath.errors import ConfigError
 
 __all__ = [
     "ENGINES",
+    "ENGINE_ALIASES",
+    "KEY_ENGINE_NAMES",
     "SETTINGS",
     "ExperimentSpec",
     "build_workspace",
@@ -100,9 +106,17 @@ __all__ = [
     "sha256_hex",
 ]
 
-#: Engine names a spec accepts (``auto`` is resolved when the spec is built
-#: and saved resolved; ``pymoo``, solve's name for ``paper``, is an alias).
-ENGINES = ("paper", "fast", "auto")
+#: The engines of a spec: :func:`gapath.solver.solve`'s ``engine`` names.
+ENGINES = ("fast", "pymoo")
+
+#: The former spec names of the engines, accepted for the spec files and
+#: stores written with them: ``paper`` (Ahmed & Deb's NSGA-II on stock
+#: pymoo) and ``auto`` (which always chose ``fast``).
+ENGINE_ALIASES = {"paper": "pymoo", "auto": "fast"}
+
+#: The name an engine enters :func:`run_key` with: ``pymoo`` is keyed as
+#: ``paper``, its name when the first stores were written, so their keys stay.
+KEY_ENGINE_NAMES = {"pymoo": "paper"}
 
 #: Settings of :func:`gapath.solver.solve` a spec may set, with solve's defaults.
 SETTINGS = dict(
@@ -180,6 +194,9 @@ def sha256_hex(obj) -> str:
 
 def _identity(run: dict) -> dict:
     run = copy.deepcopy(run)
+    if "engine" in run:
+        engine = ENGINE_ALIASES.get(run["engine"], run["engine"])
+        run["engine"] = KEY_ENGINE_NAMES.get(engine, engine)
     spec = run.get("map", {})
     if "file" in spec:  # a map file is its name and content, not where it lies
         spec["file"].pop("path", None)
@@ -528,23 +545,16 @@ def _complete_settings(settings: dict) -> dict:
     return s
 
 
-def fast_engine_available() -> bool:
-    """True when :class:`gapath.algorithms.FastNSGA2` exists and
-    :func:`gapath.solver.solve` takes an ``engine=`` parameter."""
-    import inspect
-
-    import gapath.algorithms
-    from gapath.solver import solve
-
-    return hasattr(gapath.algorithms, "FastNSGA2") and "engine" in inspect.signature(solve).parameters
-
-
 def resolve_engine(engine: str) -> str:
-    """``auto`` -> ``fast`` when :func:`fast_engine_available`, else ``paper``;
-    other names unchanged."""
-    if engine == "auto":
-        return "fast" if fast_engine_available() else "paper"
-    return engine
+    """The engine's name among :data:`ENGINES`: a former name of
+    :data:`ENGINE_ALIASES` replaced, other names unchanged.
+
+    Examples
+    --------
+    >>> resolve_engine("paper"), resolve_engine("auto"), resolve_engine("pymoo")
+    ('pymoo', 'fast', 'pymoo')
+    """
+    return ENGINE_ALIASES.get(engine, engine)
 
 
 # ---------------------------------------------------------------------------
@@ -562,7 +572,8 @@ class ExperimentSpec:
     maps : map entries: ``"default"``, a file path, or ``{kind: {...}}`` with
         kind ``file``, ``dense`` or ``random``.
     encodings : genome encodings (an axis).
-    engines : ``paper``, ``fast`` or ``auto`` (an axis).
+    engines : ``fast`` or ``pymoo`` (an axis; the former names ``auto`` and
+        ``paper`` are aliases of :data:`ENGINE_ALIASES`).
     settings : fixed :func:`gapath.solver.solve` settings.
     grid : setting -> list of values (axes; their product is taken).
     seeds : list of seeds, ``{"start": s, "count": k}`` or a count ``k``
@@ -587,7 +598,7 @@ class ExperimentSpec:
     name: str = "experiment"
     maps: list = field(default_factory=lambda: ["default"])
     encodings: list = field(default_factory=lambda: ["integer"])
-    engines: list = field(default_factory=lambda: ["auto"])
+    engines: list = field(default_factory=lambda: ["fast"])
     settings: dict = field(default_factory=dict)
     grid: dict = field(default_factory=dict)
     seeds: object = 1
@@ -650,12 +661,13 @@ class ExperimentSpec:
             encodings.append(e)
         engines = []
         for i, e in enumerate(_list(self.engines, where, "engines")):
-            e = "paper" if e == "pymoo" else e
+            e = resolve_engine(e) if isinstance(e, str) else e
             if e not in ENGINES:
                 raise where.error(
-                    f"engines[{i}]", f"unknown engine {e!r}; expected one of {', '.join(ENGINES)}"
+                    f"engines[{i}]",
+                    f"unknown engine {e!r}; expected one of {', '.join(ENGINES)} "
+                    f"(or the former names {', '.join(ENGINE_ALIASES)})",
                 )
-            e = resolve_engine(e)  # saved resolved: a stored spec keeps meaning what it ran
             if e not in engines:
                 engines.append(e)
         settings = _mapping(self.settings, where, "settings")

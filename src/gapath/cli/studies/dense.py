@@ -1,19 +1,11 @@
-"""``gapath experiment dense``: the command line of :mod:`gapath.experiments.dense`."""
+"""``gapath experiment dense``: the command line of :mod:`gapath.studies.dense`
+(its arguments, handed to :func:`gapath.studies.dense.run`)."""
 
 from __future__ import annotations
 
-import time
-from pathlib import Path
-
-from gapath.experiments.dense import (
-    MAP_SEED,
-    P0S,
-    QUICK,
-    _seed_list,
-    dense_report,
-    large_spec,
-    table1_spec,
-)
+from gapath.experiments.spec import ENGINE_ALIASES, ENGINES
+from gapath.studies import dense as _study
+from gapath.studies.dense import MAP_SEED, QUICK
 
 
 def register(subparsers) -> None:
@@ -62,135 +54,64 @@ def register(subparsers) -> None:
     )
     p.add_argument(
         "--engine",
-        choices=("auto", "paper", "fast"),
-        default="auto",
-        help="GA engine (default: fast when available, else paper)",
+        choices=(*ENGINES, *ENGINE_ALIASES),
+        default="fast",
+        help="GA engine: fast (default, FastNSGA2 on arrays) or pymoo (stock pymoo NSGA2), "
+        "as gapath solve; paper and auto, the former names, mean pymoo and fast",
     )
     add_executor_options(p)
     p.set_defaults(func=run)
 
 
 def run(args) -> int:
-    from gapath.experiments.runner import run_experiment
-
-    quick = args.quick
-    grids = (
-        tuple(int(g) for g in args.grids.split(","))
-        if args.grids
-        else (QUICK["grids"] if quick else (8, 16, 32))
-    )
-    p0s = tuple(float(p) for p in args.p0.split(",")) if args.p0 else (QUICK["p0s"] if quick else P0S)
-    runs = args.runs or (QUICK["runs"] if quick else 100)
-    n_gen = QUICK["n_gen"] if quick else 500
-    map_seeds = _seed_list(args.map_seeds)
-    main = map_seeds[0]
-    large_runs = args.large_runs if args.large_runs is not None else (QUICK["large_runs"] if quick else 10)
-    out = Path(args.out)
-    sfx = "-quick" if quick else ""
-    jobs = [
-        (
-            f"table1-map{m}",
-            table1_spec(
-                grids,
-                p0s,
-                runs,
-                n_gen=n_gen,
-                engine=args.engine,
-                map_seed=m,
-                name=f"dense-table1-map{m}{sfx}",
-            ),
-        )
-        for m in map_seeds
-    ]
-    if args.seeded:
-        jobs.append(
-            (
-                f"table1-map{main}-seeded",
-                table1_spec(
-                    grids,
-                    p0s,
-                    runs,
-                    n_gen=n_gen,
-                    engine=args.engine,
-                    map_seed=main,
-                    seed_from="weighted",
-                    name=f"dense-table1-map{main}-seeded{sfx}",
-                ),
-            )
-        )
-    if args.per_run_maps:
-        jobs.append(
-            (
-                "table1-per-run-maps",
-                table1_spec(
-                    grids,
-                    p0s,
-                    runs,
-                    n_gen=n_gen,
-                    engine=args.engine,
-                    map_seed="run",
-                    name=f"dense-table1-per-run-maps{sfx}",
-                ),
-            )
-        )
-    if large_runs > 0:
-        lkw = dict(
-            pop_size=QUICK["large_pop"] if quick else 500,
-            n_gen=QUICK["large_gen"] if quick else 500,
-            engine=args.engine,
-        )
-        sizes = QUICK["large_sizes"] if quick else (64, 128)
-        jobs.append(
-            (
-                f"large-map{main}",
-                large_spec(sizes, large_runs, map_seed=main, name=f"dense-large-map{main}{sfx}", **lkw),
-            )
-        )
-        if args.per_run_maps:
-            jobs.append(
-                (
-                    "large-per-run-maps",
-                    large_spec(
-                        sizes, large_runs, map_seed="run", name=f"dense-large-per-run-maps{sfx}", **lkw
-                    ),
-                )
-            )
-    wall = {}
-    kw = dict(
-        workers=args.workers,
-        scheduler=args.scheduler,
-        progress=not args.quiet,
-        retry_failed=args.retry_failed,
-    )
-    failed = 0
+    """The handler of ``gapath experiment dense``: :func:`gapath.studies.dense.run`."""
     try:
-        for name, spec in jobs:
-            t0 = time.perf_counter()
-            r = run_experiment(spec, out / name, **kw)
-            failed += r.failed
-            if r.ran:  # a resumed store that ran nothing has no wall time to report
-                wall[name] = time.perf_counter() - t0
+        rep = _study.run(
+            args.out,
+            quick=args.quick,
+            grids=tuple(int(g) for g in args.grids.split(",")) if args.grids else None,
+            p0s=tuple(float(p) for p in args.p0.split(",")) if args.p0 else None,
+            runs=args.runs,
+            map_seeds=_seed_list(args.map_seeds),
+            per_run_maps=args.per_run_maps,
+            large_runs=args.large_runs,
+            seeded=args.seeded,
+            engine=args.engine,
+            results=args.results,
+            workers=args.workers,
+            scheduler=args.scheduler,
+            progress=not args.quiet,
+            retry_failed=args.retry_failed,
+        )
     except KeyboardInterrupt:
-        print(f"interrupted: finished runs are kept in {out}; run the same command to resume")
+        print(f"interrupted: finished runs are kept in {args.out}; run the same command to resume")
         return 130
-    results = Path(args.results) if args.results else (out if quick else Path("docs/results"))
-    wall = {
-        k.replace(f"-map{main}", "")
-        if k in (f"table1-map{main}", f"table1-map{main}-seeded", f"large-map{main}")
-        else k: v
-        for k, v in wall.items()
-    }
-    rep = dense_report(
-        out / f"table1-map{main}",
-        results,
-        out / f"large-map{main}" if large_runs > 0 else None,
-        seeded_dir=out / f"table1-map{main}-seeded",
-        other_map_dirs=[out / f"table1-map{m}" for m in map_seeds[1:]],
-        per_run_dir=out / "table1-per-run-maps",
-        large_per_run_dir=out / "large-per-run-maps" if large_runs > 0 else None,
-        wall_seconds=wall,
-        workers=args.workers,
-    )
     if not args.quiet:
         print("wrote " + ", ".join(str(f) for f in rep["files"]))
-    return 0 if failed == 0 else 1
+    return 0 if rep["failed"] == 0 else 1
+
+
+def _seed_list(text: str) -> list[int]:
+    """``"1,2,5-7"`` -> ``[1, 2, 5, 6, 7]`` (map seeds of ``--map-seeds``)."""
+    out = []
+    for part in text.split(","):
+        part = part.strip()
+        try:
+            if "-" in part:
+                a, b = (int(x) for x in part.split("-", 1))
+                if b < a:
+                    raise ValueError
+                out += range(a, b + 1)
+            else:
+                out.append(int(part))
+        except ValueError:
+            raise SystemExit(
+                f"gapath experiment dense: --map-seeds: expected non-negative integers "
+                f"or ranges like 1,2,5-7, got {text!r}"
+            ) from None
+    if not out or min(out) < 0:
+        raise SystemExit(
+            f"gapath experiment dense: --map-seeds: expected non-negative integers "
+            f"or ranges like 1,2,5-7, got {text!r}"
+        )
+    return list(dict.fromkeys(out))

@@ -1,8 +1,8 @@
-"""``gapath experiment dynamic``: the command line of :mod:`gapath.experiments.dynamic`."""
+"""``gapath experiment dynamic``: the command line of :mod:`gapath.studies.dynamic`."""
 
 from __future__ import annotations
 
-from gapath.experiments.dynamic import (
+from gapath.studies.dynamic import (
     PLANNER_ORDER,
     SCENARIO_ORDER,
     run,

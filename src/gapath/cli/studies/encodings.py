@@ -1,13 +1,13 @@
-"""``gapath experiment encodings``: the command line of :mod:`gapath.experiments.encodings`."""
+"""``gapath experiment encodings``: the command line of :mod:`gapath.studies.encodings`."""
 
 from __future__ import annotations
 
-from gapath.experiments.encodings import (
+from gapath.results import dumps
+from gapath.studies.encodings import (
     QUICK,
     run,
     write_outputs,
 )
-from gapath.results import dumps
 
 
 def register(subparsers) -> None:

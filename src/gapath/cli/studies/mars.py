@@ -1,19 +1,13 @@
-"""``gapath experiment mars``: the command line of :mod:`gapath.experiments.mars`."""
+"""``gapath experiment mars``: the command line of :mod:`gapath.studies.mars`
+(its arguments, handed to :func:`gapath.studies.mars.run`)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
 from gapath.errors import ConfigError
-from gapath.experiments import mars as _study  # find_mars_dtm looked up at call time
-from gapath.experiments.mars import (
-    FULL,
-    QUICK,
-    mars_study,
-    record_line,
-    study_stats,
-    write_results,
-)
+from gapath.studies import mars as _study  # find_mars_dtm looked up at call time
+from gapath.studies.mars import FULL, QUICK, TERRAINS, record_line, study_stats, write_results
 
 
 def register(subparsers) -> None:
@@ -47,7 +41,7 @@ def add_arguments(p) -> None:
     )
     p.add_argument(
         "--terrain",
-        choices=("auto", "mars", "fractal"),
+        choices=TERRAINS,
         default="auto",
         help="elevation source: the Mars DTM (mars; an error when it is not found), "
         "seeded fractal terrain (fractal), or the DTM when found and fractal "
@@ -64,18 +58,27 @@ def add_arguments(p) -> None:
 
 
 def run(args) -> int:
-
-    cfg = dict(QUICK if args.quick else FULL)
-    if args.n is not None:
-        cfg["n_workspaces"] = args.n
-    if args.ga_pop is not None:
-        cfg["ga_pop"] = args.ga_pop
-    if args.ga_gen is not None:
-        cfg["ga_gen"] = args.ga_gen
-    out = Path(args.out) if args.out else Path("gapath-mars-quick" if args.quick else "gapath-mars")
-    sink = open(args.jsonl, "a") if args.jsonl else None
+    """The handler of ``gapath experiment mars``: :func:`gapath.studies.mars.run`,
+    its JSON lines on stdout (and ``--jsonl``), its tables in ``--out``."""
+    import sys
 
     from gapath.results import dumps
+
+    if args.terrain != "fractal" and _study.find_mars_dtm() is None:
+        if args.terrain == "mars":
+            raise ConfigError(
+                "--terrain mars: the Mars DTM dem/mars_dtm.npy was not found (looked "
+                "in $GAPATH_SHARED_DATA and in shared/data beside the gapath "
+                "sources); set GAPATH_SHARED_DATA to the data folder, or use "
+                "--terrain fractal"
+            )
+        print(
+            "gapath: the Mars DTM dem/mars_dtm.npy was not found; the study uses seeded "
+            "fractal terrain (labelled so in mars.md; --terrain mars makes this an error)",
+            file=sys.stderr,
+        )
+    out = Path(args.out) if args.out else Path("gapath-mars-quick" if args.quick else "gapath-mars")
+    sink = open(args.jsonl, "a") if args.jsonl else None
 
     def emit(obj):
         line = dumps(obj)
@@ -85,32 +88,15 @@ def run(args) -> int:
             sink.write(line + "\n")
             sink.flush()
 
-    dem = "fractal" if args.terrain == "fractal" else None
-    if args.terrain != "fractal":
-        path = _study.find_mars_dtm()
-        if path is None and args.terrain == "mars":
-            raise ConfigError(
-                "--terrain mars: the Mars DTM dem/mars_dtm.npy was not found (looked "
-                "in $GAPATH_SHARED_DATA and in shared/data beside the gapath "
-                "sources); set GAPATH_SHARED_DATA to the data folder, or use "
-                "--terrain fractal"
-            )
-        if path is None:
-            import sys
-
-            print(
-                "gapath: the Mars DTM dem/mars_dtm.npy was not found; the study uses seeded "
-                "fractal terrain (labelled so in mars.md; --terrain mars makes this an error)",
-                file=sys.stderr,
-            )
     try:
-        study = mars_study(
-            cfg["n_workspaces"],
+        study = _study.run(
+            args.n,
+            quick=args.quick,
             seed=args.seed,
             size=args.size,
-            dem=dem,
-            ga_pop=cfg["ga_pop"],
-            ga_gen=cfg["ga_gen"],
+            terrain=args.terrain,
+            ga_pop=args.ga_pop,
+            ga_gen=args.ga_gen,
             ga_seed_from=args.ga_seed_from,
             on_record=lambda r: emit({"kind": "mars_workspace", **record_line(r)}),
         )

@@ -24,7 +24,19 @@ PLANNER_COLOURS = {
 }
 
 
-def _base(workspace, ax, stationary=(), appeared=None):
+def plot_map(workspace, ax, stationary=(), appeared=None):
+    """Draw the workspace on ``ax``: the static obstacles, the stationary
+    obstacles (those ``appeared`` when given, a boolean per obstacle), the
+    start and the goal, with axes in the map's unit.
+
+    Parameters
+    ----------
+    workspace : :class:`gapath.workspace.Workspace`
+    ax : matplotlib ``Axes``
+    stationary : sequence of :class:`gapath.dynamic.StationaryObstacle`
+    appeared : sequence of bool, optional
+        Which of ``stationary`` to draw (default: all).
+    """
     cs = workspace.cell_size
     h, w = workspace.shape
     ax.imshow(
@@ -71,7 +83,7 @@ def plot_run(workspace, result, stationary=(), ax=None, title=None, moving=True)
         any(e["kind"] == "appear" and e.get("obstacle") == f"stationary-{k}" for e in result.events)
         for k in range(len(stationary))
     ]
-    _base(workspace, ax, stationary, appeared)
+    plot_map(workspace, ax, stationary, appeared)
     g = result.global_path
     if len(g):
         ax.plot(g[:, 0], g[:, 1], "--", color="0.45", lw=1.2, label="global plan")
@@ -94,7 +106,7 @@ def plot_paths(workspace, results: dict, stationary=(), ax=None, title=None):
     if ax is None:
         h, w = workspace.shape
         _, ax = plt.subplots(figsize=(6.0 * w / max(h, w) + 1.8, 6.0 * h / max(h, w) + 0.4))
-    _base(workspace, ax, stationary)
+    plot_map(workspace, ax, stationary)
     for name, res in results.items():
         tr = res.trajectory
         mark = "" if res.success else f" ({res.reason})"
@@ -164,7 +176,7 @@ def animate_run(
             ax.clear()
             t = tr[i, 0]
             appeared = [k in appear_t and appear_t[k] <= t for k in range(len(stationary))]
-            _base(workspace, ax, stationary, appeared)
+            plot_map(workspace, ax, stationary, appeared)
             j = max(0, int(np.searchsorted(plan_t, t, side="right")) - 1)
             if result.paths:
                 p = result.paths[j][1]

@@ -212,7 +212,7 @@ def run(
     robot : :class:`gapath.dynamic.Robot`, optional
     settings : :class:`gapath.dynamic.SimSettings`, optional
     obstacles : dict, optional
-        Keyword arguments of :func:`gapath.scenarios.dynamic_obstacles`.
+        Keyword arguments of :func:`gapath.dynamic.scenarios.dynamic_obstacles`.
     progress : callable, optional
         Called as ``progress(scenario, planner, i, result)`` after each run.
     example_run : int, optional
@@ -229,8 +229,8 @@ def run(
         On ``n_runs < 1`` or unknown scenario or planner names.
     """
     from gapath.dynamic import Robot, SimSettings, make_planner, simulate
+    from gapath.dynamic.scenarios import make_scenario
     from gapath.planners.astar import astar
-    from gapath.scenarios import make_scenario
 
     try:
         n = int(n_runs)
@@ -333,7 +333,7 @@ def _markdown(study: DynamicStudy) -> str:
     lines = [
         "# Dynamic environments: NO-MOPP (hybrid A*) against RRT, RRT*, A* and D* Lite",
         "",
-        "Made by `python benchmarks/dynamic_study.py` (`gapath.experiments.dynamic.run`): "
+        "Made by `python benchmarks/dynamic_study.py` (`gapath.studies.dynamic.run`): "
         f"{s['n_runs']} runs per scenario and planner, obstacle seeds {s['seed']}.."
         f"{s['seed'] + s['n_runs'] - 1}, map seed {s['map_seed']}; every planner meets the same "
         "obstacles in run *i*. Wall-clock time of the study "
@@ -341,7 +341,7 @@ def _markdown(study: DynamicStudy) -> str:
         "",
         "## Set-up",
         "",
-        "* Maps (1 m cells, `gapath.scenarios`): `complex_maze` (8x8 maze cells, 4 m corridors, "
+        "* Maps (1 m cells, `gapath.dynamic.scenarios`): `complex_maze` (8x8 maze cells, 4 m corridors, "
         "braided to a grid detour of at most 1.20; NO-MOPP's offline path was 1.245x its "
         "direct distance) and `warehouse` (shelves 2 m x 10 m, 4 m aisles, loading dock, "
         "package pick-up goal beside a shelf). Start and goal are chosen for a straight-line "
@@ -350,7 +350,7 @@ def _markdown(study: DynamicStudy) -> str:
         f"degrees (minimum turning radius {rb['min_turning_radius']} m), speed {rb['speed']} m/s, "
         f"disc footprint of radius {rb['radius']} m; sensor range {rb['sensor_range']} m, field "
         f"of view +-{rb['fov_deg']:g} degrees, line of sight blocked by walls.",
-        "* Dynamic obstacles per run (`gapath.scenarios.dynamic_obstacles`): "
+        "* Dynamic obstacles per run (`gapath.dynamic.scenarios.dynamic_obstacles`): "
         + _obstacle_text(s["obstacles"])
         + ".",
         f"* Simulation (`gapath.dynamic`): tick {s['sim']['dt']} s, prediction horizon "
@@ -468,7 +468,7 @@ def write_outputs(
     if png and study.examples:
         written.append(_paths_png(study, out / f"{stem}_paths.png"))
     if gif:
-        from gapath.dynamic_plots import animate_run
+        from gapath.dynamic.plots import animate_run
 
         for scen, (sc, results) in study.examples.items():
             first = next(iter(results.values()))
@@ -481,7 +481,7 @@ def write_outputs(
 def _paths_png(study, path) -> Path:
     import matplotlib.pyplot as plt
 
-    from gapath.dynamic_plots import plot_paths
+    from gapath.dynamic.plots import plot_paths
     from gapath.results import atomic_write
 
     k = len(study.examples)

@@ -377,7 +377,7 @@ def _reference_path(workspace) -> np.ndarray:
 
 def _free_run(occ, p, direction, radius, max_len, cs, step=0.25):
     """How far a disc can go from ``p`` along ``direction`` (world units)."""
-    from gapath.planners._geometry import disc_free
+    from gapath.planners.geometry import disc_free
 
     d = 0.0
     while d + step <= max_len:
@@ -431,7 +431,7 @@ def dynamic_obstacles(
         On negative counts or speeds, or a map without a path.
     """
     from gapath.dynamic import MovingObstacle, StationaryObstacle
-    from gapath.planners._geometry import disc_free
+    from gapath.planners.geometry import disc_free
 
     for name, v in (("n_stationary", n_stationary), ("n_crossers", n_crossers), ("n_wanderers", n_wanderers)):
         _check_int(v, name, 0)
