@@ -21,7 +21,7 @@ Examples
 --------
 >>> import numpy as np
 >>> from gapath import Workspace
->>> from gapath.encodings.base import Frame
+>>> from gapath.monotone import Frame
 >>> enc = IntegerEncoding(Frame.of(Workspace(np.zeros((4, 4), bool))))
 >>> entries, exits = enc.decode(np.array([[1, 1, 0]]))
 >>> exits.tolist()
@@ -33,26 +33,9 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from gapath.encodings._relative import _linear_draw, relative_moves
-from gapath.encodings.base import Frame, profiles_of_paths
+from gapath.encodings._relative import decode_moves, linear_draw, relative_moves
 from gapath.errors import ConfigError
-
-
-@numba.njit(cache=True)
-def _decode(X, start_row, goal_row, height):
-    n, n_var = X.shape
-    entries = np.empty((n, n_var + 1), np.int64)
-    exits = np.empty((n, n_var + 1), np.int64)
-    for i in range(n):
-        r = start_row
-        for k in range(n_var):
-            t = min(max(r - X[i, k], 0), height - 1)
-            entries[i, k] = r if k == 0 else r + np.sign(t - r)
-            exits[i, k] = t
-            r = t
-        entries[i, n_var] = r + np.sign(goal_row - r)
-        exits[i, n_var] = goal_row
-    return entries, exits
+from gapath.monotone import Frame, profiles_of_paths
 
 
 @numba.njit(cache=True)
@@ -63,10 +46,10 @@ def _edge_fix(X, U, start_row, height):
         for k in range(1, n_var):
             t = r - X[i, k]
             if t < 0:
-                t = _linear_draw(r, 0, U[i, k])
+                t = linear_draw(r, 0, U[i, k])
                 X[i, k] = r - t
             elif t > height - 1:
-                t = _linear_draw(r, height - 1, U[i, k])
+                t = linear_draw(r, height - 1, U[i, k])
                 X[i, k] = r - t
             r = t
     return X
@@ -77,7 +60,7 @@ class IntegerEncoding:
 
     Parameters
     ----------
-    frame : :class:`gapath.encodings.base.Frame` of the workspace.
+    frame : :class:`gapath.monotone.Frame` of the workspace.
 
     Attributes
     ----------
@@ -110,7 +93,7 @@ class IntegerEncoding:
         genomes ``X`` (N, n_var); values are rounded, moves past the grid
         edge are clamped."""
         f = self.frame
-        return _decode(self._genes(X), f.start[0], f.goal[0], f.height)
+        return decode_moves(self._genes(X), f.start[0], f.goal[0], f.height)
 
     def encode(self, paths) -> np.ndarray:
         """Genomes ``(N, n_var)`` of column-monotone paths (workspace cells).

@@ -30,7 +30,8 @@ import math
 import numba
 import numpy as np
 
-from gapath.planners._grid import DC, DR, STEP, heap_decrease, heap_pop, heap_push
+from gapath.grid import DC, DR, STEP
+from gapath.planners._grid import heap_decrease, heap_pop, heap_push
 
 TWO_PI = 2.0 * math.pi
 

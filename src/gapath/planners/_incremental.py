@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from gapath.errors import ConfigError
-from gapath.planners._grid import check_cell
+from gapath.grid import check_free_cell
 
 
 class IncrementalGridPlanner:
@@ -53,7 +53,7 @@ class IncrementalGridPlanner:
         ConfigError
             If ``cell`` is outside the grid or on an obstacle.
         """
-        self._start = check_cell(cell, "cell", self._occ)
+        self._start = check_free_cell(cell, "cell", self._occ)
 
     def update_cells(self, cells, blocked=True) -> int:
         """Mark cells blocked (obstacle) or free.

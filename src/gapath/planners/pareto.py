@@ -111,13 +111,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from gapath.errors import ConfigError, NoPathError
-from gapath.planners._grid import check_cell
+from gapath.grid import SQRT2, check_cell, check_free_cell
 from gapath.planners._incremental import IncrementalGridPlanner
 from gapath.planners._pareto_kernels import (
     _CELL,
     _SOLAR,
     INF,
-    SQRT2,
     _astar_kernel,
     _compute_shortest_path,
     _dstar_insert,
@@ -381,9 +380,7 @@ def _no_path(ws, src, dst, expansions=None) -> NoPathError:
 def _check_origin(origin, default, shape):
     if origin is None:
         return default
-    from gapath.costmap import _check_cell as check_any_cell
-
-    return check_any_cell(origin, "origin", shape)
+    return check_cell(origin, "origin", shape)
 
 
 def _astar(
@@ -392,8 +389,8 @@ def _astar(
     t0 = time.perf_counter()
     ws = costmap.workspace
     occ = ws.occ
-    src = check_cell(ws.start if start is None else start, "start", occ)
-    dst = check_cell(ws.goal if goal is None else goal, "goal", occ)
+    src = check_free_cell(ws.start if start is None else start, "start", occ)
+    dst = check_free_cell(ws.goal if goal is None else goal, "goal", occ)
     origin = _check_origin(origin, src, occ.shape)
     model = _Model(costmap, objectives, origin, pareto=pareto, priority=priority, weights=weights)
     h, w = occ.shape
@@ -585,8 +582,8 @@ class DStarPO(IncrementalGridPlanner):
         ws = costmap.workspace
         occ = np.array(ws.occ, dtype=np.bool_, order="C", copy=True)
         self._occ = occ
-        self._start = check_cell(ws.start if start is None else start, "start", occ)
-        self._goal = check_cell(ws.goal if goal is None else goal, "goal", occ)
+        self._start = check_free_cell(ws.start if start is None else start, "start", occ)
+        self._goal = check_free_cell(ws.goal if goal is None else goal, "goal", occ)
         self.costmap = costmap
         self.origin = _check_origin(origin, self._start, occ.shape)
         self._model = _Model(

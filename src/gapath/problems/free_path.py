@@ -5,8 +5,7 @@ from __future__ import annotations
 import numpy as np
 from pymoo.core.problem import Problem
 
-from gapath.costmap import CELL_MEAN, STEP_SUM
-from gapath.encodings import _free_kernels as K
+from gapath.costmap import CELL_MEAN, STEP_SUM, evaluate_layer_paths
 from gapath.encodings.free import DEFAULT_FREE_ENCODING, FREE_ENCODINGS, make_free_encoding
 from gapath.errors import ConfigError
 from gapath.objectives import INTERFERING, SMOOTHNESS, evaluate_paths
@@ -143,7 +142,12 @@ class FreePathProblem(Problem):
         if self._layer_stack is not None:
             cm = self.costmap
             M = np.hstack(
-                [M, K.layer_values(P, L, self._layer_stack, self._layer_agg, cm.solar_angle0, cm.solar_rate)]
+                [
+                    M,
+                    evaluate_layer_paths(
+                        P, L, self._layer_stack, self._layer_agg, cm.solar_angle0, cm.solar_rate
+                    ),
+                ]
             )
         return M
 

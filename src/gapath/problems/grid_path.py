@@ -8,8 +8,8 @@ import numpy as np
 from pymoo.core.problem import Problem
 
 from gapath.encodings import expand_profiles, make_encoding, split_paths
-from gapath.encodings.base import Frame
 from gapath.errors import ConfigError
+from gapath.monotone import Frame
 from gapath.objectives import INTERFERING, OBJECTIVES, SMOOTHNESS, objective_index
 
 #: Metrics that may be objectives (``interfering`` is the constraint).

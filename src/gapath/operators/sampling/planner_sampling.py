@@ -23,7 +23,7 @@ def planner_paths(
     * ``"exact"``: every path of the exact monotone front for ``objectives``;
     * ``"astar"``: the A* shortest path and A* paths with the potential
       field as a cost layer (weights 1, 10, 100), each projected onto the
-      column-monotone path set (:func:`gapath.encodings.base.monotone_projection`);
+      column-monotone path set (:func:`gapath.monotone.monotone_projection`);
     * ``"none"``: no paths.
 
     A workspace without a feasible column-monotone path gives no seeds.
@@ -47,7 +47,7 @@ def planner_paths(
 
 
 def _astar_paths(workspace) -> list[np.ndarray]:
-    from gapath.encodings.base import Frame, expand_profiles, monotone_projection, split_paths
+    from gapath.monotone import Frame, expand_profiles, monotone_projection, split_paths
     from gapath.planners.astar import astar
 
     frame = Frame.of(workspace)
