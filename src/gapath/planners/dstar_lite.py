@@ -39,6 +39,7 @@ from gapath.grid import DC, DR, STEP, can_step, check_free_cell, octile, path_le
 from gapath.planners._grid import heap_pop, heap_push, heap_remove, heap_update
 from gapath.planners._incremental import IncrementalGridPlanner
 from gapath.planners.astar import PlanResult
+from gapath.workspace import Workspace
 
 __all__ = ["DStarLite"]
 
@@ -351,8 +352,6 @@ class DStarLite(IncrementalGridPlanner):
     def workspace(self):
         """The current map as a :class:`~gapath.workspace.Workspace`
         (start = the robot's cell)."""
-        from gapath.workspace import Workspace
-
         return Workspace(
             self._occ.copy(),
             self._start,

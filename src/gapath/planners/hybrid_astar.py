@@ -84,6 +84,7 @@ from gapath.planners._geometry import (
     turn_to_point,
 )
 from gapath.planners._grid import heap_pop, heap_push, heap_update
+from gapath.planners.astar import check_cost_layer
 
 __all__ = [
     "CarModel",
@@ -917,8 +918,6 @@ class HybridAStar:
             layer = np.zeros((1, 1))
             use_layer = False
         else:
-            from gapath.planners.astar import check_cost_layer
-
             layer = check_cost_layer(cost, occ.shape)
             use_layer = bool(layer.any())
         max_len = np.inf if max_length is None else check_positive(max_length, "max_length") / cs

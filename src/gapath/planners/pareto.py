@@ -125,6 +125,7 @@ from gapath.planners._pareto_kernels import (
     _open_reset,
     _update_changed_edges,
 )
+from gapath.workspace import Workspace
 
 __all__ = [
     "ParetoPlanResult",
@@ -606,8 +607,6 @@ class DStarPO(IncrementalGridPlanner):
     def workspace(self):
         """The current map as a :class:`~gapath.workspace.Workspace`
         (start = the robot's cell)."""
-        from gapath.workspace import Workspace
-
         ws = self.costmap.workspace
         return Workspace(
             self._occ.copy(),

@@ -22,7 +22,7 @@ import numpy as np
 from gapath.errors import ConfigError, NoPathError
 from gapath.grid import SQRT2, cuts_corner
 from gapath.monotone import Frame, expand_profiles, split_paths
-from gapath.objectives import LENGTH, VULNERABILITY
+from gapath.objectives import LENGTH, VULNERABILITY, evaluate_paths, pad_paths
 
 
 @numba.njit(cache=True)
@@ -145,8 +145,6 @@ def weighted_sum_paths(workspace, n_weights: int = 9) -> list[np.ndarray]:
     NoPathError
         When no feasible column-monotone path exists.
     """
-    from gapath.objectives import evaluate_paths, pad_paths
-
     shortest = weighted_sum_path(workspace, 1.0, 1e-7)
     safest = weighted_sum_path(workspace, 1e-7, 1.0)
     P, L = pad_paths([shortest, safest])

@@ -9,7 +9,7 @@ from gapath.costmap import CELL_MEAN, STEP_SUM, evaluate_layer_paths
 from gapath.encodings.free import DEFAULT_FREE_ENCODING, FREE_ENCODINGS, make_free_encoding
 from gapath.errors import ConfigError
 from gapath.objectives import INTERFERING, SMOOTHNESS, evaluate_paths
-from gapath.problems.grid_path import problem_settings
+from gapath.problems.grid_path import GridPathProblem, problem_settings
 
 
 class FreePathProblem(Problem):
@@ -212,8 +212,6 @@ def path_problem(
     if paths == "free":
         return FreePathProblem(workspace, objectives, encoding=encoding or DEFAULT_FREE_ENCODING, **kwargs)
     if paths == "monotone":
-        from gapath.problems.grid_path import GridPathProblem
-
         return GridPathProblem(workspace, objectives, encoding=encoding or "integer", **kwargs)
     raise ConfigError(f"unknown path set {paths!r}; expected 'free' or 'monotone'")
 

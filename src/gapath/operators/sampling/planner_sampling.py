@@ -7,7 +7,11 @@ from pymoo.core.sampling import Sampling
 from pymoo.operators.sampling.rnd import IntegerRandomSampling
 
 from gapath.errors import ConfigError, NoPathError
+from gapath.monotone import Frame, expand_profiles, monotone_projection, split_paths
 from gapath.operators.duplicates import duplicate_mask
+from gapath.planners.astar import astar
+from gapath.planners.exact import monotone_front
+from gapath.planners.weighted_sum import weighted_sum_paths
 
 #: What :class:`PlannerSampling` can seed from.
 SEED_SOURCES = ("weighted", "exact", "astar", "none")
@@ -32,12 +36,8 @@ def planner_paths(
         raise ConfigError(f"unknown seed source {source!r}; expected one of {', '.join(SEED_SOURCES)}")
     try:
         if source == "weighted":
-            from gapath.planners.weighted_sum import weighted_sum_paths
-
             return weighted_sum_paths(workspace, n_weights)
         if source == "exact":
-            from gapath.planners.exact import monotone_front
-
             return list(monotone_front(workspace, objectives).paths)
         if source == "astar":
             return _astar_paths(workspace)
@@ -47,9 +47,6 @@ def planner_paths(
 
 
 def _astar_paths(workspace) -> list[np.ndarray]:
-    from gapath.monotone import Frame, expand_profiles, monotone_projection, split_paths
-    from gapath.planners.astar import astar
-
     frame = Frame.of(workspace)
     paths = []
     for w in (0.0, 1.0, 10.0, 100.0):
