@@ -111,7 +111,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from gapath.errors import ConfigError, NoPathError
-from gapath.grid import SQRT2, check_cell, check_free_cell
+from gapath.grid import DIRECTION, SQRT2, check_cell, check_free_cell, path_length
 from gapath.planners._incremental import IncrementalGridPlanner
 from gapath.planners._pareto_kernels import (
     _CELL,
@@ -265,7 +265,7 @@ class _Model:
         diag = (dr != 0) & (dc != 0)
         out = np.zeros(len(self.columns))
         out[0] = ((len(dr) - diag.sum()) + SQRT2 * diag.sum()) * self.costmap.workspace.cell_size
-        dirs = np.array([[3, 2, 1], [4, -1, 0], [5, 6, 7]])[dr + 1, dc + 1]
+        dirs = DIRECTION[dr + 1, dc + 1]
         for j in range(1, len(self.columns)):
             if kind[j] == _CELL:
                 out[j] = cells[j, path_idx].sum()
@@ -344,7 +344,7 @@ def _result(model, idx, expansions, t0, planner) -> ParetoPlanResult:
         F = np.array([vals[o] for o in model.objectives])
     search = model.search_vector(idx)
     path.setflags(write=False)
-    length = _length(path, cm.workspace.cell_size)
+    length = path_length(path, cm.workspace.cell_size)
     return ParetoPlanResult(
         path=path,
         objectives=model.objectives,
@@ -355,12 +355,6 @@ def _result(model, idx, expansions, t0, planner) -> ParetoPlanResult:
         seconds=time.perf_counter() - t0,
         planner=planner,
     )
-
-
-def _length(path, cell_size) -> float:
-    d = np.abs(np.diff(path, axis=0))
-    diag = int(np.count_nonzero((d[:, 0] != 0) & (d[:, 1] != 0)))
-    return float(((len(d) - diag) + SQRT2 * diag) * cell_size)
 
 
 def _no_path(ws, src, dst, expansions=None) -> NoPathError:
