@@ -57,7 +57,7 @@ import numba
 import numpy as np
 
 from gapath.errors import ConfigError
-from gapath.grid import DC, DR, SQRT2, check_cell, check_path
+from gapath.grid import DC, DR, SQRT2, check_cell, check_path, path_length
 
 __all__ = [
     "Costmap",
@@ -678,8 +678,7 @@ class Costmap:
         out = {}
         for n in names:
             if n == "length":
-                diag = int(np.count_nonzero((d[:, 0] != 0) & (d[:, 1] != 0)))
-                out[n] = float(((len(d) - diag) + SQRT2 * diag) * self.workspace.cell_size)
+                out[n] = path_length(p, self.workspace.cell_size)
             elif n == "solar":
                 out[n] = float(np.sum(self.solar_cost(d[:, 0], d[:, 1], np.arange(len(d)))))
             else:
