@@ -828,7 +828,14 @@ def _threshold(
 
 
 def _read_plain_image(path: Path) -> _Grid:
-    grid = _threshold(*_read_image(path), **ROS_DEFAULTS)
+    grey, alpha = _read_image(path)
+    grid = _threshold(
+        grey,
+        alpha,
+        negate=bool(ROS_DEFAULTS["negate"]),
+        occupied_thresh=float(ROS_DEFAULTS["occupied_thresh"]),
+        free_thresh=float(ROS_DEFAULTS["free_thresh"]),
+    )
     return replace(grid, corner_cutting=CORNER_RULES["image"])
 
 
@@ -955,7 +962,8 @@ def _read_ros(path: Path) -> _Grid:
         raise _map_error(path, f"key 'image': {exc}") from None
     grid = _threshold(grey, alpha, negate=bool(negate), mode=mode, **thresholds)
     h, w = grey.shape
-    frame = MapFrame(*map(float, origin), float(resolution), int(h), int(w))
+    x, y, yaw = (float(v) for v in origin)
+    frame = MapFrame(x, y, yaw, float(resolution), int(h), int(w))
     return replace(grid, cell_size=float(resolution), corner_cutting=CORNER_RULES["ros"], frame=frame)
 
 

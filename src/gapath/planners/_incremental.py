@@ -20,7 +20,24 @@ from gapath.grid import check_free_cell
 
 
 class IncrementalGridPlanner:
-    """Base of planners that repair their search when cells change."""
+    """Base of planners that repair their search when cells change.
+
+    A subclass sets ``_occ``, ``_start``, ``_goal`` and ``_initialized`` and
+    provides ``_sync_km`` and ``_repair_edges``.
+    """
+
+    _occ: np.ndarray
+    _start: tuple[int, int]
+    _goal: tuple[int, int]
+    _initialized: bool
+
+    def _sync_km(self) -> None:
+        """Bring ``km`` up to date with the robot's moves."""
+        raise NotImplementedError
+
+    def _repair_edges(self, occ_old: np.ndarray, src: np.ndarray) -> None:
+        """Repair the search after the edges out of the cells ``src`` changed."""
+        raise NotImplementedError
 
     @property
     def start(self) -> tuple[int, int]:
