@@ -26,8 +26,8 @@ import statistics
 import time
 from pathlib import Path
 
+from gapath.generators import random_workspace
 from gapath.planners.exact import free_front, monotone_front
-from gapath.workspace import random_workspace
 
 LV = ("length", "vulnerability")
 LVS = ("length", "vulnerability", "smoothness")
@@ -37,7 +37,7 @@ def default_scenario():
     """The bundled default scenario, or its recipe when the map loader is
     not available."""
     try:
-        from gapath.workspace import default_workspace
+        from gapath.generators import default_workspace
 
         return default_workspace()
     except ImportError:

@@ -35,9 +35,9 @@ import numpy as np
 
 from gapath import Workspace, dense_workspace
 from gapath.experiments.runner import FirstFeasible
+from gapath.generators import column_run
 from gapath.solver import solve
 from gapath.studies.dense import map_seed_of, unsuccessful_runs
-from gapath.workspace import _column_run
 
 POP, GENS = 200, 500
 
@@ -56,9 +56,9 @@ def diagonal_path(n, rng):
         ideal = (n - 1) * (1 - c / (n - 1))
         step = int(np.clip(round(ideal - r) + rng.integers(-1, 2), -2, 2))
         t = int(np.clip(r + step, 0, n - 1))
-        cells.extend(_column_run(r, t, c))
+        cells.extend(column_run(r, t, c))
         r = t
-    cells.extend(_column_run(r, 0, n - 1))
+    cells.extend(column_run(r, 0, n - 1))
     return np.asarray(cells)
 
 
@@ -67,9 +67,9 @@ def staircase_path(n, rng):
     r, cells = n - 1, [(n - 1, 0)]
     for c in range(1, n - 1):
         t = int(max(r - rng.integers(0, 3), 0))
-        cells.extend(_column_run(r, t, c))
+        cells.extend(column_run(r, t, c))
         r = t
-    cells.extend(_column_run(r, 0, n - 1))
+    cells.extend(column_run(r, 0, n - 1))
     return np.asarray(cells)
 
 

@@ -42,10 +42,10 @@ import time
 from pathlib import Path
 
 from gapath import NoPathError
+from gapath.generators import default_workspace
 from gapath.loaders import load_movingai, load_scenarios
 from gapath.metrics import coverage, hv_ratio
 from gapath.planners.exact import free_front, monotone_front
-from gapath.workspace import default_workspace
 
 OBJECTIVES = ("length", "vulnerability")
 MOVINGAI_MAPS = ("empty-32-32", "random-32-32-10", "random-32-32-20", "maze-32-32-2", "room-32-32-4")

@@ -30,12 +30,22 @@ sys.path.insert(0, str(ROOT / "src"))  # document this checkout's source
 #: The documented modules, in the order of the API reference: (section, modules).
 API_MODULES = [
     ("Package", ["gapath", "gapath.errors"]),
-    ("Maps and objectives", ["gapath.workspace", "gapath.loaders", "gapath.objectives", "gapath.costmap"]),
+    (
+        "Maps and objectives",
+        [
+            "gapath.workspace",
+            "gapath.generators",
+            "gapath.loaders",
+            "gapath.grid",
+            "gapath.monotone",
+            "gapath.objectives",
+            "gapath.costmap",
+        ],
+    ),
     (
         "The genetic algorithm",
         [
             "gapath.encodings",
-            "gapath.encodings.base",
             "gapath.encodings.integer",
             "gapath.encodings.binary",
             "gapath.encodings.mixed",

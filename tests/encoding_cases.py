@@ -6,7 +6,7 @@ from hypothesis import strategies as st
 
 from gapath import Workspace
 from gapath.encodings import Frame
-from gapath.workspace import random_monotone_path
+from gapath.generators import random_monotone_path
 
 
 def empty_ws(h, w, start=None, goal=None):

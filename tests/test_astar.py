@@ -27,13 +27,10 @@ import pytest
 from data_files import glob_data
 
 from gapath import ConfigError, NoPathError, Workspace
+from gapath.grid import DC, DR, can_step, move_mask
 from gapath.planners._grid import (
-    DC,
-    DR,
     HELD,
     NOT_HELD,
-    can_step,
-    move_mask,
     open_decrease,
     open_pop,
     open_push,

@@ -18,13 +18,13 @@ from gapath.callbacks import Callbacks, ProgressBar, population_arrays, populati
 from gapath.convergence import HypervolumeRatioCallback
 from gapath.experiments.runner import FirstFeasible
 from gapath.front import path_front
+from gapath.generators import random_workspace
 from gapath.metrics import hv_ratio
 from gapath.operators import PlannerSampling
 from gapath.operators._columns import column
 from gapath.planners.exact import monotone_front
 from gapath.problems import GridPathProblem
 from gapath.solver import solve
-from gapath.workspace import random_workspace
 
 
 @pytest.fixture(scope="module")

@@ -5,7 +5,7 @@ from hypothesis import strategies as st
 
 from gapath import ConfigError, Workspace
 from gapath.encodings import Frame, IntegerEncoding, make_encoding
-from gapath.workspace import random_monotone_path
+from gapath.generators import random_monotone_path
 
 
 def _ws(h, w, start=None, goal=None):

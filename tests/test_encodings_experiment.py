@@ -1,8 +1,8 @@
 import csv
 
+from gapath.generators import random_workspace
 from gapath.metrics import hv_ratio
 from gapath.studies import encodings
-from gapath.workspace import random_workspace
 
 
 def test_quick_encoding_comparison_writes_its_table(tmp_path):

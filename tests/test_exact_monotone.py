@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 
 from gapath import ConfigError, NoPathError, Workspace, random_workspace
-from gapath.encodings.base import Frame, profiles_of_paths
+from gapath.monotone import Frame, profiles_of_paths
 from gapath.objectives import evaluate_path, evaluate_profiles
 from gapath.planners.exact import ExactFront, monotone_front
 

@@ -174,8 +174,8 @@ def test_binary_spec_file_is_named(tmp_path):
 
 
 def test_map_files_relative_to_the_spec_and_identified_by_content(tmp_path):
+    from gapath.generators import random_workspace
     from gapath.loaders import save_movingai
-    from gapath.workspace import random_workspace
 
     ws = random_workspace((10, 12), 20, seed=3)
     for d in ("a", "b"):
@@ -233,8 +233,8 @@ def test_run_keys_are_stable_canonical_hashes():
 
 
 def test_first_feasible_stops_the_run_and_records_the_generation():
+    from gapath.generators import dense_workspace
     from gapath.solver import solve
-    from gapath.workspace import dense_workspace
 
     ws = dense_workspace(16, 0.3, seed=3)
     stop, watch = FirstFeasible(stop=True), FirstFeasible(stop=False)

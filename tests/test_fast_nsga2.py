@@ -24,6 +24,7 @@ from gapath.algorithms._variation import (
 )
 from gapath.algorithms.fast_nsga2 import PathArrays, fast_survival_order, pareto_ranks, path_duplicate_mask
 from gapath.front import path_front
+from gapath.generators import random_workspace
 from gapath.metrics import hv_ratio
 from gapath.objectives import evaluate_path
 from gapath.operators import (
@@ -35,7 +36,6 @@ from gapath.operators import (
 from gapath.operators.duplicates import duplicate_mask
 from gapath.planners.exact import monotone_front
 from gapath.problems import GridPathProblem
-from gapath.workspace import random_workspace
 
 
 @pytest.fixture(scope="module")

@@ -3,10 +3,10 @@
 import numpy as np
 import pytest
 
+from gapath.generators import random_workspace
 from gapath.metrics import hv_ratio
 from gapath.planners.exact import free_front, monotone_front
 from gapath.solver import solve
-from gapath.workspace import random_workspace
 
 
 def _dominates(a, b, tol=1e-9):

@@ -11,6 +11,7 @@ from data_files import TESTS_DATA, data_path
 from PIL import Image
 
 from gapath.errors import ConfigError, MapError
+from gapath.generators import default_workspace, random_workspace
 from gapath.loaders import (
     Scenario,
     from_array,
@@ -24,7 +25,7 @@ from gapath.loaders import (
     load_text,
     save_movingai,
 )
-from gapath.workspace import Workspace, default_workspace, random_workspace
+from gapath.workspace import Workspace
 
 
 @pytest.fixture(scope="module")

@@ -6,9 +6,9 @@ import pytest
 from gapath import ConfigError
 from gapath.cli import main
 from gapath.experiments import merge_fronts, multirun
+from gapath.generators import random_workspace
 from gapath.metrics import nondominated
 from gapath.solver import objective_mode, solve
-from gapath.workspace import random_workspace
 
 
 @pytest.fixture(scope="module")

@@ -12,6 +12,7 @@ from pymoo.termination.max_gen import MaximumGenerationTermination
 from gapath import ConfigError, Workspace
 from gapath.algorithms import paper_nsga2
 from gapath.front import path_front
+from gapath.generators import random_workspace
 from gapath.objectives import evaluate_path
 from gapath.operators import (
     DecayingBitflipMutation,
@@ -23,7 +24,6 @@ from gapath.operators import (
 )
 from gapath.operators.mutation.decaying_bitflip import final_generation
 from gapath.problems import GridPathProblem
-from gapath.workspace import random_workspace
 
 ENCODINGS = ["integer", "binary", "mixed", "absolute"]
 

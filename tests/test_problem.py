@@ -5,9 +5,9 @@ from pymoo.optimize import minimize
 from gapath import ConfigError, Workspace, default_workspace
 from gapath.algorithms import paper_nsga2
 from gapath.front import path_front
+from gapath.generators import random_workspace
 from gapath.objectives import evaluate_path
 from gapath.problems import GridPathProblem
-from gapath.workspace import random_workspace
 
 
 @pytest.fixture(scope="module")

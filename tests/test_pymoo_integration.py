@@ -32,10 +32,10 @@ from gapath.algorithms import FastNSGA2, paper_nsga2
 from gapath.costmap import Costmap
 from gapath.encodings import ENCODINGS
 from gapath.front import path_front
+from gapath.generators import random_workspace
 from gapath.operators import PlannerSampling, SmoothnessTournament
 from gapath.problems import GenomeWarning, GridPathProblem
 from gapath.problems.grid_path import EXACT_FRONT_AUTO_CELLS
-from gapath.workspace import random_workspace
 
 README = Path(__file__).resolve().parents[1] / "README.md"
 ENGINES = {"paper_nsga2": paper_nsga2, "FastNSGA2": FastNSGA2}

@@ -2,6 +2,7 @@ import numpy as np
 import pytest
 
 from gapath import ConfigError, NoPathError, Workspace
+from gapath.generators import random_workspace
 from gapath.objectives import evaluate_path
 from gapath.operators import PlannerSampling
 from gapath.operators.duplicates import duplicate_mask
@@ -9,7 +10,6 @@ from gapath.operators.sampling.planner_sampling import planner_paths
 from gapath.planners.exact import monotone_front
 from gapath.planners.weighted_sum import weighted_sum_path, weighted_sum_paths
 from gapath.problems import GridPathProblem
-from gapath.workspace import random_workspace
 
 
 def _grids():
@@ -122,8 +122,8 @@ def test_seeded_solve_with_every_encoding(encoding):
 
 
 def test_monotone_projection_of_a_monotone_path_is_itself():
-    from gapath.encodings.base import Frame, monotone_projection, profiles_of_paths
-    from gapath.workspace import random_monotone_path
+    from gapath.generators import random_monotone_path
+    from gapath.monotone import Frame, monotone_projection, profiles_of_paths
 
     ws = random_workspace((15, 15), 0, seed=1)
     frame = Frame.of(ws)

@@ -5,9 +5,9 @@ import pytest
 from pymoo.core.callback import Callback
 
 from gapath import ConfigError
+from gapath.generators import random_workspace
 from gapath.results import write_result
 from gapath.solver import solve
-from gapath.workspace import random_workspace
 
 
 class _Interrupt(Callback):

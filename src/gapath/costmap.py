@@ -57,6 +57,7 @@ import numba
 import numpy as np
 
 from gapath.errors import ConfigError
+from gapath.grid import DC, DR, SQRT2, check_cell, check_path, path_length
 
 __all__ = [
     "Costmap",
@@ -79,13 +80,6 @@ _RESERVED = _DERIVED + ("length", "vulnerability", "smoothness", "interfering")
 
 #: Aggregation codes of the layer objectives (numba kernels).
 CELL_MEAN, STEP_SUM = 0, 1
-
-SQRT2 = math.sqrt(2.0)
-
-#: The 8 moves (dr, dc) in the order of :mod:`gapath.planners._grid`:
-#: E, NE, N, NW, W, SW, S, SE (row up = -1).
-_DR = np.array([0, -1, -1, -1, 0, 1, 1, 1], dtype=np.int64)
-_DC = np.array([1, 1, 0, -1, -1, -1, 0, 1], dtype=np.int64)
 
 
 # ---------------------------------------------------------------------------
@@ -143,20 +137,6 @@ def _normalise(arr: np.ndarray) -> np.ndarray:
     if hi > lo:
         return (arr - lo) / (hi - lo)
     return np.zeros_like(arr)
-
-
-def _check_cell(value, name, shape) -> tuple[int, int]:
-    try:
-        vals = list(value)
-        if len(vals) != 2 or any(isinstance(v, (bool, np.bool_)) or float(v) != int(v) for v in vals):
-            raise ValueError
-        r, c = (int(v) for v in vals)
-    except (TypeError, ValueError, OverflowError):
-        raise ConfigError(f"{name} must be a (row, col) pair of integers, got {value!r}") from None
-    h, w = shape
-    if not (0 <= r < h and 0 <= c < w):
-        raise ConfigError(f"{name} {(r, c)} is outside the {h}x{w} grid")
-    return r, c
 
 
 # ---------------------------------------------------------------------------
@@ -398,7 +378,7 @@ def risk_layer(shape, cells, *, cap: float = 1.0) -> np.ndarray:
     rr, cc = np.mgrid[0:h, 0:w]
     out = np.zeros((h, w))
     for cell in cells:
-        r, c = _check_cell(cell, "risk cell", shape)
+        r, c = check_cell(cell, "risk cell", shape)
         d2 = (rr - r) ** 2 + (cc - c) ** 2
         out += 1.0 / np.maximum(d2, cap * cap)
     return out
@@ -589,7 +569,7 @@ class Costmap:
         arr = np.asarray(cells)
         cell_list = [tuple(cells)] if arr.ndim == 1 else [tuple(c) for c in cells]
         self._layers["risk"] = risk_layer(self.shape, cell_list, cap=cap)
-        self.risk_cells = [_check_cell(c, "risk cell", self.shape) for c in cell_list]
+        self.risk_cells = [check_cell(c, "risk cell", self.shape) for c in cell_list]
         self.risk_cap = float(cap)
 
     def add_layer(self, name: str, values) -> None:
@@ -669,10 +649,10 @@ class Costmap:
 
     def solar_table(self, n_steps: int) -> np.ndarray:
         """``(n_steps, 8)`` solar costs of the 8 moves (order E, NE, N, NW, W,
-        SW, S, SE of :mod:`gapath.planners._grid`) at step indices
+        SW, S, SE of :mod:`gapath.grid`) at step indices
         ``0 .. n_steps - 1``."""
         k = np.arange(int(n_steps))[:, None]
-        return np.ascontiguousarray(self.solar_cost(_DR[None, :], _DC[None, :], k))
+        return np.ascontiguousarray(self.solar_cost(DR[None, :], DC[None, :], k))
 
     # -- path objectives ---------------------------------------------------
     def evaluate_path(self, path, objectives=None) -> dict[str, float]:
@@ -692,16 +672,13 @@ class Costmap:
         ConfigError
             On unknown objectives or a malformed path.
         """
-        from gapath.objectives import _check_path
-
         names = self.objective_names if objectives is None else self.check_objectives(objectives)
-        p = _check_path(self.workspace, path)
+        p = check_path(path, self.workspace.shape)
         d = np.diff(p, axis=0)
         out = {}
         for n in names:
             if n == "length":
-                diag = int(np.count_nonzero((d[:, 0] != 0) & (d[:, 1] != 0)))
-                out[n] = float(((len(d) - diag) + SQRT2 * diag) * self.workspace.cell_size)
+                out[n] = path_length(p, self.workspace.cell_size)
             elif n == "solar":
                 out[n] = float(np.sum(self.solar_cost(d[:, 0], d[:, 1], np.arange(len(d)))))
             else:
@@ -741,6 +718,51 @@ class Costmap:
 
 
 # ---------------------------------------------------------------------------
+# layer objectives of padded paths
+# ---------------------------------------------------------------------------
+
+
+@numba.njit(cache=True)
+def evaluate_layer_paths(paths, lengths, layers, agg, solar_angle0, solar_rate):
+    """Layer objectives of padded paths (the free encodings' kernel).
+
+    Parameters
+    ----------
+    paths : (N, L, 2) int array of cells; rows past ``lengths[i]`` are ignored.
+    lengths : (N,) int array, the number of cells of each path.
+    layers : (k, H, W) float array, the cell layers (unused for ``solar``).
+    agg : (k,) int array: :data:`CELL_MEAN`, the mean of layer ``j`` over the
+        path's cells, or :data:`STEP_SUM`, the solar cost summed over the
+        steps (:meth:`Costmap.solar_cost`).
+    solar_angle0, solar_rate : the costmap's solar settings.
+
+    Returns
+    -------
+    (N, k) float64 array.
+    """
+    n = paths.shape[0]
+    k = agg.shape[0]
+    out = np.zeros((n, k))
+    for i in range(n):
+        m = lengths[i]
+        for j in range(k):
+            acc = 0.0
+            if agg[j] == CELL_MEAN:
+                for q in range(m):
+                    acc += layers[j, paths[i, q, 0], paths[i, q, 1]]
+                out[i, j] = acc / m
+            else:
+                for q in range(1, m):
+                    dr = paths[i, q, 0] - paths[i, q - 1, 0]
+                    dc = paths[i, q, 1] - paths[i, q - 1, 1]
+                    norm = math.sqrt(dr * dr + dc * dc)
+                    th = solar_angle0 + solar_rate * (q - 1)
+                    acc += 0.5 * (1.0 + (dc * math.cos(th) - dr * math.sin(th)) / norm)
+                out[i, j] = acc
+    return out
+
+
+# ---------------------------------------------------------------------------
 # layer objectives of column profiles (the GA's kernel)
 # ---------------------------------------------------------------------------
 
@@ -765,7 +787,7 @@ def evaluate_layer_profiles(entries, exits, col0, layers, agg, flip, transpose, 
         path's cells, start and goal included) or :data:`STEP_SUM` (the
         solar cost summed over the steps, with their true indices
         ``0, 1, ...`` and their directions mapped back to the workspace).
-    flip, transpose : the frame's maps (:class:`gapath.encodings.base.Frame`);
+    flip, transpose : the frame's maps (:class:`gapath.monotone.Frame`);
         a frame step ``(dr, dc)`` is the workspace step ``(dr, -dc)`` after
         a flip, then ``(dc, dr)`` after a transpose.
     solar_angle0, solar_rate : the costmap's solar settings.

@@ -56,7 +56,7 @@ import yaml
 from PIL import Image
 
 from gapath.errors import ConfigError, MapError
-from gapath.workspace import Workspace
+from gapath.workspace import MapFrame, Workspace
 
 __all__ = [
     "CORNER_RULES",
@@ -131,87 +131,6 @@ def corner_rule(source: str) -> tuple[bool, str]:
     """
     key = source if source in CORNER_RULES else _SOURCES[_reader_for(Path(source))]
     return CORNER_RULES[key], f"the rule of a {_SOURCE_LABELS[key]}"
-
-
-@dataclass(frozen=True)
-class MapFrame:
-    """Where the cells of a ROS map lie in its world frame (metres).
-
-    map_server's convention: ``origin = (x, y, yaw)`` is the pose of the
-    lower-left corner of the map (the corner of the *last* image row's first
-    pixel, since image row 0 is the top), ``resolution`` metres per cell; x
-    grows along the image columns and y *up* the image (towards row 0),
-    rotated by ``yaw`` about the origin.
-
-    Attributes
-    ----------
-    x, y, yaw : float
-        The yaml ``origin``.
-    resolution : float
-        Metres per cell.
-    height, width : int
-        Rows and columns of the grid.
-
-    Examples
-    --------
-    >>> f = MapFrame(-10.0, -10.0, 0.0, 0.05, 384, 384)
-    >>> f.to_world([(383, 0), (0, 383)]).round(3).tolist()
-    [[-9.975, -9.975], [9.175, 9.175]]
-    >>> f.to_cell(0.0, 0.0)
-    (183, 200)
-    """
-
-    x: float
-    y: float
-    yaw: float
-    resolution: float
-    height: int
-    width: int
-
-    def to_world(self, cells) -> np.ndarray:
-        """World points ``(x, y)`` of cell centres ``(row, col)``, an (n, 2) array."""
-        rc = np.asarray(cells, dtype=np.float64).reshape(-1, 2)
-        u = (rc[:, 1] + 0.5) * self.resolution
-        v = (self.height - rc[:, 0] - 0.5) * self.resolution
-        cos, sin = math.cos(self.yaw), math.sin(self.yaw)
-        return np.column_stack([self.x + cos * u - sin * v, self.y + sin * u + cos * v])
-
-    def to_cell(self, x: float, y: float, name: str = "point") -> tuple[int, int]:
-        """The cell ``(row, col)`` holding the world point ``(x, y)``.
-
-        Raises
-        ------
-        ConfigError
-            If the point is not finite or lies outside the map; the message
-            names ``name`` and the map's extent.
-        """
-        if not (math.isfinite(x) and math.isfinite(y)):
-            raise ConfigError(f"{name} must be finite metres X,Y, got {x!r},{y!r}")
-        cos, sin = math.cos(self.yaw), math.sin(self.yaw)
-        dx, dy = x - self.x, y - self.y
-        u, v = cos * dx + sin * dy, -sin * dx + cos * dy
-        col, up = math.floor(u / self.resolution), math.floor(v / self.resolution)
-        if not (0 <= col < self.width and 0 <= up < self.height):
-            (x0, y0), (x1, y1) = self.extent()[:2], self.extent()[2:]
-            raise ConfigError(
-                f"{name} {x:g},{y:g} is outside the map, which covers x "
-                f"{x0:g}..{x1:g} m and y {y0:g}..{y1:g} m"
-                + (f" (yaw {math.degrees(self.yaw):.1f} deg)" if self.yaw else "")
-            )
-        return self.height - 1 - up, col
-
-    def extent(self) -> tuple[float, float, float, float]:
-        """``(x_min, y_min, x_max, y_max)`` of the map in the frame (yaw 0:
-        the image's borders)."""
-        w, h = self.width * self.resolution, self.height * self.resolution
-        cos, sin = math.cos(self.yaw), math.sin(self.yaw)
-        xs = [self.x + cos * u - sin * v for u, v in ((0, 0), (w, 0), (0, h), (w, h))]
-        ys = [self.y + sin * u + cos * v for u, v in ((0, 0), (w, 0), (0, h), (w, h))]
-        return min(xs), min(ys), max(xs), max(ys)
-
-    def to_json(self) -> dict:
-        """The frame as ``summary.json`` stores it."""
-        return {"origin": [self.x, self.y, self.yaw], "resolution": self.resolution, "units": "m"}
 
 
 # ---------------------------------------------------------------------------
@@ -909,7 +828,14 @@ def _threshold(
 
 
 def _read_plain_image(path: Path) -> _Grid:
-    grid = _threshold(*_read_image(path), **ROS_DEFAULTS)
+    grey, alpha = _read_image(path)
+    grid = _threshold(
+        grey,
+        alpha,
+        negate=bool(ROS_DEFAULTS["negate"]),
+        occupied_thresh=float(ROS_DEFAULTS["occupied_thresh"]),
+        free_thresh=float(ROS_DEFAULTS["free_thresh"]),
+    )
     return replace(grid, corner_cutting=CORNER_RULES["image"])
 
 
@@ -1036,7 +962,8 @@ def _read_ros(path: Path) -> _Grid:
         raise _map_error(path, f"key 'image': {exc}") from None
     grid = _threshold(grey, alpha, negate=bool(negate), mode=mode, **thresholds)
     h, w = grey.shape
-    frame = MapFrame(*map(float, origin), float(resolution), int(h), int(w))
+    x, y, yaw = (float(v) for v in origin)
+    frame = MapFrame(x, y, yaw, float(resolution), int(h), int(w))
     return replace(grid, cell_size=float(resolution), corner_cutting=CORNER_RULES["ros"], frame=frame)
 
 

@@ -5,7 +5,7 @@ All kernels are numba ``@njit`` functions over a whole population:
 * :func:`evaluate_paths` takes padded cell arrays ``(N, L, 2)`` and the true
   lengths ``(N,)``;
 * :func:`evaluate_profiles` takes column-monotone paths as column profiles
-  (entry and exit row of every column, see :mod:`gapath.encodings.base`) and
+  (entry and exit row of every column, see :mod:`gapath.monotone`) and
   never materialises the cells; it visits cells in path order, so both kernels
   give bit-identical values for the same path.
 
@@ -14,8 +14,9 @@ Lengths are computed from integer step counts and smoothness from a count of
 eighth turns, so equal paths (and paths with equal counts) get bit-identical
 values.
 
-A diagonal step that cuts a blocked corner counts as one interfering unit when
-the workspace forbids corner cutting (``corner_cutting=False``).
+A diagonal step that cuts a blocked corner (:func:`gapath.grid.cuts_corner`)
+counts as one interfering unit when the workspace forbids corner cutting
+(``corner_cutting=False``).
 """
 
 from __future__ import annotations
@@ -26,16 +27,14 @@ import numba
 import numpy as np
 
 from gapath.errors import ConfigError
+from gapath.grid import DIRECTION, SQRT2, check_path, cuts_corner, turn
 
 #: Names of the per-path metrics, in the column order of the kernels' output.
 OBJECTIVES = ("length", "vulnerability", "smoothness", "interfering")
 LENGTH, VULNERABILITY, SMOOTHNESS, INTERFERING = range(4)
 
-SQRT2 = math.sqrt(2.0)
+#: One eighth turn in radians (smoothness counts eighths).
 QUARTER_PI = math.pi / 4.0
-
-# direction index (counter-clockwise in eighths) of a step (dr, dc), row up = -1
-_DIR = np.array([[3, 2, 1], [4, -1, 0], [5, 6, 7]], dtype=np.int64)
 
 
 def objective_index(names) -> list[int]:
@@ -59,14 +58,6 @@ def objective_index(names) -> list[int]:
             raise ConfigError(f"objective {n!r} is given twice")
         idx.append(OBJECTIVES.index(n))
     return idx
-
-
-@numba.njit(cache=True, inline="always")
-def _turn(prev_dir, d):
-    t = abs(d - prev_dir)
-    if t > 4:
-        t = 8 - t
-    return t
 
 
 @numba.njit(cache=True)
@@ -111,13 +102,13 @@ def evaluate_paths(paths, lengths, occ, potential, cell_size, corner_cutting):
                 dc = c - pc
                 if dr != 0 and dc != 0:
                     n_diag += 1
-                    if not corner_cutting and (occ[pr, c] or occ[r, pc]):
+                    if not corner_cutting and cuts_corner(occ, pr, pc, r, c):
                         interf += 1
                 else:
                     n_straight += 1
-                d = _DIR[dr + 1, dc + 1]
+                d = DIRECTION[dr + 1, dc + 1]
                 if prev_dir >= 0:
-                    eighths += _turn(prev_dir, d)
+                    eighths += turn(prev_dir, d)
                 prev_dir = d
             pr = r
             pc = c
@@ -160,13 +151,13 @@ def evaluate_profiles(entries, exits, col0, occ, potential, cell_size, corner_cu
                 if a != pr:
                     n_diag += 1
                     d = 1 if a < pr else 7
-                    if not corner_cutting and (occ[pr, c] or occ[a, c - 1]):
+                    if not corner_cutting and cuts_corner(occ, pr, c - 1, a, c):
                         interf += 1
                 else:
                     n_straight += 1
                     d = 0
                 if prev_dir >= 0:
-                    eighths += _turn(prev_dir, d)
+                    eighths += turn(prev_dir, d)
                 prev_dir = d
             if b == a:
                 vul += potential[a, c]
@@ -183,7 +174,7 @@ def evaluate_profiles(entries, exits, col0, occ, potential, cell_size, corner_cu
                 n_straight += abs(b - a)
                 d = 6 if s > 0 else 2
                 if prev_dir >= 0:
-                    eighths += _turn(prev_dir, d)
+                    eighths += turn(prev_dir, d)
                 prev_dir = d
             pr = b
         out[i, 0] = (n_straight + SQRT2 * n_diag) * cell_size
@@ -202,29 +193,6 @@ def pad_paths(paths) -> tuple[np.ndarray, np.ndarray]:
     for i, p in enumerate(paths):
         out[i, : len(p)] = p
     return out, lengths
-
-
-def _check_path(workspace, path) -> np.ndarray:
-    p = np.asarray(path)
-    if p.ndim != 2 or p.shape[1] != 2 or len(p) < 2:
-        raise ConfigError(f"a path must be a sequence of at least two (row, col) cells, got shape {p.shape}")
-    if not np.issubdtype(p.dtype, np.integer):
-        if not np.array_equal(p, np.round(p)):
-            raise ConfigError("path cells must be integers")
-        p = p.astype(np.int64)
-    h, w = workspace.shape
-    out = (p[:, 0] < 0) | (p[:, 0] >= h) | (p[:, 1] < 0) | (p[:, 1] >= w)
-    if out.any():
-        k = int(np.flatnonzero(out)[0])
-        raise ConfigError(f"path cell {k} {tuple(int(v) for v in p[k])} is outside the {h}x{w} grid")
-    step = np.abs(np.diff(p, axis=0)).max(axis=1)
-    if (step != 1).any():
-        k = int(np.flatnonzero(step != 1)[0])
-        raise ConfigError(
-            f"path cells {k} {tuple(int(v) for v in p[k])} and {k + 1} "
-            f"{tuple(int(v) for v in p[k + 1])} are not 8-adjacent"
-        )
-    return p.astype(np.int64)
 
 
 def evaluate_path(workspace, path) -> dict[str, float]:
@@ -249,7 +217,7 @@ def evaluate_path(workspace, path) -> dict[str, float]:
     >>> evaluate_path(ws, [(1, 0), (0, 1)])["length"] == 2 ** 0.5
     True
     """
-    p = _check_path(workspace, path)
+    p = check_path(path, workspace.shape)
     res = evaluate_paths(
         p[None],
         np.array([len(p)]),

@@ -2,19 +2,26 @@
 
 Conventions (``SPEC.md``): ``occ[r, c]`` is True for an obstacle; row 0 is the
 top row; cells are named ``(row, col)``; the default start is the bottom-left
-cell ``(H-1, 0)`` and the default goal the top-right cell ``(0, W-1)``.
+cell ``(H-1, 0)`` and the default goal the top-right cell ``(0, W-1)``. The
+move rules are :mod:`gapath.grid`'s; workspaces made by recipe are in
+:mod:`gapath.generators`, from map files in :mod:`gapath.loaders`.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+import math
+import os
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from functools import cached_property
-from pathlib import Path
+from typing import Any
 
 import numba
 import numpy as np
+from numpy.typing import ArrayLike
 
 from gapath.errors import ConfigError, MapError
+from gapath.grid import check_cell
 
 #: Variance of the Gaussian potential of one obstacle, in cell units squared.
 POTENTIAL_S2 = 0.5
@@ -67,17 +74,85 @@ def potential_field(occ: np.ndarray, s2: float = POTENTIAL_S2, radius: int = POT
     return _potential_kernel(np.ascontiguousarray(occ, dtype=np.bool_), float(s2), int(radius))
 
 
-def _as_cell(value, name: str, shape: tuple[int, int]) -> tuple[int, int]:
-    try:
-        r, c = (int(v) for v in value)
-        if any(float(v) != int(v) for v in value):
-            raise ValueError
-    except (TypeError, ValueError):
-        raise ConfigError(f"{name} must be a (row, col) pair of integers, got {value!r}") from None
-    h, w = shape
-    if not (0 <= r < h and 0 <= c < w):
-        raise ConfigError(f"{name} {(r, c)} is outside the {h}x{w} grid (rows 0..{h - 1}, cols 0..{w - 1})")
-    return r, c
+@dataclass(frozen=True)
+class MapFrame:
+    """Where the cells of a ROS map lie in its world frame (metres).
+
+    map_server's convention: ``origin = (x, y, yaw)`` is the pose of the
+    lower-left corner of the map (the corner of the *last* image row's first
+    pixel, since image row 0 is the top), ``resolution`` metres per cell; x
+    grows along the image columns and y *up* the image (towards row 0),
+    rotated by ``yaw`` about the origin.
+
+    Attributes
+    ----------
+    x, y, yaw : float
+        The yaml ``origin``.
+    resolution : float
+        Metres per cell.
+    height, width : int
+        Rows and columns of the grid.
+
+    Examples
+    --------
+    >>> f = MapFrame(-10.0, -10.0, 0.0, 0.05, 384, 384)
+    >>> f.to_world([(383, 0), (0, 383)]).round(3).tolist()
+    [[-9.975, -9.975], [9.175, 9.175]]
+    >>> f.to_cell(0.0, 0.0)
+    (183, 200)
+    """
+
+    x: float
+    y: float
+    yaw: float
+    resolution: float
+    height: int
+    width: int
+
+    def to_world(self, cells) -> np.ndarray:
+        """World points ``(x, y)`` of cell centres ``(row, col)``, an (n, 2) array."""
+        rc = np.asarray(cells, dtype=np.float64).reshape(-1, 2)
+        u = (rc[:, 1] + 0.5) * self.resolution
+        v = (self.height - rc[:, 0] - 0.5) * self.resolution
+        cos, sin = math.cos(self.yaw), math.sin(self.yaw)
+        return np.column_stack([self.x + cos * u - sin * v, self.y + sin * u + cos * v])
+
+    def to_cell(self, x: float, y: float, name: str = "point") -> tuple[int, int]:
+        """The cell ``(row, col)`` holding the world point ``(x, y)``.
+
+        Raises
+        ------
+        ConfigError
+            If the point is not finite or lies outside the map; the message
+            names ``name`` and the map's extent.
+        """
+        if not (math.isfinite(x) and math.isfinite(y)):
+            raise ConfigError(f"{name} must be finite metres X,Y, got {x!r},{y!r}")
+        cos, sin = math.cos(self.yaw), math.sin(self.yaw)
+        dx, dy = x - self.x, y - self.y
+        u, v = cos * dx + sin * dy, -sin * dx + cos * dy
+        col, up = math.floor(u / self.resolution), math.floor(v / self.resolution)
+        if not (0 <= col < self.width and 0 <= up < self.height):
+            (x0, y0), (x1, y1) = self.extent()[:2], self.extent()[2:]
+            raise ConfigError(
+                f"{name} {x:g},{y:g} is outside the map, which covers x "
+                f"{x0:g}..{x1:g} m and y {y0:g}..{y1:g} m"
+                + (f" (yaw {math.degrees(self.yaw):.1f} deg)" if self.yaw else "")
+            )
+        return self.height - 1 - up, col
+
+    def extent(self) -> tuple[float, float, float, float]:
+        """``(x_min, y_min, x_max, y_max)`` of the map in the frame (yaw 0:
+        the image's borders)."""
+        w, h = self.width * self.resolution, self.height * self.resolution
+        cos, sin = math.cos(self.yaw), math.sin(self.yaw)
+        xs = [self.x + cos * u - sin * v for u, v in ((0, 0), (w, 0), (0, h), (w, h))]
+        ys = [self.y + sin * u + cos * v for u, v in ((0, 0), (w, 0), (0, h), (w, h))]
+        return min(xs), min(ys), max(xs), max(ys)
+
+    def to_json(self) -> dict:
+        """The frame as ``summary.json`` stores it."""
+        return {"origin": [self.x, self.y, self.yaw], "resolution": self.resolution, "units": "m"}
 
 
 class Workspace:
@@ -92,8 +167,21 @@ class Workspace:
     corner_cutting : if False a diagonal move needs both orthogonally
         adjacent cells free (MovingAI convention); default True (SPEC).
     name : a label used in outputs.
-    frame : optional :class:`gapath.loaders.MapFrame`, the map's world frame
-        (ROS maps; None when the grid has no world frame).
+    frame : optional :class:`MapFrame`, the map's world frame (ROS maps;
+        None when the grid has no world frame).
+
+    Attributes
+    ----------
+    start, goal : tuple of int
+        The start and goal cells ``(row, col)``.
+    cell_size : float
+        Length of a cell side.
+    corner_cutting : bool
+        The corner rule (:func:`gapath.grid.can_step`).
+    name : str
+        The label.
+    frame : MapFrame or None
+        The world frame.
 
     Raises
     ------
@@ -111,17 +199,24 @@ class Workspace:
     ((3, 0), (0, 4))
     """
 
+    start: tuple[int, int]
+    goal: tuple[int, int]
+    cell_size: float
+    corner_cutting: bool
+    name: str
+    frame: MapFrame | None
+
     def __init__(
         self,
-        occ,
-        start=None,
-        goal=None,
+        occ: ArrayLike,
+        start: Sequence[int] | None = None,
+        goal: Sequence[int] | None = None,
         *,
         cell_size: float = 1.0,
         corner_cutting: bool = True,
         name: str = "workspace",
-        frame=None,
-    ):
+        frame: MapFrame | None = None,
+    ) -> None:
         arr = np.asarray(occ)
         if arr.ndim != 2 or arr.shape[0] == 0 or arr.shape[1] == 0:
             raise MapError(f"occupancy must be a non-empty 2-D array, got shape {arr.shape}")
@@ -150,8 +245,8 @@ class Workspace:
         self.corner_cutting = bool(corner_cutting)
         self.name = str(name)
         self.frame = frame
-        self.start = _as_cell((h - 1, 0) if start is None else start, "start", (h, w))
-        self.goal = _as_cell((0, w - 1) if goal is None else goal, "goal", (h, w))
+        self.start = check_cell((h - 1, 0) if start is None else start, "start", (h, w))
+        self.goal = check_cell((0, w - 1) if goal is None else goal, "goal", (h, w))
         for label, cell in (("start", self.start), ("goal", self.goal)):
             if self._occ[cell]:
                 raise ConfigError(f"{label} {cell} is on an obstacle")
@@ -166,10 +261,13 @@ class Workspace:
 
     @property
     def shape(self) -> tuple[int, int]:
-        return self._occ.shape
+        """``(H, W)``: rows and columns of the grid."""
+        h, w = self._occ.shape
+        return h, w
 
     @property
     def n_obstacles(self) -> int:
+        """Number of obstacle cells."""
         return int(self._occ.sum())
 
     @cached_property
@@ -179,10 +277,10 @@ class Workspace:
         pot.setflags(write=False)
         return pot
 
-    def replace(self, **changes) -> Workspace:
+    def replace(self, **changes: Any) -> Workspace:
         """A copy with some of ``occ, start, goal, cell_size, corner_cutting,
         name, frame`` replaced."""
-        kw = dict(
+        kw: dict[str, Any] = dict(
             occ=self._occ,
             start=self.start,
             goal=self.goal,
@@ -206,7 +304,7 @@ class Workspace:
             f"corner_cutting={self.corner_cutting})"
         )
 
-    def __eq__(self, other) -> bool:
+    def __eq__(self, other: object) -> bool:
         if not isinstance(other, Workspace):
             return NotImplemented
         return (
@@ -229,7 +327,13 @@ class Workspace:
 
     # -- loading -----------------------------------------------------------
     @classmethod
-    def load(cls, path, start=None, goal=None, **kwargs) -> Workspace:
+    def load(
+        cls,
+        path: str | os.PathLike[str],
+        start: Sequence[int] | None = None,
+        goal: Sequence[int] | None = None,
+        **kwargs: Any,
+    ) -> Workspace:
         """Load a map file, the format chosen by extension.
 
         See :func:`gapath.loaders.load_map` for the formats.
@@ -239,7 +343,7 @@ class Workspace:
         return load_map(path, start=start, goal=goal, **kwargs)
 
     # -- path checks -------------------------------------------------------
-    def is_valid_path(self, path: Iterable) -> bool:
+    def is_valid_path(self, path: Iterable[Sequence[int]] | np.ndarray) -> bool:
         """True if ``path`` goes from start to goal in 8-connected steps
         inside the grid (obstacles are not checked: see ``interfering``)."""
         p = np.asarray(path)
@@ -252,137 +356,3 @@ class Workspace:
             return False
         d = np.abs(np.diff(p, axis=0))
         return bool((d.max(axis=1) == 1).all())
-
-
-# ---------------------------------------------------------------------------
-# generators
-# ---------------------------------------------------------------------------
-
-
-def _column_run(prev_row: int, target: int, col: int) -> list[tuple[int, int]]:
-    """Cells entered in column ``col`` when moving from ``prev_row`` of the
-    previous column to ``target``: one diagonal (or horizontal) step, then
-    vertical steps in the same direction."""
-    s = int(np.sign(target - prev_row))
-    return [(rr, col) for rr in range(prev_row + s, target + s, s)] if s else [(target, col)]
-
-
-def random_monotone_path(shape, start, goal, rng: np.random.Generator, max_step: int = 2) -> np.ndarray:
-    """A random column-monotone path from ``start`` to ``goal``.
-
-    Columns advance by one per transition; in each new column the row changes
-    by a random amount in ``[-max_step, max_step]`` (kept inside the grid),
-    and the last transition goes straight (diagonal, then vertical) to the
-    goal, like the integer encoding's end-fixing.
-
-    Returns
-    -------
-    (m, 2) int array of cells.
-    """
-    h, w = shape
-    (sr, sc), (gr, gc) = start, goal
-    step_c = 1 if gc >= sc else -1
-    if sc == gc:
-        raise ConfigError("start and goal share a column: no column-monotone path")
-    cells = [(sr, sc)]
-    r = sr
-    for c in range(sc + step_c, gc, step_c):
-        target = int(np.clip(r + rng.integers(-max_step, max_step + 1), 0, h - 1))
-        cells.extend(_column_run(r, target, c))
-        r = target
-    # last transition: one diagonal towards the goal row, then vertical
-    cells.extend(_column_run(r, gr, gc))
-    return np.asarray(cells, dtype=np.int64)
-
-
-def _check_shape(shape):
-    try:
-        h, w = (int(v) for v in shape)
-    except (TypeError, ValueError):
-        raise ConfigError(f"shape must be (rows, cols), got {shape!r}") from None
-    if h <= 0 or w <= 0:
-        raise ConfigError(f"grid size must be positive, got {h}x{w}")
-    if w < 2:
-        raise ConfigError(f"a column-monotone path needs at least 2 columns, got {w}")
-    return h, w
-
-
-def dense_workspace(
-    n: int | tuple[int, int], p0: float, seed: int = 0, *, start=None, goal=None, name: str | None = None
-) -> Workspace:
-    """Ahmed & Deb's dense protocol (section 6).
-
-    A random column-monotone path from start to goal is drawn first; then
-    every other cell becomes an obstacle with probability ``p0``. ``p0 = 1``
-    leaves only the path free. Seeded and deterministic.
-
-    Parameters
-    ----------
-    n : grid side, or ``(rows, cols)``.
-    p0 : obstacle probability in [0, 1].
-    seed : random seed.
-
-    Raises
-    ------
-    ConfigError
-        On a non-positive size or ``p0`` outside [0, 1].
-    """
-    h, w = _check_shape((n, n) if np.isscalar(n) else n)
-    if not (0.0 <= float(p0) <= 1.0):
-        raise ConfigError(f"p0 must be in [0, 1], got {p0!r}")
-    rng = np.random.default_rng(seed)
-    start = _as_cell((h - 1, 0) if start is None else start, "start", (h, w))
-    goal = _as_cell((0, w - 1) if goal is None else goal, "goal", (h, w))
-    path = random_monotone_path((h, w), start, goal, rng)
-    occ = rng.random((h, w)) < p0
-    occ[path[:, 0], path[:, 1]] = False
-    return Workspace(occ, start, goal, name=name or f"dense-{h}x{w}-p{p0:g}-s{seed}")
-
-
-def random_workspace(
-    shape, n_obstacles: int, seed: int = 0, *, start=None, goal=None, name: str | None = None
-) -> Workspace:
-    """``n_obstacles`` random obstacles with a guaranteed feasible
-    column-monotone path (drawn first and kept free). Seeded.
-
-    Raises
-    ------
-    ConfigError
-        If there are not enough free cells off the path.
-    """
-    h, w = _check_shape(shape)
-    k = int(n_obstacles)
-    if k < 0:
-        raise ConfigError(f"n_obstacles must be >= 0, got {n_obstacles!r}")
-    rng = np.random.default_rng(seed)
-    start = _as_cell((h - 1, 0) if start is None else start, "start", (h, w))
-    goal = _as_cell((0, w - 1) if goal is None else goal, "goal", (h, w))
-    path = random_monotone_path((h, w), start, goal, rng)
-    free = np.ones(h * w, bool)
-    free[path[:, 0] * w + path[:, 1]] = False
-    candidates = np.flatnonzero(free)
-    if k > len(candidates):
-        raise ConfigError(f"n_obstacles={k} exceeds the {len(candidates)} cells off the guaranteed path")
-    chosen = rng.choice(candidates, size=k, replace=False)
-    occ = np.zeros(h * w, bool)
-    occ[chosen] = True
-    return Workspace(occ.reshape(h, w), start, goal, name=name or f"random-{h}x{w}-k{k}-s{seed}")
-
-
-DEFAULT_SCENARIO = Path(__file__).with_name("data") / "default-32x32-173.map"
-#: How the bundled default scenario was generated (kept for regeneration).
-DEFAULT_SCENARIO_RECIPE = dict(shape=(32, 32), n_obstacles=173, seed=2013)
-
-
-def default_workspace() -> Workspace:
-    """The bundled default scenario: 32x32, 173 random obstacles, start
-    bottom-left, goal top-right (Ahmed & Deb's Fig. 3 set-up).
-
-    It is stored as a MovingAI map in the package (``gapath/data``) so that it
-    does not depend on NumPy's random streams; it was made by
-    ``random_workspace((32, 32), 173, seed=2013)``.
-    """
-    from gapath.loaders import load_movingai
-
-    ws = load_movingai(DEFAULT_SCENARIO, corner_cutting=True)  # SPEC's rule, not MovingAI's
-    return ws.replace(name="default-32x32-173")

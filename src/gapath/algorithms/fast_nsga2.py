@@ -230,7 +230,7 @@ class PathArrays:
         ``interfering``), each (n,).
     rank, crowding : (n,) set by the survival; None before it.
     keys, hashes : the decoded paths as int64 rows ``[entries | exits]``
-        (see :mod:`gapath.encodings.base`) and their hashes, kept for
+        (see :mod:`gapath.monotone`) and their hashes, kept for
         duplicate elimination; None when not known.
     """
 
@@ -324,7 +324,7 @@ class _SeenPaths:
     one hash table over both.
 
     A path is identified by its decoded column profile (entries then exits,
-    see :mod:`gapath.encodings.base`), as in
+    see :mod:`gapath.monotone`), as in
     :class:`gapath.operators.PathDuplicateElimination`."""
 
     def __init__(self, pop_keys, pop_hashes, capacity: int, check: bool = True):

@@ -303,8 +303,8 @@ def load_workspace(args) -> MapChoice:
     MapError
         On a bad map or scenario file.
     """
+    from gapath.generators import default_workspace
     from gapath.loaders import corner_rule, load_map
-    from gapath.workspace import default_workspace
 
     map_arg = args.map
     start, goal = args.start, args.goal

@@ -533,7 +533,7 @@ def _dispatch(args) -> int:
         check_output_dir(out)
     if getattr(args, "func", None) is not None:
         return args.func(args)
-    from gapath.workspace import default_workspace  # demo: every other command has its func
+    from gapath.generators import default_workspace  # demo: every other command has its func
 
     return _run(args, default_workspace())
 

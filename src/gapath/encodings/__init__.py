@@ -1,16 +1,16 @@
 """GA encodings of column-monotone paths.
 
 Every encoding turns a genome matrix ``X`` (N, n_var) into column profiles
-(see :mod:`gapath.encodings.base`) with ``decode``, turns paths back into
+(see :mod:`gapath.monotone`) with ``decode``, turns paths back into
 genomes with ``encode``, and offers Ahmed & Deb's edge-fixing as ``edge_fix``.
 """
 
 from gapath.encodings.absolute import AbsoluteEncoding
-from gapath.encodings.base import Frame, expand_profiles, profiles_of_paths, split_paths
 from gapath.encodings.binary import BinaryEncoding
 from gapath.encodings.integer import IntegerEncoding
 from gapath.encodings.mixed import MixedEncoding
 from gapath.errors import ConfigError
+from gapath.monotone import Frame, expand_profiles, profiles_of_paths, split_paths
 
 #: Encoding classes by name (Ahmed & Deb's four schemes, section 2).
 ENCODINGS = {

@@ -30,17 +30,8 @@ import math
 import numba
 import numpy as np
 
-from gapath.planners._grid import (
-    DC,
-    DR,
-    NOT_HELD,
-    STEP,
-    move_mask,
-    octile,
-    open_decrease,
-    open_pop,
-    open_push,
-)
+from gapath.grid import DC, DR, STEP, move_mask, octile
+from gapath.planners._grid import NOT_HELD, open_decrease, open_pop, open_push
 
 _UNSEEN = 0
 _CLOSED = -1
@@ -665,33 +656,6 @@ def gather(flat_a, off_a, flat_b, off_b, src, idx):
         else:
             flat[offsets[i] : offsets[i + 1]] = flat_b[off_b[j] : off_b[j + 1]]
     return flat, offsets
-
-
-@numba.njit(cache=True)
-def layer_values(paths, lengths, layers, agg, solar_angle0, solar_rate):
-    """Costmap layer objectives of padded paths: for ``agg[j] == 0`` the mean
-    of cell layer ``layers[j]`` over the path's cells, for ``agg[j] == 1`` the
-    solar cost summed over the steps (as :mod:`gapath.costmap` defines it)."""
-    n = paths.shape[0]
-    k = agg.shape[0]
-    out = np.zeros((n, k))
-    for i in range(n):
-        m = lengths[i]
-        for j in range(k):
-            acc = 0.0
-            if agg[j] == 0:
-                for q in range(m):
-                    acc += layers[j, paths[i, q, 0], paths[i, q, 1]]
-                out[i, j] = acc / m
-            else:
-                for q in range(1, m):
-                    dr = paths[i, q, 0] - paths[i, q - 1, 0]
-                    dc = paths[i, q, 1] - paths[i, q - 1, 1]
-                    norm = math.sqrt(dr * dr + dc * dc)
-                    th = solar_angle0 + solar_rate * (q - 1)
-                    acc += 0.5 * (1.0 + (dc * math.cos(th) - dr * math.sin(th)) / norm)
-                out[i, j] = acc
-    return out
 
 
 @numba.njit(cache=True)

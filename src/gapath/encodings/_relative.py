@@ -17,7 +17,7 @@ from gapath.errors import ConfigError
 
 
 @numba.njit(cache=True, inline="always")
-def _linear_draw(current, edge, u):
+def linear_draw(current, edge, u):
     """A row between ``edge`` and ``current`` (excluded), probability growing
     linearly from zero at ``current`` to its maximum at ``edge``."""
     n = abs(edge - current)
@@ -78,10 +78,49 @@ def edge_fix_moves(D, U, start_row, height):
         for k in range(n_moves):
             t = r - D[i, k]
             if t < 0:
-                t = _linear_draw(r, 0, U[i, k])
+                t = linear_draw(r, 0, U[i, k])
                 D[i, k] = r - t
             elif t > height - 1:
-                t = _linear_draw(r, height - 1, U[i, k])
+                t = linear_draw(r, height - 1, U[i, k])
                 D[i, k] = r - t
             r = t
     return D
+
+
+@numba.njit(cache=True, inline="always")
+def _walk(X, i, start_row, goal_row, height, E, e0, T, t0):
+    """Decode genome ``i`` of ``X``: its entry rows into ``E[i, e0:]``, its
+    exit rows into ``T[i, t0:]``."""
+    n_var = X.shape[1]
+    r = start_row
+    for k in range(n_var):
+        t = min(max(r - X[i, k], 0), height - 1)
+        E[i, e0 + k] = r if k == 0 else r + np.sign(t - r)
+        T[i, t0 + k] = t
+        r = t
+    E[i, e0 + n_var] = r + np.sign(goal_row - r)
+    T[i, t0 + n_var] = goal_row
+
+
+@numba.njit(cache=True)
+def decode_moves(X, start_row, goal_row, height):
+    """Column profiles ``(entries, exits)``, ``(N, n_var + 1)`` each, of the
+    signed exit-row changes ``X`` ``(N, n_var)`` (up positive, clipped to the
+    grid); the last column goes to ``goal_row`` by the end-fixing."""
+    n, n_var = X.shape
+    entries = np.empty((n, n_var + 1), np.int64)
+    exits = np.empty((n, n_var + 1), np.int64)
+    for i in range(n):
+        _walk(X, i, start_row, goal_row, height, entries, 0, exits, 0)
+    return entries, exits
+
+
+@numba.njit(cache=True)
+def decode_move_keys(X, start_row, goal_row, height):
+    """:func:`decode_moves` as one ``(N, 2 (n_var + 1))`` array, ``[entries |
+    exits]`` (the path keys of duplicate elimination), in one pass."""
+    n, n_var = X.shape
+    K = np.empty((n, 2 * (n_var + 1)), np.int64)
+    for i in range(n):
+        _walk(X, i, start_row, goal_row, height, K, 0, K, n_var + 1)
+    return K

@@ -21,7 +21,7 @@ The paper's Path 1 on an 8 x 8 grid (integer genes ``(0, 3, 1, 0, -2, -1, 0)``):
 
 >>> import numpy as np
 >>> from gapath import Workspace
->>> from gapath.encodings.base import Frame
+>>> from gapath.monotone import Frame
 >>> enc = AbsoluteEncoding(Frame.of(Workspace(np.zeros((8, 8), bool))))
 >>> entries, exits = enc.decode(np.array([[7, 4, 3, 3, 5, 6, 6]]))
 >>> entries.tolist()
@@ -33,8 +33,8 @@ from __future__ import annotations
 import numpy as np
 
 from gapath.encodings._relative import relative_moves
-from gapath.encodings.base import Frame, profiles_of_paths
 from gapath.errors import ConfigError
+from gapath.monotone import Frame, profiles_of_paths
 
 
 class AbsoluteEncoding:
@@ -42,7 +42,7 @@ class AbsoluteEncoding:
 
     Parameters
     ----------
-    frame : :class:`gapath.encodings.base.Frame` of the workspace.
+    frame : :class:`gapath.monotone.Frame` of the workspace.
 
     Attributes
     ----------

@@ -53,7 +53,7 @@ The paper's Path 1 on an 8 x 8 grid:
 
 >>> import numpy as np
 >>> from gapath import Workspace
->>> from gapath.encodings.base import Frame
+>>> from gapath.monotone import Frame
 >>> enc = BinaryEncoding(Frame.of(Workspace(np.zeros((8, 8), bool))))
 >>> genome = "000" "11010" "11000" "10000" "00001" "00000" "10000" "11"
 >>> entries, exits = enc.decode(np.array([[c == "1" for c in genome]]))
@@ -66,9 +66,9 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from gapath.encodings._relative import _linear_draw
-from gapath.encodings.base import Frame, profiles_of_paths
+from gapath.encodings._relative import linear_draw
 from gapath.errors import ConfigError
+from gapath.monotone import Frame, profiles_of_paths
 
 
 def y_bits(height: int) -> int:
@@ -134,7 +134,7 @@ def _edge_fix(B, U, n_cols, nb, start_row, height):
         y = _read_y(B, i, 0, nb)
         t = start_row - y if B[i, n_bits - 2] else start_row + y
         if t < 0 or t > top:
-            t = _linear_draw(start_row, 0 if t < 0 else top, U[i, 0])
+            t = linear_draw(start_row, 0 if t < 0 else top, U[i, 0])
             _write_y(B, i, 0, nb, abs(t - start_row))
         r = t
         for k in range(1, n_cols - 1):
@@ -144,7 +144,7 @@ def _edge_fix(B, U, n_cols, nb, start_row, height):
             if t < 0 or t > top:
                 # the drawn row lies the move's way, strictly past r unless
                 # r is the violated edge itself
-                t = _linear_draw(r, 0 if t < 0 else top, U[i, k])
+                t = linear_draw(r, 0 if t < 0 else top, U[i, k])
                 if t == r and diagonal:
                     B[i, o + 1] = not B[i, o + 1]  # 11 -> 10, 00 -> 01: horizontal
                     entry = r
@@ -159,7 +159,7 @@ class BinaryEncoding:
 
     Parameters
     ----------
-    frame : :class:`gapath.encodings.base.Frame` of the workspace.
+    frame : :class:`gapath.monotone.Frame` of the workspace.
 
     Attributes
     ----------

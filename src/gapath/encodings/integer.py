@@ -21,7 +21,7 @@ Examples
 --------
 >>> import numpy as np
 >>> from gapath import Workspace
->>> from gapath.encodings.base import Frame
+>>> from gapath.monotone import Frame
 >>> enc = IntegerEncoding(Frame.of(Workspace(np.zeros((4, 4), bool))))
 >>> entries, exits = enc.decode(np.array([[1, 1, 0]]))
 >>> exits.tolist()
@@ -33,43 +33,9 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from gapath.encodings._relative import _linear_draw, relative_moves
-from gapath.encodings.base import Frame, profiles_of_paths
+from gapath.encodings._relative import decode_move_keys, decode_moves, linear_draw, relative_moves
 from gapath.errors import ConfigError
-
-
-@numba.njit(cache=True, inline="always")
-def _walk(X, i, start_row, goal_row, height, E, e0, T, t0):
-    """Decode genome ``i``: its entry rows into ``E[i, e0:]``, its exit rows
-    into ``T[i, t0:]``."""
-    n_var = X.shape[1]
-    r = start_row
-    for k in range(n_var):
-        t = min(max(r - X[i, k], 0), height - 1)
-        E[i, e0 + k] = r if k == 0 else r + np.sign(t - r)
-        T[i, t0 + k] = t
-        r = t
-    E[i, e0 + n_var] = r + np.sign(goal_row - r)
-    T[i, t0 + n_var] = goal_row
-
-
-@numba.njit(cache=True)
-def _decode(X, start_row, goal_row, height):
-    n, n_var = X.shape
-    entries = np.empty((n, n_var + 1), np.int64)
-    exits = np.empty((n, n_var + 1), np.int64)
-    for i in range(n):
-        _walk(X, i, start_row, goal_row, height, entries, 0, exits, 0)
-    return entries, exits
-
-
-@numba.njit(cache=True)
-def _decode_keys(X, start_row, goal_row, height):
-    n, n_var = X.shape
-    K = np.empty((n, 2 * (n_var + 1)), np.int64)
-    for i in range(n):
-        _walk(X, i, start_row, goal_row, height, K, 0, K, n_var + 1)
-    return K
+from gapath.monotone import Frame, profiles_of_paths
 
 
 @numba.njit(cache=True)
@@ -86,10 +52,10 @@ def _edge_fix(G, U, xl, xu, start_row, height):
         for k in range(1, n_var):
             t = r - X[i, k]
             if t < 0:
-                t = _linear_draw(r, 0, U[i, k])
+                t = linear_draw(r, 0, U[i, k])
                 X[i, k] = r - t
             elif t > height - 1:
-                t = _linear_draw(r, height - 1, U[i, k])
+                t = linear_draw(r, height - 1, U[i, k])
                 X[i, k] = r - t
             r = t
     return X
@@ -100,7 +66,7 @@ class IntegerEncoding:
 
     Parameters
     ----------
-    frame : :class:`gapath.encodings.base.Frame` of the workspace.
+    frame : :class:`gapath.monotone.Frame` of the workspace.
 
     Attributes
     ----------
@@ -135,13 +101,13 @@ class IntegerEncoding:
         genomes ``X`` (N, n_var); values are rounded, moves past the grid
         edge are clamped."""
         f = self.frame
-        return _decode(self._genes(X), f.start[0], f.goal[0], f.height)
+        return decode_moves(self._genes(X), f.start[0], f.goal[0], f.height)
 
     def decode_keys(self, X) -> np.ndarray:
         """The column profiles as one ``(N, 2 n_cols)`` int64 array,
         ``[entries | exits]`` (the path keys of duplicate elimination)."""
         f = self.frame
-        return _decode_keys(self._genes(X), f.start[0], f.goal[0], f.height)
+        return decode_move_keys(self._genes(X), f.start[0], f.goal[0], f.height)
 
     def encode(self, paths) -> np.ndarray:
         """Genomes ``(N, n_var)`` of column-monotone paths (workspace cells).

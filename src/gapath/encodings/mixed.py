@@ -38,7 +38,7 @@ The paper's Path 1 on an 8 x 8 grid, ``(0 1-3 1-1 0-0 0-2 0-1 1-0 1)``:
 
 >>> import numpy as np
 >>> from gapath import Workspace
->>> from gapath.encodings.base import Frame
+>>> from gapath.monotone import Frame
 >>> enc = MixedEncoding(Frame.of(Workspace(np.zeros((8, 8), bool))))
 >>> bits, ints = [1, 1, 1, 0, 0, 0, 1], [0, 3, 1, 0, 2, 1, 0]
 >>> entries, exits = enc.decode(np.array([bits + ints]))
@@ -50,10 +50,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from gapath.encodings._relative import edge_fix_moves, relative_moves
-from gapath.encodings.base import Frame, profiles_of_paths
-from gapath.encodings.integer import _decode as _decode_moves
+from gapath.encodings._relative import decode_moves, edge_fix_moves, relative_moves
 from gapath.errors import ConfigError
+from gapath.monotone import Frame, profiles_of_paths
 
 
 class MixedEncoding:
@@ -61,7 +60,7 @@ class MixedEncoding:
 
     Parameters
     ----------
-    frame : :class:`gapath.encodings.base.Frame` of the workspace.
+    frame : :class:`gapath.monotone.Frame` of the workspace.
 
     Attributes
     ----------
@@ -115,7 +114,7 @@ class MixedEncoding:
         """Column profiles ``(entries, exits)``, each ``(N, n_cols)``, of the
         genomes ``X`` (N, n_var); moves past the grid edge are clamped."""
         f = self.frame
-        return _decode_moves(self.moves(X), f.start[0], f.goal[0], f.height)
+        return decode_moves(self.moves(X), f.start[0], f.goal[0], f.height)
 
     def encode(self, paths) -> np.ndarray:
         """Genomes ``(N, n_var)`` of column-monotone paths (workspace cells).

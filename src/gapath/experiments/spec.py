@@ -438,7 +438,7 @@ def build_workspace(spec: dict, seed: int | None = None):
         If a map file changed since the spec was expanded (its sha256
         differs), or on bad generator arguments.
     """
-    from gapath.workspace import default_workspace, dense_workspace, random_workspace
+    from gapath.generators import default_workspace, dense_workspace, random_workspace
 
     ((kind, a),) = spec.items()
     start, goal = a.get("start"), a.get("goal")

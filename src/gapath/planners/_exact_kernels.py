@@ -13,8 +13,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from gapath.objectives import SQRT2, _turn
-from gapath.planners._grid import DC, DR
+from gapath.grid import DC, DR, SQRT2, can_step, turn
 
 #: Relative tolerance of SPEC "Duplicates and ties".
 TOL = 1e-9
@@ -65,7 +64,7 @@ def _heading_gap(ha, hb):
         return 0
     if hb == NO_HEADING:
         return 4
-    return _turn(ha, hb)
+    return turn(ha, hb)
 
 
 @numba.njit(cache=True)
@@ -104,12 +103,12 @@ def _reach(occ, p, c, corner_cutting):
     h = occ.shape[0]
     flat = not occ[p, c]
     top = p
-    if p > 0 and not occ[p - 1, c] and (corner_cutting or (not occ[p, c] and not occ[p - 1, c - 1])):
+    if can_step(occ, p, c - 1, -1, 1, corner_cutting):
         top = p - 1
         while top > 0 and not occ[top - 1, c]:
             top -= 1
     bottom = p
-    if p < h - 1 and not occ[p + 1, c] and (corner_cutting or (not occ[p, c] and not occ[p + 1, c - 1])):
+    if can_step(occ, p, c - 1, 1, 1, corner_cutting):
         bottom = p + 1
         while bottom < h - 1 and not occ[bottom + 1, c]:
             bottom += 1
@@ -132,7 +131,7 @@ def _extend(li, lf, a, t, vul, ci, cf, j, cell_size):
         n_diag += 1
     eighths = li[a, EIGHTHS]
     if li[a, HEAD] != NO_HEADING:
-        eighths += _turn(li[a, HEAD], step)
+        eighths += turn(li[a, HEAD], step)
     head = step
     if abs(t - p) >= 2:  # vertical run after the diagonal: one eighth turn
         n_straight += abs(t - p) - 1
@@ -548,7 +547,7 @@ def _ipop(keys, ids, pos, size):
 @numba.njit(cache=True)
 def _move_masks(occ, corner_cutting):
     """(H*W,) uint8: bit ``d`` set if move ``d`` from the cell is allowed
-    (:func:`gapath.planners._grid.can_step`; 0 for obstacle cells). Computed
+    (:func:`gapath.grid.can_step`; 0 for obstacle cells). Computed
     once per search, so that the hot loops test a bit instead of calling
     a function on ``occ``."""
     h, w = occ.shape
@@ -559,13 +558,8 @@ def _move_masks(occ, corner_cutting):
                 continue
             b = 0
             for d in range(8):
-                r2 = r + DR[d]
-                c2 = c + DC[d]
-                if r2 < 0 or r2 >= h or c2 < 0 or c2 >= w or occ[r2, c2]:
-                    continue
-                if d % 2 == 1 and not corner_cutting and (occ[r2, c] or occ[r, c2]):
-                    continue
-                b |= 1 << d
+                if can_step(occ, r, c, DR[d], DC[d], corner_cutting):
+                    b |= 1 << d
             m[r * w + c] = b
     return m
 
@@ -669,7 +663,7 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns, mask):
         if not (mask[u] >> d) & 1:
             continue
         for k in range(N_SLOTS):
-            val = ht[s] + (_turn(k, d) if k < 8 else 0)
+            val = ht[s] + (turn(k, d) if k < 8 else 0)
             if val < ht[u * N_SLOTS + k]:
                 ht[u * N_SLOTS + k] = val
                 if k < 8:
@@ -1162,7 +1156,7 @@ def _free_steps(
             li[j, F_PARENT] = x
             li[j, NS] = li[x, NS] + (1 - d % 2)
             li[j, ND] = li[x, ND] + d % 2
-            li[j, TURNS] = li[x, TURNS] + (_turn(head, d) if head >= 0 else 0)
+            li[j, TURNS] = li[x, TURNS] + (turn(head, d) if head >= 0 else 0)
             lf[j, F_VUL] = lf[x, F_VUL] + pot[r2, c2]
             n_generated += 1
             # the f-vector, written out (helper calls on the arrays cost reference counting)
@@ -1212,7 +1206,7 @@ def _free_steps(
                         a = first[cell * N_SLOTS + k]
                         if a < 0:
                             continue
-                        bound = t - (0 if k == 8 else _turn(k, d))  # _heading_gap
+                        bound = t - (0 if k == 8 else turn(k, d))  # _heading_gap
                         if bound < 0:
                             continue
                         while a >= 0 and li[a, TURNS] > bound:

@@ -30,7 +30,8 @@ import math
 import numba
 import numpy as np
 
-from gapath.planners._grid import DC, DR, STEP, heap_decrease, heap_pop, heap_push
+from gapath.grid import DC, DR, STEP, can_step
+from gapath.planners._grid import heap_decrease, heap_pop, heap_push
 
 TWO_PI = 2.0 * math.pi
 
@@ -387,11 +388,9 @@ def grid_dijkstra(occ, gr, gc):
         uc = u - ur * w
         du = dist[u]
         for k in range(8):
-            vr = ur + DR[k]
-            vc = uc + DC[k]
-            if vr < 0 or vr >= h or vc < 0 or vc >= w or occ[vr, vc]:
+            if not can_step(occ, ur, uc, DR[k], DC[k], True):
                 continue
-            v = vr * w + vc
+            v = (ur + DR[k]) * w + uc + DC[k]
             if closed[v]:
                 continue
             nd = du + STEP[k]

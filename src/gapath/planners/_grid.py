@@ -1,10 +1,10 @@
-"""Numba helpers shared by the grid planners (:mod:`.astar`, :mod:`.dstar_lite`).
+"""Numba helpers shared by the grid searches (:mod:`.astar`, :mod:`.dstar_lite`,
+:mod:`.hybrid_astar`, the free encodings' decoders).
 
-* the 8 moves in a fixed order (ties are broken the same way everywhere),
-* the move rule (inside the grid, target free, and with
-  ``corner_cutting=False`` both orthogonally adjacent cells free), also as a
-  bit mask of the 8 moves of a cell,
-* the octile distance and the other heuristics,
+The move rules themselves (moves, corner rule, octile distance, cell checks)
+are :mod:`gapath.grid`'s; here are
+
+* the heuristics of the searches (:data:`HEURISTICS`, :func:`heuristic`),
 * an *indexed* binary min-heap kept in preallocated arrays (cells and their
   two keys in heap order, and ``pos[cell]``, the cell's slot), ordered by
   ``(key1, key2, cell index)`` lexicographically, so ties are broken
@@ -12,7 +12,7 @@
 * the open list of one-shot searches (A*): a compact indexed heap in the same
   order that holds back an entry smaller than the whole heap instead of
   pushing it,
-* input checks and the length/cost of a finished path.
+* the cost of a finished path under a cost layer.
 
 Everything here works in cell units; callers scale by ``cell_size``.
 """
@@ -22,95 +22,15 @@ from __future__ import annotations
 import math
 
 import numba
-import numpy as np
 
-from gapath.errors import ConfigError
+from gapath.grid import SQRT2, octile
 
-SQRT2 = math.sqrt(2.0)
-
-#: The 8 moves ``(dr, dc)``: E, NE, N, NW, W, SW, S, SE (counter-clockwise,
-#: row up = -1). Orthogonal moves have even indices.
-DR = np.array([0, -1, -1, -1, 0, 1, 1, 1], dtype=np.int64)
-DC = np.array([1, 1, 0, -1, -1, -1, 0, 1], dtype=np.int64)
-#: Length of each move in cell units.
-STEP = np.array([1.0, SQRT2, 1.0, SQRT2, 1.0, SQRT2, 1.0, SQRT2])
-
+# ---------------------------------------------------------------------------
+# heuristics
+# ---------------------------------------------------------------------------
 
 #: Heuristic codes of the kernels.
 HEURISTICS = {"octile": 0, "euclidean": 1, "chebyshev": 2, "zero": 3}
-
-
-# ---------------------------------------------------------------------------
-# moves and distances
-# ---------------------------------------------------------------------------
-
-
-@numba.njit(cache=True, inline="always")
-def can_step(occ, r, c, dr, dc, corner_cutting):
-    """True if the move ``(r, c) -> (r + dr, c + dc)`` is allowed.
-
-    The target must be inside the grid and free; a diagonal move with
-    ``corner_cutting=False`` also needs both orthogonally adjacent cells
-    ``(r + dr, c)`` and ``(r, c + dc)`` free. The source is not checked.
-    """
-    h, w = occ.shape
-    r2 = r + dr
-    c2 = c + dc
-    if r2 < 0 or r2 >= h or c2 < 0 or c2 >= w:
-        return False
-    if occ[r2, c2]:
-        return False
-    if dr != 0 and dc != 0 and not corner_cutting:
-        if occ[r2, c] or occ[r, c2]:
-            return False
-    return True
-
-
-@numba.njit(cache=True, inline="always")
-def move_mask(occ, h, w, r, c, corner_cutting):
-    """The allowed moves from cell ``(r, c)`` of the raveled ``h x w`` grid
-    ``occ`` as bits: bit ``k`` is set if ``can_step`` allows move ``k``."""
-    if r == 0 or c == 0 or r == h - 1 or c == w - 1:
-        return _border_move_mask(occ, h, w, r, c, corner_cutting)
-    u = r * w + c  # interior: no bounds checks
-    e = not occ[u + 1]
-    n = not occ[u - w]
-    we = not occ[u - 1]
-    s = not occ[u + w]
-    ne = not occ[u - w + 1]
-    nw = not occ[u - w - 1]
-    sw = not occ[u + w - 1]
-    se = not occ[u + w + 1]
-    if not corner_cutting:  # a diagonal needs both sides free
-        ne &= n & e
-        nw &= n & we
-        sw &= s & we
-        se &= s & e
-    return e | (ne << 1) | (n << 2) | (nw << 3) | (we << 4) | (sw << 5) | (s << 6) | (se << 7)
-
-
-@numba.njit(cache=True)
-def _border_move_mask(occ, h, w, r, c, corner_cutting):
-    mask = 0
-    for k in range(8):
-        r2 = r + DR[k]
-        c2 = c + DC[k]
-        if r2 < 0 or r2 >= h or c2 < 0 or c2 >= w or occ[r2 * w + c2]:
-            continue
-        if (k & 1) and not corner_cutting and (occ[r2 * w + c] or occ[r * w + c2]):
-            continue
-        mask |= 1 << k
-    return mask
-
-
-@numba.njit(cache=True, inline="always")
-def octile(r1, c1, r2, c2):
-    """Octile distance: the 8-connected shortest length on an empty grid."""
-    dr = abs(r1 - r2)
-    dc = abs(c1 - c2)
-    if dr < dc:
-        return dc + (SQRT2 - 1.0) * dr
-    return dr + (SQRT2 - 1.0) * dc
 
 
 @numba.njit(cache=True, inline="always")
@@ -389,19 +309,6 @@ def open_pop(heap, where, size, held):
 
 
 @numba.njit(cache=True)
-def step_counts(path):
-    """``(n_straight, n_diagonal)`` of a path of 8-adjacent cells."""
-    n_straight = 0
-    n_diagonal = 0
-    for i in range(1, path.shape[0]):
-        if path[i, 0] != path[i - 1, 0] and path[i, 1] != path[i - 1, 1]:
-            n_diagonal += 1
-        else:
-            n_straight += 1
-    return n_straight, n_diagonal
-
-
-@numba.njit(cache=True)
 def layer_path_cost(path, cost):
     """Cost of a path under a cost layer, in cell units, summed from the
     start: each step costs its length times ``1 + (cost[a] + cost[b]) / 2``."""
@@ -412,41 +319,3 @@ def layer_path_cost(path, cost):
         step = SQRT2 if (r0 != r1 and c0 != c1) else 1.0
         total += step * (1.0 + 0.5 * (cost[r0, c0] + cost[r1, c1]))
     return total
-
-
-def path_length(path: np.ndarray, cell_size: float) -> float:
-    """Euclidean length from the integer step counts (SPEC), so that paths
-    with the same counts get bit-identical lengths."""
-    n_straight, n_diagonal = step_counts(path)
-    return (n_straight + SQRT2 * n_diagonal) * cell_size
-
-
-# ---------------------------------------------------------------------------
-# input checks
-# ---------------------------------------------------------------------------
-
-
-def check_cell(value, name: str, occ: np.ndarray) -> tuple[int, int]:
-    """``value`` as a ``(row, col)`` tuple of a free cell of ``occ``.
-
-    Raises
-    ------
-    ConfigError
-        If it is not a pair of integers, is outside the grid or is on an
-        obstacle.
-    """
-    try:
-        vals = [v for v in value]
-        if len(vals) != 2:
-            raise ValueError
-        r, c = (int(v) for v in vals)
-        if any(isinstance(v, (bool, np.bool_)) or float(v) != int(v) for v in vals):
-            raise ValueError
-    except (TypeError, ValueError, OverflowError):
-        raise ConfigError(f"{name} must be a (row, col) pair of integers, got {value!r}") from None
-    h, w = occ.shape
-    if not (0 <= r < h and 0 <= c < w):
-        raise ConfigError(f"{name} {(r, c)} is outside the {h}x{w} grid (rows 0..{h - 1}, cols 0..{w - 1})")
-    if occ[r, c]:
-        raise ConfigError(f"{name} {(r, c)} is on an obstacle")
-    return r, c

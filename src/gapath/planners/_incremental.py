@@ -16,11 +16,28 @@ import time
 import numpy as np
 
 from gapath.errors import ConfigError
-from gapath.planners._grid import check_cell
+from gapath.grid import check_free_cell
 
 
 class IncrementalGridPlanner:
-    """Base of planners that repair their search when cells change."""
+    """Base of planners that repair their search when cells change.
+
+    A subclass sets ``_occ``, ``_start``, ``_goal`` and ``_initialized`` and
+    provides ``_sync_km`` and ``_repair_edges``.
+    """
+
+    _occ: np.ndarray
+    _start: tuple[int, int]
+    _goal: tuple[int, int]
+    _initialized: bool
+
+    def _sync_km(self) -> None:
+        """Bring ``km`` up to date with the robot's moves."""
+        raise NotImplementedError
+
+    def _repair_edges(self, occ_old: np.ndarray, src: np.ndarray) -> None:
+        """Repair the search after the edges out of the cells ``src`` changed."""
+        raise NotImplementedError
 
     @property
     def start(self) -> tuple[int, int]:
@@ -53,7 +70,7 @@ class IncrementalGridPlanner:
         ConfigError
             If ``cell`` is outside the grid or on an obstacle.
         """
-        self._start = check_cell(cell, "cell", self._occ)
+        self._start = check_free_cell(cell, "cell", self._occ)
 
     def update_cells(self, cells, blocked=True) -> int:
         """Mark cells blocked (obstacle) or free.

@@ -4,14 +4,11 @@ there; these work on arrays only).
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
-from gapath.planners._grid import DC, DR, can_step
+from gapath.grid import DC, DR, SQRT2, can_step
 
-SQRT2 = math.sqrt(2.0)
 INF = np.inf
 
 

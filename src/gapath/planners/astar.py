@@ -35,16 +35,11 @@ import numba
 import numpy as np
 
 from gapath.errors import ConfigError, NoPathError
+from gapath.grid import DC, DR, SQRT2, STEP, check_free_cell, move_mask
 from gapath.planners._grid import (
-    DC,
-    DR,
     HEURISTICS,
     NOT_HELD,
-    SQRT2,
-    STEP,
-    check_cell,
     layer_path_cost,
-    move_mask,
     open_decrease,
     open_pop,
     open_push,
@@ -218,7 +213,7 @@ _scratch = _Scratch()
 
 
 def _cell_index(value, name: str, occ: np.ndarray) -> int:
-    """Row-major index of the cell ``value``; raises like :func:`check_cell`,
+    """Row-major index of the cell ``value``; raises like :func:`gapath.grid.check_free_cell`,
     except that obstacles are checked by the kernel (fast path for a tuple
     of two ``int``)."""
     h, w = occ.shape
@@ -226,7 +221,7 @@ def _cell_index(value, name: str, occ: np.ndarray) -> int:
         r, c = value
         if type(r) is int and type(c) is int and 0 <= r < h and 0 <= c < w:
             return r * w + c
-    r, c = check_cell(value, name, occ)
+    r, c = check_free_cell(value, name, occ)
     return r * w + c
 
 
@@ -358,8 +353,8 @@ def astar(
         occ, layer, use_cost, s, t, workspace.corner_cutting, wv, hkind, *_scratch.get(occ.size)
     )
     if len(path) == 0:
-        src = check_cell(start, "start", occ)  # raises if on an obstacle
-        dst = check_cell(goal, "goal", occ)
+        src = check_free_cell(start, "start", occ)  # raises if on an obstacle
+        dst = check_free_cell(goal, "goal", occ)
         h, w = occ.shape
         rule = "allowed" if workspace.corner_cutting else "not allowed"
         raise NoPathError(

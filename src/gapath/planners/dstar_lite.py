@@ -35,21 +35,11 @@ import numba
 import numpy as np
 
 from gapath.errors import NoPathError
-from gapath.planners._grid import (
-    DC,
-    DR,
-    STEP,
-    can_step,
-    check_cell,
-    heap_pop,
-    heap_push,
-    heap_remove,
-    heap_update,
-    octile,
-    path_length,
-)
+from gapath.grid import DC, DR, STEP, can_step, check_free_cell, octile, path_length
+from gapath.planners._grid import heap_pop, heap_push, heap_remove, heap_update
 from gapath.planners._incremental import IncrementalGridPlanner
 from gapath.planners.astar import PlanResult
+from gapath.workspace import Workspace
 
 __all__ = ["DStarLite"]
 
@@ -340,8 +330,8 @@ class DStarLite(IncrementalGridPlanner):
     def __init__(self, workspace, start=None, goal=None):
         occ = np.array(workspace.occ, dtype=np.bool_, order="C", copy=True)
         self._occ = occ
-        self._start = check_cell(workspace.start if start is None else start, "start", occ)
-        self._goal = check_cell(workspace.goal if goal is None else goal, "goal", occ)
+        self._start = check_free_cell(workspace.start if start is None else start, "start", occ)
+        self._goal = check_free_cell(workspace.goal if goal is None else goal, "goal", occ)
         self.cell_size = float(workspace.cell_size)
         self.corner_cutting = bool(workspace.corner_cutting)
         self.name = getattr(workspace, "name", "workspace")
@@ -362,8 +352,6 @@ class DStarLite(IncrementalGridPlanner):
     def workspace(self):
         """The current map as a :class:`~gapath.workspace.Workspace`
         (start = the robot's cell)."""
-        from gapath.workspace import Workspace
-
         return Workspace(
             self._occ.copy(),
             self._start,

@@ -4,7 +4,7 @@ Monotone reference front
     :func:`monotone_front` computes the exact Pareto set of the FEASIBLE
     column-monotone paths, the paths the GA's integer encoding can describe,
     by a multi-objective dynamic programme over the columns of the canonical
-    frame (:class:`gapath.encodings.base.Frame`).
+    frame (:class:`gapath.monotone.Frame`).
 
 Free reference front
     :func:`free_front` computes the exact Pareto set of all FEASIBLE
@@ -51,9 +51,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from gapath.encodings.base import Frame, expand_profiles, split_paths
 from gapath.errors import ConfigError, LabelBudgetError, NoPathError
-from gapath.objectives import OBJECTIVES, QUARTER_PI, SQRT2, objective_index
+from gapath.grid import SQRT2
+from gapath.monotone import Frame, expand_profiles, split_paths
+from gapath.objectives import OBJECTIVES, QUARTER_PI, objective_index
 from gapath.planners._exact_kernels import (
     DONE,
     EIGHTHS,
@@ -128,7 +129,7 @@ class ExactFront:
         goal in 8-connected steps.
     profiles : tuple (entries, exits) of (k, n_cols) int arrays, or None
         Column profiles of the paths in frame coordinates (see
-        :mod:`gapath.encodings.base`); None for :func:`free_front` (free
+        :mod:`gapath.monotone`); None for :func:`free_front` (free
         paths have no column profile).
     smoothness : (k,) float array
         Total turn of each path (radians), also when smoothness is not an
@@ -284,7 +285,7 @@ def monotone_front(
     workspace : Workspace
         The map, start and goal. When the goal is left of the start the frame
         is mirrored; when they share a column it is transposed (rows play the
-        part of columns), see :class:`gapath.encodings.base.Frame`.
+        part of columns), see :class:`gapath.monotone.Frame`.
     objectives : sequence of str or comma-separated str, optional
         Any subset of ``"length"``, ``"vulnerability"``, ``"smoothness"``, in
         the column order wanted for ``F`` (default length, vulnerability).

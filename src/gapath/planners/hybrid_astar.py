@@ -84,6 +84,7 @@ from gapath.planners._geometry import (
     turn_to_point,
 )
 from gapath.planners._grid import heap_pop, heap_push, heap_update
+from gapath.planners.astar import check_cost_layer
 
 __all__ = [
     "CarModel",
@@ -106,7 +107,14 @@ CLEARANCE_CAP = 5.0
 # ---------------------------------------------------------------------------
 
 
-def _positive(value, name: str, *, allow_zero: bool = False) -> float:
+def check_positive(value, name: str, *, allow_zero: bool = False) -> float:
+    """``value`` as a finite float, > 0 (``>= 0`` with ``allow_zero``).
+
+    Raises
+    ------
+    ConfigError
+        Naming ``name``, if ``value`` is not such a number.
+    """
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -177,9 +185,9 @@ class CarModel:
     radius: float = 0.3
 
     def __post_init__(self):
-        object.__setattr__(self, "wheelbase", _positive(self.wheelbase, "wheelbase"))
-        object.__setattr__(self, "speed", _positive(self.speed, "speed"))
-        object.__setattr__(self, "radius", _positive(self.radius, "radius", allow_zero=True))
+        object.__setattr__(self, "wheelbase", check_positive(self.wheelbase, "wheelbase"))
+        object.__setattr__(self, "speed", check_positive(self.speed, "speed"))
+        object.__setattr__(self, "radius", check_positive(self.radius, "radius", allow_zero=True))
         try:
             steer = float(self.max_steer)
         except (TypeError, ValueError):
@@ -691,32 +699,34 @@ class HybridAStar:
         if nh != heading_bins or nh < 4:
             raise ConfigError(f"heading_bins must be an integer >= 4, got {heading_bins!r}")
         self.heading_bins = nh
-        self.arc_length = 1.5 * cs if arc_length is None else _positive(arc_length, "arc_length")
+        self.arc_length = 1.5 * cs if arc_length is None else check_positive(arc_length, "arc_length")
         if self.arc_length <= math.sqrt(2) * cs:
             raise ConfigError(
                 f"arc_length must exceed sqrt(2) * cell_size = {math.sqrt(2) * cs:.4f} (an "
                 f"expansion must leave its cell, eq. (4)), got {arc_length!r}"
             )
-        self.ds = 0.2 * cs if ds is None else _positive(ds, "ds")
+        self.ds = 0.2 * cs if ds is None else check_positive(ds, "ds")
         if self.ds > self.arc_length:
             raise ConfigError(f"ds must not exceed arc_length, got {ds!r}")
-        self.steer_cost = _positive(steer_cost, "steer_cost", allow_zero=True)
-        self.steer_change_cost = _positive(steer_change_cost, "steer_change_cost", allow_zero=True)
-        self.cost_weight = _positive(cost_weight, "cost_weight", allow_zero=True)
+        self.steer_cost = check_positive(steer_cost, "steer_cost", allow_zero=True)
+        self.steer_change_cost = check_positive(steer_change_cost, "steer_change_cost", allow_zero=True)
+        self.cost_weight = check_positive(cost_weight, "cost_weight", allow_zero=True)
         if heuristic not in HEURISTIC_KINDS:
             raise ConfigError(f"heuristic must be one of {HEURISTIC_KINDS}, got {heuristic!r}")
         self.heuristic = heuristic
-        self.heuristic_weight = _positive(heuristic_weight, "heuristic_weight")
+        self.heuristic_weight = check_positive(heuristic_weight, "heuristic_weight")
         self.goal_tolerance = (
             0.5 * cs
             if goal_tolerance is None
-            else _positive(goal_tolerance, "goal_tolerance", allow_zero=True)
+            else check_positive(goal_tolerance, "goal_tolerance", allow_zero=True)
         )
-        self.heading_tolerance = _positive(heading_tolerance, "heading_tolerance", allow_zero=True)
+        self.heading_tolerance = check_positive(heading_tolerance, "heading_tolerance", allow_zero=True)
         self.shot_distance = (
-            12.0 * cs if shot_distance is None else _positive(shot_distance, "shot_distance", allow_zero=True)
+            12.0 * cs
+            if shot_distance is None
+            else check_positive(shot_distance, "shot_distance", allow_zero=True)
         )
-        self.shot_slack = _positive(shot_slack, "shot_slack")
+        self.shot_slack = check_positive(shot_slack, "shot_slack")
         try:
             self.max_expansions = int(max_expansions)
         except (TypeError, ValueError):
@@ -908,11 +918,9 @@ class HybridAStar:
             layer = np.zeros((1, 1))
             use_layer = False
         else:
-            from gapath.planners.astar import check_cost_layer
-
             layer = check_cost_layer(cost, occ.shape)
             use_layer = bool(layer.any())
-        max_len = np.inf if max_length is None else _positive(max_length, "max_length") / cs
+        max_len = np.inf if max_length is None else check_positive(max_length, "max_length") / cs
         budget = self.max_expansions if max_expansions is None else int(max_expansions)
         if budget <= 0:
             raise ConfigError(f"max_expansions must be a positive integer, got {max_expansions!r}")

@@ -111,13 +111,12 @@ from dataclasses import dataclass
 import numpy as np
 
 from gapath.errors import ConfigError, NoPathError
-from gapath.planners._grid import check_cell
+from gapath.grid import DIRECTION, SQRT2, check_cell, check_free_cell, path_length
 from gapath.planners._incremental import IncrementalGridPlanner
 from gapath.planners._pareto_kernels import (
     _CELL,
     _SOLAR,
     INF,
-    SQRT2,
     _astar_kernel,
     _compute_shortest_path,
     _dstar_insert,
@@ -126,6 +125,7 @@ from gapath.planners._pareto_kernels import (
     _open_reset,
     _update_changed_edges,
 )
+from gapath.workspace import Workspace
 
 __all__ = [
     "ParetoPlanResult",
@@ -265,7 +265,7 @@ class _Model:
         diag = (dr != 0) & (dc != 0)
         out = np.zeros(len(self.columns))
         out[0] = ((len(dr) - diag.sum()) + SQRT2 * diag.sum()) * self.costmap.workspace.cell_size
-        dirs = np.array([[3, 2, 1], [4, -1, 0], [5, 6, 7]])[dr + 1, dc + 1]
+        dirs = DIRECTION[dr + 1, dc + 1]
         for j in range(1, len(self.columns)):
             if kind[j] == _CELL:
                 out[j] = cells[j, path_idx].sum()
@@ -344,7 +344,7 @@ def _result(model, idx, expansions, t0, planner) -> ParetoPlanResult:
         F = np.array([vals[o] for o in model.objectives])
     search = model.search_vector(idx)
     path.setflags(write=False)
-    length = _length(path, cm.workspace.cell_size)
+    length = path_length(path, cm.workspace.cell_size)
     return ParetoPlanResult(
         path=path,
         objectives=model.objectives,
@@ -355,12 +355,6 @@ def _result(model, idx, expansions, t0, planner) -> ParetoPlanResult:
         seconds=time.perf_counter() - t0,
         planner=planner,
     )
-
-
-def _length(path, cell_size) -> float:
-    d = np.abs(np.diff(path, axis=0))
-    diag = int(np.count_nonzero((d[:, 0] != 0) & (d[:, 1] != 0)))
-    return float(((len(d) - diag) + SQRT2 * diag) * cell_size)
 
 
 def _no_path(ws, src, dst, expansions=None) -> NoPathError:
@@ -381,9 +375,7 @@ def _no_path(ws, src, dst, expansions=None) -> NoPathError:
 def _check_origin(origin, default, shape):
     if origin is None:
         return default
-    from gapath.costmap import _check_cell as check_any_cell
-
-    return check_any_cell(origin, "origin", shape)
+    return check_cell(origin, "origin", shape)
 
 
 def _astar(
@@ -392,8 +384,8 @@ def _astar(
     t0 = time.perf_counter()
     ws = costmap.workspace
     occ = ws.occ
-    src = check_cell(ws.start if start is None else start, "start", occ)
-    dst = check_cell(ws.goal if goal is None else goal, "goal", occ)
+    src = check_free_cell(ws.start if start is None else start, "start", occ)
+    dst = check_free_cell(ws.goal if goal is None else goal, "goal", occ)
     origin = _check_origin(origin, src, occ.shape)
     model = _Model(costmap, objectives, origin, pareto=pareto, priority=priority, weights=weights)
     h, w = occ.shape
@@ -585,8 +577,8 @@ class DStarPO(IncrementalGridPlanner):
         ws = costmap.workspace
         occ = np.array(ws.occ, dtype=np.bool_, order="C", copy=True)
         self._occ = occ
-        self._start = check_cell(ws.start if start is None else start, "start", occ)
-        self._goal = check_cell(ws.goal if goal is None else goal, "goal", occ)
+        self._start = check_free_cell(ws.start if start is None else start, "start", occ)
+        self._goal = check_free_cell(ws.goal if goal is None else goal, "goal", occ)
         self.costmap = costmap
         self.origin = _check_origin(origin, self._start, occ.shape)
         self._model = _Model(
@@ -609,8 +601,6 @@ class DStarPO(IncrementalGridPlanner):
     def workspace(self):
         """The current map as a :class:`~gapath.workspace.Workspace`
         (start = the robot's cell)."""
-        from gapath.workspace import Workspace
-
         ws = self.costmap.workspace
         return Workspace(
             self._occ.copy(),

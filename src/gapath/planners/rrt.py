@@ -42,7 +42,7 @@ import numpy as np
 
 from gapath.errors import ConfigError, NoPathError
 from gapath.planners._geometry import disc_free, segment_free
-from gapath.planners.hybrid_astar import path_objectives
+from gapath.planners.hybrid_astar import check_positive, describe_pose, path_objectives
 
 __all__ = ["RRTPath", "rrt", "rrt_star"]
 
@@ -356,13 +356,15 @@ def rrt(
         if extra.shape != occ.shape:
             raise ConfigError(f"blocked must have the grid's shape {occ.shape}, got {extra.shape}")
         occ = occ | extra
-    from gapath.planners.hybrid_astar import _positive
-
-    r = _positive(radius, "radius", allow_zero=True) / cs
-    stp = 2.0 if step is None else _positive(step, "step") / cs
+    r = check_positive(radius, "radius", allow_zero=True) / cs
+    stp = 2.0 if step is None else check_positive(step, "step") / cs
     bias = _unit(goal_bias, "goal_bias", 0.0, 1.0)
-    tol = 0.5 if goal_tolerance is None else _positive(goal_tolerance, "goal_tolerance", allow_zero=True) / cs
-    dsv = 0.2 if ds is None else _positive(ds, "ds") / cs
+    tol = (
+        0.5
+        if goal_tolerance is None
+        else check_positive(goal_tolerance, "goal_tolerance", allow_zero=True) / cs
+    )
+    dsv = 0.2 if ds is None else check_positive(ds, "ds") / cs
     try:
         iters = int(max_iter)
     except (TypeError, ValueError):
@@ -372,7 +374,7 @@ def rrt(
     extra_it = 0 if extra_iterations is None else int(extra_iterations)
     if extra_it < 0:
         raise ConfigError(f"extra_iterations must be >= 0, got {extra_iterations!r}")
-    rew = 3.0 * stp if rewire_radius is None else _positive(rewire_radius, "rewire_radius") / cs
+    rew = 3.0 * stp if rewire_radius is None else check_positive(rewire_radius, "rewire_radius") / cs
     if start is None:
         sr, sc = workspace.start
         start = (sc * cs, sr * cs)
@@ -382,8 +384,6 @@ def rrt(
     sx, sy = (v / cs for v in _point(start, "start"))
     gx, gy = (v / cs for v in _point(goal, "goal"))
     r_check = r + 0.5 * dsv
-    from gapath.planners.hybrid_astar import describe_pose
-
     for label, (px, py) in (("start", (sx, sy)), ("goal", (gx, gy))):
         if not disc_free(occ, px, py, r_check):
             raise ConfigError(

@@ -16,14 +16,13 @@ optima of evenly spread weights on the normalised objectives: the
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
-from gapath.encodings.base import Frame, expand_profiles, split_paths
 from gapath.errors import ConfigError, NoPathError
-from gapath.objectives import LENGTH, VULNERABILITY
+from gapath.grid import SQRT2, cuts_corner
+from gapath.monotone import Frame, expand_profiles, split_paths
+from gapath.objectives import LENGTH, VULNERABILITY, evaluate_paths, pad_paths
 
 
 @numba.njit(cache=True)
@@ -60,9 +59,9 @@ def _weighted_dp(occ, pot, start_row, goal_row, col0, n_cols, w_len, w_vul, cell
                 lo, hi = min(entry, e), max(entry, e)
                 if cum_occ[k, hi + 1] - cum_occ[k, lo] != 0:
                     continue
-                if s != 0 and not corner_cutting and (occ[p, c] or occ[entry, c - 1]):
+                if not corner_cutting and cuts_corner(occ, p, c - 1, entry, c):
                     continue
-                step = math.sqrt(2.0) if s != 0 else 1.0
+                step = SQRT2 if s != 0 else 1.0
                 val = (
                     cost[k - 1, p]
                     + w_len * (step + (hi - lo)) * cell_size
@@ -146,8 +145,6 @@ def weighted_sum_paths(workspace, n_weights: int = 9) -> list[np.ndarray]:
     NoPathError
         When no feasible column-monotone path exists.
     """
-    from gapath.objectives import evaluate_paths, pad_paths
-
     shortest = weighted_sum_path(workspace, 1.0, 1e-7)
     safest = weighted_sum_path(workspace, 1e-7, 1.0)
     P, L = pad_paths([shortest, safest])

@@ -5,12 +5,11 @@ from __future__ import annotations
 import numpy as np
 from pymoo.core.problem import Problem
 
-from gapath.costmap import CELL_MEAN, STEP_SUM
-from gapath.encodings import _free_kernels as K
+from gapath.costmap import CELL_MEAN, STEP_SUM, evaluate_layer_paths
 from gapath.encodings.free import DEFAULT_FREE_ENCODING, FREE_ENCODINGS, make_free_encoding
 from gapath.errors import ConfigError
 from gapath.objectives import INTERFERING, SMOOTHNESS, evaluate_paths
-from gapath.problems.grid_path import problem_settings
+from gapath.problems.grid_path import GridPathProblem, problem_settings
 
 
 class FreePathProblem(Problem):
@@ -143,7 +142,12 @@ class FreePathProblem(Problem):
         if self._layer_stack is not None:
             cm = self.costmap
             M = np.hstack(
-                [M, K.layer_values(P, L, self._layer_stack, self._layer_agg, cm.solar_angle0, cm.solar_rate)]
+                [
+                    M,
+                    evaluate_layer_paths(
+                        P, L, self._layer_stack, self._layer_agg, cm.solar_angle0, cm.solar_rate
+                    ),
+                ]
             )
         return M
 
@@ -208,8 +212,6 @@ def path_problem(
     if paths == "free":
         return FreePathProblem(workspace, objectives, encoding=encoding or DEFAULT_FREE_ENCODING, **kwargs)
     if paths == "monotone":
-        from gapath.problems.grid_path import GridPathProblem
-
         return GridPathProblem(workspace, objectives, encoding=encoding or "integer", **kwargs)
     raise ConfigError(f"unknown path set {paths!r}; expected 'free' or 'monotone'")
 

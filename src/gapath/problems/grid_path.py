@@ -8,9 +8,11 @@ import numpy as np
 from pymoo.core.problem import Problem
 
 from gapath.encodings import expand_profiles, make_encoding, split_paths
-from gapath.encodings.base import Frame
-from gapath.errors import ConfigError
+from gapath.errors import ConfigError, NoPathError
+from gapath.monotone import Frame
 from gapath.objectives import INTERFERING, OBJECTIVES, SMOOTHNESS, objective_index
+from gapath.planners import exact
+from gapath.workspace import Workspace
 
 #: Metrics that may be objectives (``interfering`` is the constraint).
 OBJECTIVE_NAMES = ("length", "vulnerability", "smoothness")
@@ -143,8 +145,6 @@ class GridPathProblem(Problem):
         costmap=None,
         **kwargs,
     ):
-        from gapath.workspace import Workspace
-
         if not isinstance(workspace, Workspace):
             raise ConfigError(
                 f"GridPathProblem expects a gapath.Workspace, got {type(workspace).__name__}; "
@@ -343,9 +343,6 @@ class GridPathProblem(Problem):
         return self._exact_front.F.copy()
 
     def _compute_exact_front(self, force: bool):
-        from gapath.errors import NoPathError
-        from gapath.planners.exact import monotone_front
-
         if self.layer_objectives:
             raise ConfigError(
                 f"GridPathProblem.pareto_front: no exact front for the costmap layer "
@@ -367,7 +364,7 @@ class GridPathProblem(Problem):
                 "cells); call problem.pareto_front(force=True) to compute it"
             )
         try:
-            return monotone_front(self.workspace, self.objectives)
+            return exact.monotone_front(self.workspace, self.objectives)
         except NoPathError as exc:
             return exc
 

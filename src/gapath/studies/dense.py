@@ -144,7 +144,7 @@ def p0_for_obstacles(n: int, target: int, samples: int = 2000, decimals: int = 3
     >>> p0_for_obstacles(64, 791, samples=200)
     0.2
     """
-    from gapath.workspace import random_monotone_path
+    from gapath.generators import random_monotone_path
 
     cells = [
         len(random_monotone_path((n, n), (n - 1, 0), (0, n - 1), np.random.default_rng(s)))

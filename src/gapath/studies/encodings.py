@@ -52,7 +52,7 @@ def run(
     hypervolume ratios, share of exact points found, seconds), ``fronts``
     (merged objective matrices) and ``exact`` (the reference front).
     """
-    from gapath.workspace import default_workspace
+    from gapath.generators import default_workspace
 
     ws = default_workspace() if workspace is None else workspace
     exact = monotone_front(ws, ("length", "vulnerability"))

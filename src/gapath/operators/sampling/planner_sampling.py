@@ -7,7 +7,11 @@ from pymoo.core.sampling import Sampling
 from pymoo.operators.sampling.rnd import IntegerRandomSampling
 
 from gapath.errors import ConfigError, NoPathError
+from gapath.monotone import Frame, expand_profiles, monotone_projection, split_paths
 from gapath.operators.duplicates import duplicate_mask
+from gapath.planners.astar import astar
+from gapath.planners.exact import monotone_front
+from gapath.planners.weighted_sum import weighted_sum_paths
 
 #: What :class:`PlannerSampling` can seed from.
 SEED_SOURCES = ("weighted", "exact", "astar", "none")
@@ -23,7 +27,7 @@ def planner_paths(
     * ``"exact"``: every path of the exact monotone front for ``objectives``;
     * ``"astar"``: the A* shortest path and A* paths with the potential
       field as a cost layer (weights 1, 10, 100), each projected onto the
-      column-monotone path set (:func:`gapath.encodings.base.monotone_projection`);
+      column-monotone path set (:func:`gapath.monotone.monotone_projection`);
     * ``"none"``: no paths.
 
     A workspace without a feasible column-monotone path gives no seeds.
@@ -32,12 +36,8 @@ def planner_paths(
         raise ConfigError(f"unknown seed source {source!r}; expected one of {', '.join(SEED_SOURCES)}")
     try:
         if source == "weighted":
-            from gapath.planners.weighted_sum import weighted_sum_paths
-
             return weighted_sum_paths(workspace, n_weights)
         if source == "exact":
-            from gapath.planners.exact import monotone_front
-
             return list(monotone_front(workspace, objectives).paths)
         if source == "astar":
             return _astar_paths(workspace)
@@ -47,9 +47,6 @@ def planner_paths(
 
 
 def _astar_paths(workspace) -> list[np.ndarray]:
-    from gapath.encodings.base import Frame, expand_profiles, monotone_projection, split_paths
-    from gapath.planners.astar import astar
-
     frame = Frame.of(workspace)
     paths = []
     for w in (0.0, 1.0, 10.0, 100.0):

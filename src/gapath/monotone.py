@@ -1,4 +1,8 @@
-"""What every GA encoding shares: the canonical frame and column profiles.
+"""Column-monotone paths: the canonical frame and column profiles.
+
+The GA encodings (:mod:`gapath.encodings`), the exact and weighted-sum
+planners and the seeding operators all describe column-monotone paths with
+these two ideas.
 
 Frame
     The encodings describe paths that advance exactly one column per
@@ -16,21 +20,21 @@ Column profile
     exits[k]``; consecutive columns are joined by one horizontal or diagonal
     step (``|entries[k] - exits[k-1]| <= 1``). Every encoding decodes genes
     into profiles, :func:`gapath.objectives.evaluate_profiles` evaluates
-    them, and :func:`expand_profiles` turns them into cells.
+    them, and :func:`expand_profiles` turns them into cells;
+    :func:`profiles_of_paths` and :func:`monotone_projection` go the other
+    way.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 import numba
 import numpy as np
 
 from gapath.errors import ConfigError
-
-if TYPE_CHECKING:
-    import gapath.workspace
+from gapath.objectives import evaluate_profiles
+from gapath.workspace import Workspace
 
 
 @dataclass(frozen=True, eq=False)
@@ -45,7 +49,7 @@ class Frame:
         (transpose first, then mirror the columns).
     """
 
-    workspace: gapath.workspace.Workspace
+    workspace: Workspace
     occ: np.ndarray
     potential: np.ndarray
     start: tuple[int, int]
@@ -54,7 +58,7 @@ class Frame:
     flip: bool
 
     @classmethod
-    def of(cls, workspace) -> Frame:
+    def of(cls, workspace: Workspace) -> Frame:
         occ, pot = workspace.occ, workspace.potential
         (sr, sc), (gr, gc) = workspace.start, workspace.goal
         transpose = sc == gc
@@ -110,8 +114,6 @@ class Frame:
 
     def evaluate(self, entries: np.ndarray, exits: np.ndarray) -> np.ndarray:
         """Objectives ``(N, 4)`` of profiles (see :mod:`gapath.objectives`)."""
-        from gapath.objectives import evaluate_profiles
-
         ws = self.workspace
         return evaluate_profiles(
             entries, exits, self.col0, self.occ, self.potential, ws.cell_size, ws.corner_cutting
