@@ -62,15 +62,13 @@ LAYERS: dict[str, int] = {
     "gapath.results": 3,
     "gapath.plotting": 3,
     "gapath.dynamic": 3,
-    "gapath.scenarios": 3,
-    "gapath.dynamic_plots": 3,
-    # studies and experiments
+    # experiments (infrastructure), then the paper studies over it
     "gapath.experiments": 4,
-    "gapath.studies": 4,
+    "gapath.studies": 5,
     # CLI
-    "gapath.cli": 5,
+    "gapath.cli": 6,
 }
-LAYER_NAMES = ("ground floor", "search", "evolution", "running", "studies and experiments", "CLI")
+LAYER_NAMES = ("ground floor", "search", "evolution", "running", "experiments", "studies", "CLI")
 
 #: ``(importer, imported, function)``: imports of module ``imported`` inside
 #: ``function`` (qualified name) of module ``importer`` left out of the
