@@ -112,9 +112,9 @@ def test_paper_nsga2_takes_its_operators_from_the_problems_encoding(encoding):
     from pymoo.optimize import minimize
 
     from gapath.algorithms import FastNSGA2, paper_nsga2
+    from gapath.generators import default_workspace
     from gapath.operators import default_operators
     from gapath.problems import GridPathProblem
-    from gapath.generators import default_workspace
 
     p = GridPathProblem(default_workspace(), encoding=encoding)
     algo = paper_nsga2(20)
@@ -135,8 +135,8 @@ def test_paper_nsga2_keeps_a_given_sampling_when_it_reads_the_encoding():
     from pymoo.optimize import minimize
 
     from gapath.algorithms import paper_nsga2
-    from gapath.problems import GridPathProblem
     from gapath.generators import default_workspace
+    from gapath.problems import GridPathProblem
 
     p = GridPathProblem(default_workspace(), encoding="binary")
     rng = np.random.default_rng(0)
