@@ -10,7 +10,7 @@ from pymoo.optimize import minimize
 
 from gapath.algorithms import FastNSGA2, paper_nsga2
 from gapath.callbacks import Callbacks, ProgressBar, population_arrays
-from gapath.errors import ConfigError
+from gapath.errors import ConfigError, positive_int
 from gapath.front import PathFront, path_front
 from gapath.operators import PlannerSampling
 from gapath.problems import GridPathProblem
@@ -44,18 +44,6 @@ class SolveResult:
     n_gen: int
     interrupted: bool = False
     pymoo_result: object = field(default=None, repr=False)
-
-
-def _positive_int(value, name):
-    try:
-        v = int(value)
-        if v != float(value):
-            raise ValueError
-    except (TypeError, ValueError):
-        raise ConfigError(f"{name} must be a positive integer, got {value!r}") from None
-    if v <= 0:
-        raise ConfigError(f"{name} must be a positive integer, got {value!r}")
-    return v
 
 
 def objective_mode(objectives, constraints=None, sbx_eta=None, tiebreak="smoothness") -> dict:
@@ -139,8 +127,8 @@ def solve(
     >>> r.n_gen
     3
     """
-    pop_size = _positive_int(pop_size, "pop_size")
-    n_gen = _positive_int(n_gen, "n_gen")
+    pop_size = positive_int(pop_size, "pop_size")
+    n_gen = positive_int(n_gen, "n_gen")
     seed = int(seed)
     mode = objective_mode(objectives, constraints, sbx_eta, tiebreak)
     constraints, sbx_eta = mode["constraints"], mode["sbx_eta"]

@@ -205,9 +205,7 @@ def _report(result, out_dir: Path) -> None:
             f"  stopped before generation {asked}: mating found no path not yet in the "
             f"population (the map has few distinct paths)"
         )
-    from gapath.plotting import marked_paths
-
-    for label, i in marked_paths(front).items():
+    for label, i in front.marked().items():
         values = ", ".join(f"{n}={v:.4f}" for n, v in zip(front.objectives, front.F[i]))
         print(f"  {label:9s} {values}")
     print(
@@ -219,13 +217,10 @@ def _report(result, out_dir: Path) -> None:
 def _reference(args, workspace):
     if not args.reference:
         return None
-    from gapath.problems.grid_path import OBJECTIVE_NAMES
+    from gapath.objectives import check_objective_names
     from gapath.reference import reference_front
 
-    names = [o.strip() for o in args.objectives.split(",") if o.strip()]
-    bad = [n for n in names if n not in OBJECTIVE_NAMES]
-    if bad:
-        raise ConfigError(f"unknown objective {bad[0]!r}; expected some of {', '.join(OBJECTIVE_NAMES)}")
+    names = check_objective_names(o.strip() for o in args.objectives.split(",") if o.strip())
     try:
         return reference_front(workspace, names, args.reference)
     except (ConfigError, MapError) as exc:

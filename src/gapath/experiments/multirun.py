@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from gapath.errors import ConfigError
+from gapath.errors import ConfigError, positive_int
 from gapath.front import PathFront, select_front
 
 
@@ -101,12 +101,7 @@ def multirun(workspace, runs: int = 10, seed: int = 1, *, on_run=None, **solve_k
     """
     from gapath.solver import solve
 
-    try:
-        runs = int(runs)
-    except (TypeError, ValueError):
-        raise ConfigError(f"runs must be a positive integer, got {runs!r}") from None
-    if runs < 1:
-        raise ConfigError(f"runs must be a positive integer, got {runs!r}")
+    runs = positive_int(runs, "runs")
     results, seeds = [], []
     interrupted = False
     for s in range(int(seed), int(seed) + runs):
