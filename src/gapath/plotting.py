@@ -6,8 +6,16 @@ notebook's inline backend; ``gapath`` commands select Agg (files only).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import matplotlib.pyplot as plt
 import numpy as np
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from gapath.front import PathFront
+    from gapath.workspace import Workspace
 
 #: (label, colour) of the marked paths.
 MARKS = {"shortest": "tab:blue", "safest": "tab:green", "knee": "tab:red"}
@@ -79,7 +87,13 @@ def label_map_axes(ax, workspace, scale: float = 1.0, unit: str | None = None) -
         ax.set_ylabel(f"y = row x cell size ({unit}, 0 at the top)")
 
 
-def plot_front(front, ax=None, reference=None, title=None, workspace=None):
+def plot_front(
+    front: PathFront,
+    ax: Axes | None = None,
+    reference: np.ndarray | None = None,
+    title: str | None = None,
+    workspace: Workspace | None = None,
+) -> Axes:
     """Scatter the front's first two objectives (a third one as colour),
     with the marked paths highlighted and an optional reference front;
     axis labels carry the units (lengths in the units of ``workspace``).
@@ -119,7 +133,9 @@ def plot_front(front, ax=None, reference=None, title=None, workspace=None):
     return ax
 
 
-def plot_paths(workspace, front, ax=None, title=None):
+def plot_paths(
+    workspace: Workspace, front: PathFront, ax: Axes | None = None, title: str | None = None
+) -> Axes:
     """The map with the shortest, the safest and the knee path of ``front``,
     axes in cells, or in metres in the map frame of a ROS map.
 

@@ -14,6 +14,7 @@ from gapath.errors import ConfigError, positive_int
 from gapath.front import PathFront, path_front
 from gapath.operators import PlannerSampling
 from gapath.problems import GridPathProblem
+from gapath.workspace import Workspace
 
 #: Engines that run Ahmed & Deb's NSGA-II (same results for the same seed).
 ENGINES = {"fast": lambda pop_size, **kw: FastNSGA2(pop_size, **kw), "pymoo": paper_nsga2}
@@ -35,7 +36,7 @@ class SolveResult:
         that of the last complete generation.
     """
 
-    workspace: object
+    workspace: Workspace
     problem: GridPathProblem
     front: PathFront
     settings: dict
@@ -67,7 +68,7 @@ def objective_mode(objectives, constraints=None, sbx_eta=None, tiebreak="smoothn
 
 
 def solve(
-    workspace,
+    workspace: Workspace,
     *,
     objectives=("length", "vulnerability"),
     encoding=None,
@@ -153,12 +154,7 @@ def solve(
     callbacks = Callbacks(bar, callback)
 
     settings = dict(
-        map=workspace.name,
-        shape=list(workspace.shape),
-        start=list(workspace.start),
-        goal=list(workspace.goal),
-        cell_size=workspace.cell_size,
-        corner_cutting=workspace.corner_cutting,
+        **workspace.describe(),
         objectives=list(problem.objectives),
         paths=paths,
         encoding=encoding,
