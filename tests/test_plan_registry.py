@@ -185,7 +185,12 @@ def test_workspace_describe_round_trip_and_json():
     d = ws.describe()
     assert d == json.loads(json.dumps(d))
     back = Workspace(
-        ws.occ, d["start"], d["goal"], cell_size=d["cell_size"], corner_cutting=d["corner_cutting"], name=d["map"]
+        ws.occ,
+        d["start"],
+        d["goal"],
+        cell_size=d["cell_size"],
+        corner_cutting=d["corner_cutting"],
+        name=d["map"],
     )
     assert back == ws and back.name == ws.name and list(back.shape) == d["shape"]
 
