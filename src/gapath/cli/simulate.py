@@ -274,7 +274,7 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
     """Write ``front.csv`` (one row: length, turning, clearance),
     ``paths.json``, ``summary.json`` and (with ``plots``) ``paths.png`` into
     ``out_dir``; returns the files."""
-    from gapath.results import atomic_write, dumps
+    from gapath.results import atomic_write, dumps, versions
 
     out = Path(out_dir)
     files = [out / "front.csv", out / "paths.json", out / "summary.json"]
@@ -293,7 +293,17 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
             np.column_stack([xy, np.mod(frame.yaw - p[:, 2] + np.pi, 2 * np.pi) - np.pi]).round(6).tolist()
         )
     atomic_write(files[1], dumps(records, indent=1) + "\n")
-    atomic_write(files[2], dumps(outcome.summary(workspace), indent=1, sort_keys=True) + "\n")
+    summary = {
+        "settings": {
+            **workspace.describe(),
+            "planner": outcome.planner,
+            **{k: v for k, v in outcome.info.items() if k != "seconds"},
+        },
+        "versions": versions(),
+        "wall_time_s": round(outcome.seconds, 6),
+        "objectives": {k: float(v) for k, v in outcome.objectives.items()},
+    }
+    atomic_write(files[2], dumps(summary, indent=1, sort_keys=True) + "\n")
     if plots:
         import matplotlib.pyplot as plt
 

@@ -163,23 +163,6 @@ class PlanOutcome:
             }
         ]
 
-    def summary(self, workspace: Workspace) -> dict[str, Any]:
-        """``summary.json`` content: the workspace and planner settings
-        (:meth:`gapath.workspace.Workspace.describe` and :attr:`info`),
-        versions, wall time and objectives."""
-        from gapath.results import versions
-
-        return {
-            "settings": {
-                **workspace.describe(),
-                "planner": self.planner,
-                **{k: v for k, v in self.info.items() if k != "seconds"},
-            },
-            "versions": versions(),
-            "wall_time_s": round(self.seconds, 6),
-            "objectives": {k: float(v) for k, v in self.objectives.items()},
-        }
-
 
 @dataclass(frozen=True)
 class PlannerInfo:
