@@ -97,6 +97,22 @@ def test_registry_families_and_simulated_planners():
     assert planner_info("dstar-po").family == "grid" and not planner_info("dstar-po").simulated
 
 
+def test_registry_options_are_the_planners_settings():
+    import inspect
+
+    from gapath.planners.hybrid_astar import HybridAStar
+    from gapath.planners.rrt import rrt
+
+    def keywords(fn, drop=()):
+        return {n for n, p in inspect.signature(fn).parameters.items() if p.kind == p.KEYWORD_ONLY} - set(drop)
+
+    assert set(planner_info("hybrid-astar").options) == keywords(HybridAStar) | {"car", "heading"}
+    assert set(planner_info("rrt").options) == keywords(rrt, ("radius", "star", "blocked")) | {"car"}
+    assert planner_info("rrt-star").options == planner_info("rrt").options
+    grid = planner_info("astar").run
+    assert set(planner_info("astar").options) == keywords(grid)
+
+
 def test_no_path_raises(small_ws):
     occ = np.zeros((6, 6), bool)
     occ[:, 3] = True

@@ -197,6 +197,9 @@ class PlannerInfo:
 # the wrappers: options in, (poses, cells, objectives, info, result) out
 # ---------------------------------------------------------------------------
 
+# the options of each family: the wrapper's own plus the keyword settings of
+# the planner it calls (tests/test_plan_registry.py checks them against the
+# signatures)
 _GRID_OPTIONS = ("costmap", "objectives", "priority", "weights")
 _HYBRID_OPTIONS = (
     "car",
@@ -206,6 +209,7 @@ _HYBRID_OPTIONS = (
     "ds",
     "steer_cost",
     "steer_change_cost",
+    "cost_weight",
     "heuristic",
     "heuristic_weight",
     "goal_tolerance",
