@@ -104,7 +104,9 @@ def test_registry_options_are_the_planners_settings():
     from gapath.planners.rrt import rrt
 
     def keywords(fn, drop=()):
-        return {n for n, p in inspect.signature(fn).parameters.items() if p.kind == p.KEYWORD_ONLY} - set(drop)
+        return {n for n, p in inspect.signature(fn).parameters.items() if p.kind == p.KEYWORD_ONLY} - set(
+            drop
+        )
 
     assert set(planner_info("hybrid-astar").options) == keywords(HybridAStar) | {"car", "heading"}
     assert set(planner_info("rrt").options) == keywords(rrt, ("radius", "star", "blocked")) | {"car"}
