@@ -241,6 +241,15 @@ def test_one_objective_name_check():
         GridPathProblem(Workspace(np.zeros((4, 4), bool)), objectives=("length", "safety"))
 
 
+def test_experiment_spec_uses_the_objective_name_check(tmp_path):
+    from gapath.experiments.spec import load_spec
+
+    path = tmp_path / "e.yaml"
+    path.write_text("settings: {objectives: [length, interfering]}\n")
+    with pytest.raises(ConfigError, match=r"e\.yaml: settings\.objectives: unknown objective 'interfering'"):
+        load_spec(path)
+
+
 @pytest.mark.parametrize("value", [0, -2, 2.5, "x", None, float("nan"), float("inf"), "2.0"])
 def test_positive_int_rejects(value):
     with pytest.raises(ConfigError, match="n must be a positive integer"):
