@@ -69,6 +69,7 @@ API_MODULES = [
             "gapath.planners.hybrid_astar",
             "gapath.planners.rrt",
             "gapath.planners.geometry",
+            "gapath.planners.registry",
         ],
     ),
     (
@@ -125,6 +126,14 @@ root_doc = "index"
 
 autodoc_default_options = {"members": True, "show-inheritance": True}
 autodoc_member_order = "bysource"
+#: Names in signatures imported for type checking only, or documented on more
+#: than one page (``gapath.Workspace`` re-exports ``gapath.workspace.Workspace``):
+#: where their cross-references go.
+autodoc_type_aliases = {
+    "Workspace": "gapath.workspace.Workspace",
+    "PathFront": "gapath.front.PathFront",
+    "SolveResult": "gapath.solver.SolveResult",
+}
 numpydoc_show_class_members = False  # autodoc documents the members itself
 numpydoc_xref_param_type = False
 myst_heading_anchors = 3

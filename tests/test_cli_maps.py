@@ -530,8 +530,8 @@ def test_plots_have_axis_labels_with_units(data_dir):
     import matplotlib.pyplot as plt
 
     from gapath import default_workspace
-    from gapath.cli.exact import exact_path_front
     from gapath.dynamic.plots import plot_map as _base
+    from gapath.planners.exact import exact_path_front
     from gapath.plotting import plot_front, plot_paths
 
     ws = default_workspace()

@@ -51,7 +51,9 @@ Errors
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numba
 import numpy as np
@@ -59,9 +61,14 @@ import numpy as np
 from gapath.errors import ConfigError
 from gapath.grid import DC, DR, SQRT2, check_cell, check_path, path_length
 
+if TYPE_CHECKING:
+    from gapath.workspace import Workspace
+
 __all__ = [
     "Costmap",
     "BUILTIN_LAYERS",
+    "PLAN_LAYERS",
+    "build_costmap",
     "CELL_MEAN",
     "elevation_from_dem",
     "fractal_terrain",
@@ -73,6 +80,9 @@ __all__ = [
 
 #: The paper's layer names (section III-A), in its order.
 BUILTIN_LAYERS = ("distance", "heuristic", "elevation", "solar", "risk")
+#: Lavin's cost layers a planning costmap may use as objectives besides the
+#: length (:func:`build_costmap`, ``gapath plan --layers``).
+PLAN_LAYERS = ("elevation", "solar", "risk")
 #: Layers that are computed, never set by hand.
 _DERIVED = ("distance", "heuristic", "solar")
 #: Names that cannot be used for user layers.
@@ -900,3 +910,69 @@ class LayerProfileEvaluator:
             self.costmap.solar_angle0,
             self.costmap.solar_rate,
         )
+
+
+def build_costmap(
+    workspace: Workspace,
+    layers: Sequence[str] = (),
+    *,
+    dem: str | Path | None = None,
+    dem_method: str = "bilinear",
+    terrain_seed: int = 1,
+    risk: tuple[int, int] | None = None,
+    solar_rate: float = 0.01,
+) -> Costmap:
+    """The costmap a planner uses for ``layers`` (``gapath plan --layers``).
+
+    Parameters
+    ----------
+    workspace : Workspace
+        The grid.
+    layers : sequence of str
+        Some of :data:`PLAN_LAYERS`: ``elevation`` (from ``dem``, or seeded
+        fractal terrain), ``solar`` (always present, see ``solar_rate``),
+        ``risk`` (one cell of maximum risk).
+    dem : path, optional
+        Elevation raster (``.npy`` or ``.npz``) resampled to the grid with
+        ``dem_method`` (see :meth:`Costmap.set_elevation`); default
+        :func:`fractal_terrain` seeded by ``terrain_seed``.
+    dem_method : {"bilinear", "reflect"}, default "bilinear"
+    terrain_seed : int, default 1
+    risk : (row, col), optional
+        The maximum-risk cell; default the centre of the grid.
+    solar_rate : float, default 0.01
+        Rotation of the solar vector per path step, radians.
+
+    Returns
+    -------
+    Costmap
+
+    Raises
+    ------
+    ConfigError
+        On an unknown layer or a bad DEM, risk cell or solar rate.
+
+    Examples
+    --------
+    >>> from gapath import Workspace
+    >>> cm = build_costmap(Workspace(np.zeros((5, 6), bool)), ["risk"])
+    >>> cm.risk_cells
+    [(2, 3)]
+    >>> build_costmap(Workspace(np.zeros((5, 6), bool)), ["slope"])
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: unknown layer 'slope'; expected some of elevation, solar, risk
+    """
+    for name in layers:
+        if name not in PLAN_LAYERS:
+            raise ConfigError(f"unknown layer {name!r}; expected some of {', '.join(PLAN_LAYERS)}")
+    cm = Costmap(workspace, solar_rate=solar_rate)
+    if "elevation" in layers:
+        if dem is not None:
+            cm.set_elevation(Path(dem), method=dem_method)
+        else:
+            cm.set_elevation(fractal_terrain(workspace.shape, seed=terrain_seed))
+    if "risk" in layers:
+        h, w = workspace.shape
+        cm.set_risk((h // 2, w // 2) if risk is None else risk)
+    return cm

@@ -76,3 +76,44 @@ class LabelBudgetError(GapathError):
     def __init__(self, message: str, stats: dict | None = None):
         super().__init__(message)
         self.stats = dict(stats or {})
+
+
+def positive_int(value: object, name: str) -> int:
+    """``value`` as an ``int`` if it is a whole number >= 1 (``3``,
+    ``3.0``, ``"3"``), else a :class:`ConfigError` naming ``name``: the one
+    positive-integer check of gapath's settings.
+
+    Parameters
+    ----------
+    value : object
+        The setting as given.
+    name : str
+        The setting's name, or the flag that sets it, for the message.
+
+    Returns
+    -------
+    int
+
+    Raises
+    ------
+    ConfigError
+        ``"{name} must be a positive integer, got {value!r}"``.
+
+    Examples
+    --------
+    >>> positive_int(3.0, "runs")
+    3
+    >>> positive_int(0, "runs")
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: runs must be a positive integer, got 0
+    """
+    try:
+        v = int(value)  # type: ignore[call-overload]
+        if v != float(value):  # type: ignore[arg-type]
+            raise ValueError
+    except (TypeError, ValueError, OverflowError):
+        raise ConfigError(f"{name} must be a positive integer, got {value!r}") from None
+    if v <= 0:
+        raise ConfigError(f"{name} must be a positive integer, got {value!r}")
+    return v

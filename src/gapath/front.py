@@ -7,12 +7,22 @@ path.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from gapath.metrics import dedupe, nondominated
 from gapath.objectives import INTERFERING, OBJECTIVES, SMOOTHNESS
+
+if TYPE_CHECKING:
+    from gapath.problems import GridPathProblem
+    from gapath.workspace import Workspace
+
+#: The paths :meth:`PathFront.marked` picks: label -> objective it minimises
+#: (the knee is picked among all objectives).
+MARKED = (("shortest", "length"), ("safest", "vulnerability"))
 
 
 @dataclass(frozen=True, eq=False)
@@ -32,12 +42,93 @@ class PathFront:
     F: np.ndarray
     metrics: np.ndarray
     X: np.ndarray
-    paths: list = field(repr=False)
+    paths: list[np.ndarray] = field(repr=False)
+
+    @classmethod
+    def from_paths(
+        cls,
+        workspace: Workspace,
+        paths: Sequence[Any],
+        objectives: Sequence[str],
+        F: np.ndarray | None = None,
+    ) -> PathFront:
+        """A front of given paths (e.g. a planner's), their metrics
+        computed on ``workspace``.
+
+        Parameters
+        ----------
+        workspace : Workspace
+            The grid the paths are on (obstacles, potential, cell size,
+            corner rule).
+        paths : sequence of (m_i, 2) int arrays
+            Cells ``(row, col)``, start to goal; kept in the given order (no
+            filtering: the caller knows they are mutually non-dominated).
+        objectives : sequence of str
+            Names of the columns of ``F``.
+        F : (k, m) float array, optional
+            The paths' objective values (e.g. an exact front's, or a
+            costmap planner's layer objectives); default the ``objectives``
+            columns of the metrics (:data:`gapath.objectives.OBJECTIVES`
+            names only).
+
+        Returns
+        -------
+        PathFront
+            With no genomes (``X`` of shape ``(k, 0)``).
+
+        Raises
+        ------
+        ConfigError
+            Without ``F``, on an objective that is not a metric.
+
+        Examples
+        --------
+        >>> from gapath import Workspace
+        >>> ws = Workspace(np.zeros((2, 3), bool))
+        >>> front = PathFront.from_paths(ws, [np.array([[1, 0], [1, 1], [0, 2]])], ["length"])
+        >>> front.F.round(4).tolist(), front.marked()
+        ([[2.4142]], {'shortest': 0, 'knee': 0})
+        """
+        from gapath.objectives import evaluate_paths, objective_index, pad_paths
+
+        paths = [np.asarray(p, dtype=np.int64).reshape(-1, 2) for p in paths]
+        names = tuple(objectives)
+        if paths:
+            P, L = pad_paths(paths)
+            metrics = evaluate_paths(
+                P, L, workspace.occ, workspace.potential, workspace.cell_size, workspace.corner_cutting
+            )
+        else:
+            metrics = np.empty((0, len(OBJECTIVES)))
+        if F is None:
+            F = metrics[:, objective_index(list(names))]
+        F = np.asarray(F, dtype=float).reshape(len(paths), len(names))
+        return cls(names, F, metrics, np.empty((len(paths), 0)), paths)
 
     def __len__(self) -> int:
         return len(self.F)
 
-    def records(self) -> list[dict]:
+    def marked(self) -> dict[str, int]:
+        """Indices of the shortest, the safest (least vulnerable) and the
+        knee path (see :meth:`knee`), as ``summary.json``'s ``marked`` entry
+        and the plots show them; objectives not in the front are left out,
+        an empty front has none.
+
+        Returns
+        -------
+        dict of str to int
+            ``{"shortest": i, "safest": j, "knee": k}`` (those that apply).
+        """
+        marks: dict[str, int] = {}
+        if len(self) == 0:
+            return marks
+        for label, name in MARKED:
+            if name in self.objectives:
+                marks[label] = self.best(name)
+        marks["knee"] = self.knee()
+        return marks
+
+    def records(self) -> list[dict[str, Any]]:
         """``[{"objectives": {name: value}, "path": [[r, c], ...]}]`` (plus the
         other metrics under ``"metrics"``)."""
         out = []
@@ -78,7 +169,7 @@ def select_front(F: np.ndarray, metrics: np.ndarray) -> np.ndarray:
     return nd[np.lexsort(F[nd].T[::-1])]
 
 
-def path_front(problem, X) -> PathFront:
+def path_front(problem: GridPathProblem, X: Any) -> PathFront:
     """The front of genomes ``X`` of a :class:`gapath.problems.GridPathProblem`.
 
     Objectives are recomputed unpenalised from the decoded paths.

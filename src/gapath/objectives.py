@@ -22,6 +22,7 @@ counts as one interfering unit when the workspace forbids corner cutting
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable, Sequence
 
 import numba
 import numpy as np
@@ -32,6 +33,8 @@ from gapath.grid import DIRECTION, SQRT2, check_path, cuts_corner, turn
 #: Names of the per-path metrics, in the column order of the kernels' output.
 OBJECTIVES = ("length", "vulnerability", "smoothness", "interfering")
 LENGTH, VULNERABILITY, SMOOTHNESS, INTERFERING = range(4)
+#: Metrics that may be objectives (``interfering`` is the constraint).
+OBJECTIVE_NAMES = ("length", "vulnerability", "smoothness")
 
 #: One eighth turn in radians (smoothness counts eighths).
 QUARTER_PI = math.pi / 4.0
@@ -58,6 +61,45 @@ def objective_index(names) -> list[int]:
             raise ConfigError(f"objective {n!r} is given twice")
         idx.append(OBJECTIVES.index(n))
     return idx
+
+
+def check_objective_names(names: Iterable[str], layers: Sequence[str] = ()) -> list[str]:
+    """Check that every name is a path objective: one of
+    :data:`OBJECTIVE_NAMES` or of the costmap ``layers``.
+
+    Parameters
+    ----------
+    names : iterable of str
+        The objective names, already split (repeats and emptiness are left
+        to the caller, e.g. :func:`objective_index`).
+    layers : sequence of str, optional
+        Further allowed names (a costmap's layer objectives).
+
+    Returns
+    -------
+    list of str
+        The names, in order.
+
+    Raises
+    ------
+    ConfigError
+        On the first unknown name, naming it and the choices.
+
+    Examples
+    --------
+    >>> check_objective_names(["length", "smoothness"])
+    ['length', 'smoothness']
+    >>> check_objective_names(["length", "risk"])
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: unknown objective 'risk'; expected some of length, vulnerability, smoothness
+    """
+    names = list(names)
+    for n in names:
+        if n not in OBJECTIVE_NAMES and n not in layers:
+            expected = OBJECTIVE_NAMES + tuple(x for x in layers if x not in OBJECTIVE_NAMES)
+            raise ConfigError(f"unknown objective {n!r}; expected some of {', '.join(expected)}")
+    return names
 
 
 @numba.njit(cache=True)

@@ -6,8 +6,16 @@ notebook's inline backend; ``gapath`` commands select Agg (files only).
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import matplotlib.pyplot as plt
 import numpy as np
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+
+    from gapath.front import PathFront
+    from gapath.workspace import Workspace
 
 #: (label, colour) of the marked paths.
 MARKS = {"shortest": "tab:blue", "safest": "tab:green", "knee": "tab:red"}
@@ -79,20 +87,13 @@ def label_map_axes(ax, workspace, scale: float = 1.0, unit: str | None = None) -
         ax.set_ylabel(f"y = row x cell size ({unit}, 0 at the top)")
 
 
-def marked_paths(front) -> dict[str, int]:
-    """Indices of the shortest, the safest (least vulnerable) and the knee
-    path of a front (objectives not in the front are left out)."""
-    marks = {}
-    if len(front) == 0:
-        return marks
-    for label, name in (("shortest", "length"), ("safest", "vulnerability")):
-        if name in front.objectives:
-            marks[label] = front.best(name)
-    marks["knee"] = front.knee()
-    return marks
-
-
-def plot_front(front, ax=None, reference=None, title=None, workspace=None):
+def plot_front(
+    front: PathFront,
+    ax: Axes | None = None,
+    reference: np.ndarray | None = None,
+    title: str | None = None,
+    workspace: Workspace | None = None,
+) -> Axes:
     """Scatter the front's first two objectives (a third one as colour),
     with the marked paths highlighted and an optional reference front;
     axis labels carry the units (lengths in the units of ``workspace``).
@@ -122,7 +123,7 @@ def plot_front(front, ax=None, reference=None, title=None, workspace=None):
             plt.colorbar(sc, ax=ax, label=objective_label(names[2], workspace))
         else:
             ax.scatter(F[:, 0], y, s=12, c="k", label="front", zorder=3)
-        for label, i in marked_paths(front).items():
+        for label, i in front.marked().items():
             ax.scatter([F[i, 0]], [y[i]], s=90, marker="*", color=MARKS[label], label=label, zorder=4)
     ax.set_xlabel(objective_label(names[0], workspace))
     ax.set_ylabel(objective_label(names[1], workspace) if len(names) > 1 else "(one objective)")
@@ -132,7 +133,9 @@ def plot_front(front, ax=None, reference=None, title=None, workspace=None):
     return ax
 
 
-def plot_paths(workspace, front, ax=None, title=None):
+def plot_paths(
+    workspace: Workspace, front: PathFront, ax: Axes | None = None, title: str | None = None
+) -> Axes:
     """The map with the shortest, the safest and the knee path of ``front``,
     axes in cells, or in metres in the map frame of a ROS map.
 
@@ -145,7 +148,7 @@ def plot_paths(workspace, front, ax=None, title=None):
         scale = 6.0 / max(h, w)
         _, ax = plt.subplots(figsize=(max(3.0, w * scale) + 1, max(3.0, h * scale) + 0.6))
     ax.imshow(workspace.occ, cmap="Greys", vmin=0, vmax=1.4, interpolation="nearest")
-    for label, i in marked_paths(front).items():
+    for label, i in front.marked().items():
         p = np.asarray(front.paths[i])
         ax.plot(p[:, 1], p[:, 0], "-", color=MARKS[label], lw=2, label=label, alpha=0.85)
     (sr, sc), (gr, gc) = workspace.start, workspace.goal

@@ -179,7 +179,7 @@ def write_front(out_dir, workspace, front, summary: dict, *, plots: bool = True)
 
 def run_summary(result) -> dict:
     """The ``summary.json`` content of a :class:`gapath.solver.SolveResult`."""
-    marks = plotting.marked_paths(result.front)
+    marks = result.front.marked()
     return {
         "settings": result.settings,
         "versions": versions(),

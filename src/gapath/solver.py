@@ -10,10 +10,11 @@ from pymoo.optimize import minimize
 
 from gapath.algorithms import FastNSGA2, paper_nsga2
 from gapath.callbacks import Callbacks, ProgressBar, population_arrays
-from gapath.errors import ConfigError
+from gapath.errors import ConfigError, positive_int
 from gapath.front import PathFront, path_front
 from gapath.operators import PlannerSampling
 from gapath.problems import GridPathProblem
+from gapath.workspace import Workspace
 
 #: Engines that run Ahmed & Deb's NSGA-II (same results for the same seed).
 ENGINES = {"fast": lambda pop_size, **kw: FastNSGA2(pop_size, **kw), "pymoo": paper_nsga2}
@@ -35,7 +36,7 @@ class SolveResult:
         that of the last complete generation.
     """
 
-    workspace: object
+    workspace: Workspace
     problem: GridPathProblem
     front: PathFront
     settings: dict
@@ -44,18 +45,6 @@ class SolveResult:
     n_gen: int
     interrupted: bool = False
     pymoo_result: object = field(default=None, repr=False)
-
-
-def _positive_int(value, name):
-    try:
-        v = int(value)
-        if v != float(value):
-            raise ValueError
-    except (TypeError, ValueError):
-        raise ConfigError(f"{name} must be a positive integer, got {value!r}") from None
-    if v <= 0:
-        raise ConfigError(f"{name} must be a positive integer, got {value!r}")
-    return v
 
 
 def objective_mode(objectives, constraints=None, sbx_eta=None, tiebreak="smoothness") -> dict:
@@ -79,7 +68,7 @@ def objective_mode(objectives, constraints=None, sbx_eta=None, tiebreak="smoothn
 
 
 def solve(
-    workspace,
+    workspace: Workspace,
     *,
     objectives=("length", "vulnerability"),
     encoding=None,
@@ -139,8 +128,8 @@ def solve(
     >>> r.n_gen
     3
     """
-    pop_size = _positive_int(pop_size, "pop_size")
-    n_gen = _positive_int(n_gen, "n_gen")
+    pop_size = positive_int(pop_size, "pop_size")
+    n_gen = positive_int(n_gen, "n_gen")
     seed = int(seed)
     mode = objective_mode(objectives, constraints, sbx_eta, tiebreak)
     constraints, sbx_eta = mode["constraints"], mode["sbx_eta"]
@@ -163,12 +152,7 @@ def solve(
     callbacks = Callbacks(bar, callback)
 
     settings = dict(
-        map=workspace.name,
-        shape=list(workspace.shape),
-        start=list(workspace.start),
-        goal=list(workspace.goal),
-        cell_size=workspace.cell_size,
-        corner_cutting=workspace.corner_cutting,
+        **workspace.describe(),
         objectives=list(problem.objectives),
         paths=paths,
         encoding=encoding,

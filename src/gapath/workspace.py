@@ -296,6 +296,35 @@ class Workspace:
         occ = kw.pop("occ")
         return Workspace(occ, **kw)
 
+    def describe(self) -> dict[str, Any]:
+        """The workspace's settings as written to ``summary.json``: ``map``
+        (the name), ``shape``, ``start``, ``goal`` (lists), ``cell_size`` and
+        ``corner_cutting``; with the occupancy they rebuild the workspace.
+
+        Returns
+        -------
+        dict
+            Plain JSON values.
+
+        Examples
+        --------
+        >>> ws = Workspace(np.zeros((4, 5), bool), name="open")
+        >>> ws.describe()
+        {'map': 'open', 'shape': [4, 5], 'start': [3, 0], 'goal': [0, 4], 'cell_size': 1.0, 'corner_cutting': True}
+        >>> d = ws.describe()
+        >>> Workspace(ws.occ, d["start"], d["goal"], cell_size=d["cell_size"],
+        ...           corner_cutting=d["corner_cutting"], name=d["map"]) == ws
+        True
+        """
+        return {
+            "map": self.name,
+            "shape": list(self.shape),
+            "start": list(self.start),
+            "goal": list(self.goal),
+            "cell_size": self.cell_size,
+            "corner_cutting": self.corner_cutting,
+        }
+
     def __repr__(self) -> str:
         h, w = self.shape
         return (

@@ -37,6 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 
 from gapath.errors import ConfigError
+from gapath.workspace import Workspace
 
 #: The tolerance a length must meet to match a MovingAI optimum (the
 #: ``.scen`` files print 6 significant digits or 8 decimals).
@@ -188,7 +189,7 @@ class MapChoice:
         The ``--scen`` line; ``scen_file``, ``scen_index`` name it.
     """
 
-    workspace: object
+    workspace: Workspace
     corner_source: str
     scenario: object = None
     scen_file: Path | None = None

@@ -5,8 +5,6 @@ from __future__ import annotations
 import time
 from pathlib import Path
 
-import numpy as np
-
 
 def register(subparsers) -> None:
     from gapath.cli._args import add_map_arguments
@@ -41,13 +39,12 @@ def register(subparsers) -> None:
 def _positive_int(text):
     import argparse
 
+    from gapath.errors import ConfigError, positive_int
+
     try:
-        value = int(text)
-    except ValueError:
-        value = 0
-    if value < 1:
-        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}")
-    return value
+        return positive_int(text, "N")
+    except ConfigError:
+        raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
 
 
 class _ProgressLine:
@@ -89,33 +86,11 @@ class _ProgressLine:
             self.stream.flush()
 
 
-def exact_path_front(workspace, objectives, mode, **options):
-    """The exact front as a :class:`gapath.front.PathFront` (``options``:
-    ``max_labels``, ``progress``, see :func:`gapath.planners.exact.free_front`)."""
-    return _path_front(workspace, _exact_front(workspace, objectives, mode, **options))
-
-
-def _exact_front(workspace, objectives, mode, **options):
-    from gapath.planners import exact
-
-    solver = exact.monotone_front if mode == "monotone" else exact.free_front
-    return solver(workspace, objectives, **options)
-
-
-def _path_front(workspace, ef):
-    from gapath.front import PathFront
-    from gapath.objectives import evaluate_paths, pad_paths
-
-    P, L = pad_paths(ef.paths)
-    metrics = evaluate_paths(
-        P, L, workspace.occ, workspace.potential, workspace.cell_size, workspace.corner_cutting
-    )
-    return PathFront(tuple(ef.objectives), ef.F, metrics, np.empty((len(ef.F), 0)), list(ef.paths))
-
-
 def run(args) -> int:
     from gapath.cli._args import load_workspace
     from gapath.errors import NoPathError
+    from gapath.front import PathFront
+    from gapath.planners.exact import exact_front
     from gapath.results import versions, write_front
 
     choice = load_workspace(args)
@@ -124,7 +99,7 @@ def run(args) -> int:
     t0 = time.perf_counter()
     bar = None if args.quiet else _ProgressLine(args.mode)
     try:
-        ef = _exact_front(ws, objectives, args.mode, max_labels=args.max_labels, progress=bar)
+        ef = exact_front(ws, objectives, args.mode, max_labels=args.max_labels, progress=bar)
     except NoPathError as exc:  # exit status 1, with the reason and what to try
         from gapath.cli.main import no_path_error
 
@@ -148,21 +123,16 @@ def run(args) -> int:
     finally:
         if bar is not None:
             bar.close()
-    front = _path_front(ws, ef)
+    front = PathFront.from_paths(ws, ef.paths, ef.objectives, ef.F)
     seconds = time.perf_counter() - t0
     summary = {
-        "settings": dict(
-            map=ws.name,
-            shape=list(ws.shape),
-            start=list(ws.start),
-            goal=list(ws.goal),
-            cell_size=ws.cell_size,
-            corner_cutting=ws.corner_cutting,
-            objectives=list(front.objectives),
-            mode=args.mode,
-            algorithm="exact",
-            max_labels=args.max_labels,
-        ),
+        "settings": {
+            **ws.describe(),
+            "objectives": list(front.objectives),
+            "mode": args.mode,
+            "algorithm": "exact",
+            "max_labels": args.max_labels,
+        },
         "versions": versions(),
         "wall_time_s": round(seconds, 4),
         "front_size": len(front),

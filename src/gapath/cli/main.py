@@ -205,9 +205,7 @@ def _report(result, out_dir: Path) -> None:
             f"  stopped before generation {asked}: mating found no path not yet in the "
             f"population (the map has few distinct paths)"
         )
-    from gapath.plotting import marked_paths
-
-    for label, i in marked_paths(front).items():
+    for label, i in front.marked().items():
         values = ", ".join(f"{n}={v:.4f}" for n, v in zip(front.objectives, front.F[i]))
         print(f"  {label:9s} {values}")
     print(
@@ -219,13 +217,10 @@ def _report(result, out_dir: Path) -> None:
 def _reference(args, workspace):
     if not args.reference:
         return None
-    from gapath.problems.grid_path import OBJECTIVE_NAMES
+    from gapath.objectives import check_objective_names
     from gapath.reference import reference_front
 
-    names = [o.strip() for o in args.objectives.split(",") if o.strip()]
-    bad = [n for n in names if n not in OBJECTIVE_NAMES]
-    if bad:
-        raise ConfigError(f"unknown objective {bad[0]!r}; expected some of {', '.join(OBJECTIVE_NAMES)}")
+    names = check_objective_names(o.strip() for o in args.objectives.split(",") if o.strip())
     try:
         return reference_front(workspace, names, args.reference)
     except (ConfigError, MapError) as exc:
@@ -307,7 +302,7 @@ def _write_convergence(tracker, out_dir: Path, plots: bool) -> None:
 
 def _multirun(args, workspace, kwargs, out_dir: Path, reference) -> int:
     from gapath.experiments import multirun
-    from gapath.results import versions, write_front, write_result
+    from gapath.results import write_front, write_result
 
     def write_run(r):
         write_result(r, out_dir / "runs" / str(r.settings["seed"]), plots=not args.no_plots)
@@ -316,18 +311,7 @@ def _multirun(args, workspace, kwargs, out_dir: Path, reference) -> int:
 
     m = multirun(workspace, runs=args.runs, seed=args.seed, on_run=write_run, **kwargs)
     extra = _quality(args, reference, m.front.F)
-    summary = {
-        "settings": {**m.runs[0].settings, "seed": m.seeds[0], "runs": args.runs},
-        "seeds": m.seeds,
-        "versions": versions(),
-        "wall_time_s": round(sum(r.seconds for r in m.runs), 3),
-        "evaluations": sum(r.n_eval for r in m.runs),
-        "interrupted": m.interrupted,
-        "front_size": len(m.front),
-        "run_front_sizes": [len(r.front) for r in m.runs],
-        **extra,
-    }
-    write_front(out_dir, workspace, m.front, summary, plots=not args.no_plots)
+    write_front(out_dir, workspace, m.front, m.summary(extra), plots=not args.no_plots)
     if not args.quiet:
         print(
             f"merged front of {len(m.runs)} runs: {len(m.front)} paths; wrote {out_dir}/front.csv, "

@@ -19,14 +19,13 @@ from pathlib import Path
 
 import numpy as np
 
-#: Layers ``--layers`` accepts.
-LAYERS = ("elevation", "solar", "risk")
+from gapath.costmap import PLAN_LAYERS as LAYERS  # the layers --layers accepts
 
 
 def register(subparsers) -> None:
     from gapath.cli._args import add_map_arguments, cell
     from gapath.cli.simulate import add_planner_choices
-    from gapath.planners.pareto import PLANNERS
+    from gapath.planners.registry import PLANNERS
 
     p = subparsers.add_parser(
         "plan",
@@ -34,10 +33,10 @@ def register(subparsers) -> None:
         "layers with --layers), or hybrid A* / RRT / RRT* for a car-like robot",
     )
     add_map_arguments(p)
-    kinematic = add_planner_choices(p)
+    add_planner_choices(p)
     p.add_argument(
         "--planner",
-        choices=tuple(PLANNERS) + tuple(kinematic),
+        choices=tuple(PLANNERS),
         default="dstar-po",
         help="astar / dstar-lite / astar-po / dstar-po: a shortest path, or with "
         "--layers a normalised weighted sum (astar, dstar-lite) or a Pareto "
@@ -128,61 +127,32 @@ def parse_layers(text, args=None) -> list[str]:
     return layers
 
 
-def build_costmap(
-    workspace, layers, *, dem=None, dem_method="bilinear", terrain_seed=1, risk=None, solar_rate=0.01
-):
-    """The costmap ``gapath plan`` uses (see its options).
-
-    Raises
-    ------
-    ConfigError
-        On an unknown layer or a bad DEM, risk cell or solar rate.
-    """
-    from gapath.costmap import Costmap, fractal_terrain
-    from gapath.errors import ConfigError
-
-    for name in layers:
-        if name not in LAYERS:
-            raise ConfigError(f"unknown layer {name!r}; expected some of {', '.join(LAYERS)}")
-    cm = Costmap(workspace, solar_rate=solar_rate)
-    if "elevation" in layers:
-        if dem is not None:
-            cm.set_elevation(Path(dem), method=dem_method)
-        else:
-            cm.set_elevation(fractal_terrain(workspace.shape, seed=terrain_seed))
-    if "risk" in layers:
-        h, w = workspace.shape
-        cm.set_risk((h // 2, w // 2) if risk is None else risk)
-    return cm
-
-
 def _warm_up(planner, objectives, layers, args, corner_cutting) -> float:
     """Run ``planner`` once on a tiny map so that numba compiles (or loads
     from its cache) the kernels before the timed run; returns the seconds."""
+    from gapath.costmap import build_costmap
     from gapath.errors import GapathError
-    from gapath.planners.pareto import plan
+    from gapath.planners import plan
     from gapath.workspace import Workspace
 
     t0 = time.perf_counter()
     tiny = Workspace(np.zeros((5, 5), bool), corner_cutting=corner_cutting, name="warm-up")
     try:
         cm = build_costmap(tiny, layers, terrain_seed=args.terrain_seed, solar_rate=args.solar_rate)
-        plan(cm, planner, objectives, priority=args.priority)
+        plan(tiny, planner, costmap=cm, objectives=objectives, priority=args.priority)
     except GapathError:
         pass  # a bad option is reported by the real run
     return time.perf_counter() - t0
 
 
 def _warm_up_kinematic(planner) -> float:
-    import argparse
-
-    from gapath.cli.simulate import plan_with
     from gapath.errors import GapathError
+    from gapath.planners import plan
     from gapath.workspace import Workspace
 
     t0 = time.perf_counter()
     try:
-        plan_with(planner, Workspace(np.zeros((12, 12), bool), name="warm-up"), argparse.Namespace())
+        plan(Workspace(np.zeros((12, 12), bool), name="warm-up"), planner, seed=1)
     except GapathError:
         pass
     return time.perf_counter() - t0
@@ -216,16 +186,15 @@ def _plan_kinematic(args, choice) -> int:
 
 def run(args) -> int:
     from gapath.cli._args import load_workspace
-    from gapath.cli.simulate import PLANNER_CHOICES
+    from gapath.costmap import build_costmap
     from gapath.front import PathFront
-    from gapath.objectives import evaluate_paths, pad_paths
-    from gapath.planners.pareto import plan
+    from gapath.planners import plan, planner_info
     from gapath.results import versions, write_front
 
     layers = parse_layers(args.layers, args)
     choice = load_workspace(args)
     ws = choice.workspace
-    if args.planner in PLANNER_CHOICES:
+    if planner_info(args.planner).family == "kinematic":
         return _plan_kinematic(args, choice)
     cm = build_costmap(
         ws,
@@ -238,50 +207,43 @@ def run(args) -> int:
     )
     objectives = ("length",) + tuple(layers)
     compile_s = _warm_up(args.planner, objectives, layers, args, ws.corner_cutting)
-    t0 = time.perf_counter()
-    res = plan(cm, args.planner, objectives, priority=args.priority)
-    seconds = time.perf_counter() - t0
-    P, L = pad_paths([res.path])
-    metrics = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
-    front = PathFront(res.objectives, res.F[None, :], metrics, np.empty((1, 0)), [res.path])
+    res = plan(ws, args.planner, costmap=cm, objectives=objectives, priority=args.priority)
+    seconds = res.seconds
+    front = PathFront.from_paths(ws, [res.cells], tuple(res.objectives), res.F[None, :])
     terrain = None
     if "elevation" in layers:
         terrain = f"{args.dem} ({args.dem_method})" if args.dem else f"fractal seed={args.terrain_seed}"
     summary = {
-        "settings": dict(
-            map=ws.name,
-            shape=list(ws.shape),
-            start=list(ws.start),
-            goal=list(ws.goal),
-            cell_size=ws.cell_size,
-            planner=args.planner,
-            objectives=list(objectives),
-            layers=layers,
-            priority=args.priority,
-            terrain=terrain,
-            risk_cells=[list(c) for c in cm.risk_cells],
-            solar_rate=cm.solar_rate if "solar" in layers else None,
-            algorithm=args.planner,
+        "settings": {
+            **ws.describe(),
+            "planner": args.planner,
+            "objectives": list(objectives),
+            "layers": layers,
+            "priority": args.priority,
+            "terrain": terrain,
+            "risk_cells": [list(c) for c in cm.risk_cells],
+            "solar_rate": cm.solar_rate if "solar" in layers else None,
+            "algorithm": args.planner,
             **choice.settings(),
-        ),
+        },
         "versions": versions(),
         "wall_time_s": round(seconds, 4),
         "compile_s": round(compile_s, 4),
-        "expansions": res.expansions,
+        "expansions": res.info["expansions"],
         "front_size": 1,
-        "objectives": res.values,
-        "search_cost": dict(zip(res.objectives, map(float, res.search_cost))),
+        "objectives": res.objectives,
+        "search_cost": res.info["search_cost"],
     }
-    length = float(res.values["length"])
+    length = float(res.objectives["length"])
     if choice.scenario is not None:
         summary["scenario"] = choice.scenario_record(length)
     write_front(Path(args.out), ws, front, summary, plots=not args.no_plots)
     if not args.quiet:
-        vals = ", ".join(f"{k}={v:.4f}" for k, v in res.values.items())
+        vals = ", ".join(f"{k}={v:.4f}" for k, v in res.objectives.items())
         what = "shortest path" if not layers else f"length and {', '.join(layers)}"
         print(
-            f"{ws!r}\n{choice.corner_line()}\n{args.planner} ({what}): {len(res.path)} cells, "
-            f"{vals}; {res.expansions} expansions in {seconds * 1000:.1f} ms (numba warm-up "
+            f"{ws!r}\n{choice.corner_line()}\n{args.planner} ({what}): {len(res.cells)} cells, "
+            f"{vals}; {res.info['expansions']} expansions in {seconds * 1000:.1f} ms (numba warm-up "
             f"{compile_s * 1000:.0f} ms not counted)\nwrote {args.out}/front.csv, paths.json, "
             f"summary.json" + ("" if args.no_plots else ", front.png, paths.png")
         )

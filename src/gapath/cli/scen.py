@@ -25,7 +25,7 @@ SHOWN = 10
 
 
 def register(subparsers) -> None:
-    from gapath.planners.pareto import PLANNERS
+    from gapath.planners.registry import planner_names
 
     p = subparsers.add_parser(
         "scen", help="check a grid planner against every optimum of a MovingAI .scen file"
@@ -33,7 +33,7 @@ def register(subparsers) -> None:
     p.add_argument("file", metavar="FILE", help="MovingAI scenario file (.scen)")
     p.add_argument(
         "--planner",
-        choices=tuple(PLANNERS),
+        choices=planner_names("grid"),
         default="astar",
         help="grid planner, as in 'gapath plan' without --layers (default: %(default)s)",
     )
@@ -109,11 +109,11 @@ def check_scenarios(scenarios, planner="astar", map_path=None, on_line=None):
 
 def run(args) -> int:
     from gapath.cli.plan import _warm_up
-    from gapath.errors import ConfigError
+    from gapath.errors import ConfigError, positive_int
     from gapath.loaders import load_scenarios
 
-    if args.limit is not None and args.limit < 1:
-        raise ConfigError(f"--limit must be a positive integer, got {args.limit}")
+    if args.limit is not None:
+        positive_int(args.limit, "--limit")
     scenarios = load_scenarios(args.file)
     if not scenarios:
         raise ConfigError(f"{args.file}: the file holds no scenario")

@@ -17,11 +17,15 @@ hybrid A* and RRT / RRT* planners to it:
 * :func:`add_planner_choices` -- the planner names this module handles
   (and, given a parser, adds their options to it, skipping options the
   parser already has);
-* :func:`plan_with` -- plans with one of them on a workspace from the parsed
-  arguments, returning a :class:`PlanOutcome`;
+* :func:`plan_with` -- turns the parsed arguments into the options of
+  :func:`gapath.planners.plan` and plans with one of them, returning a
+  :class:`~gapath.planners.PlanOutcome`;
 * :func:`write_plan` -- writes ``front.csv``, ``paths.json``,
   ``summary.json`` and ``paths.png`` in the format of ``gapath solve`` (one
   record, with the continuous poses beside the cells).
+
+The planners, the car and their defaults live in the library
+(:mod:`gapath.planners.registry`); this module only maps flags to them.
 """
 
 from __future__ import annotations
@@ -30,15 +34,16 @@ import contextlib
 import math
 import re
 import time
-from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-#: Planner names handled by :func:`plan_with`.
-PLANNER_CHOICES = ("hybrid-astar", "rrt", "rrt-star")
+from gapath.planners.registry import SIMULATED_PLANNERS, CarSettings, PlanOutcome, planner_names
+
+#: Planner names handled by :func:`plan_with` (the kinematic ones).
+PLANNER_CHOICES = planner_names("kinematic")
 #: Planners ``gapath simulate`` can drive.
-SIMULATE_PLANNERS = ("hybrid-astar", "rrt", "rrt-star", "astar", "dstar-lite")
+SIMULATE_PLANNERS = SIMULATED_PLANNERS
 
 
 def _cell_arg(text):
@@ -63,28 +68,28 @@ def add_planner_arguments(parser) -> None:
         parser,
         "--wheelbase",
         type=float,
-        default=0.6,
+        default=CarSettings.wheelbase,
         help="car wheelbase, world units (default: %(default)s)",
     )
     _add(
         parser,
         "--max-steer",
         type=float,
-        default=34.4,
+        default=CarSettings.max_steer_deg,
         help="maximum steering angle in degrees, below 90 (default: %(default)s)",
     )
     _add(
         parser,
         "--radius",
         type=float,
-        default=0.3,
+        default=CarSettings.radius,
         help="robot footprint radius, world units (default: %(default)s)",
     )
     _add(
         parser,
         "--speed",
         type=float,
-        default=1.0,
+        default=CarSettings.speed,
         help="robot speed, world units per second (default: %(default)s)",
     )
     _add(
@@ -152,6 +157,7 @@ def add_planner_choices(parser=None) -> tuple[str, ...]:
 #: Planner and car parameters by the CLI flag that sets them.
 FLAG_NAMES = {
     "max_iter": "--iterations",
+    "max_steer_deg": "--max-steer",
     "goal_bias": "--goal-bias",
     "step": "--step",
     "radius": "--radius",
@@ -195,92 +201,39 @@ def planner_heading(workspace, degrees: float) -> float:
     return theta if frame is None else frame.yaw - theta
 
 
+#: Car settings (:class:`~gapath.planners.CarSettings`) by argparse ``dest``.
+CAR_FLAGS = {"wheelbase": "wheelbase", "max_steer": "max_steer_deg", "speed": "speed", "radius": "radius"}
+#: Planner settings by argparse ``dest``, per planner (options of
+#: :func:`gapath.planners.plan`).
+PLANNER_FLAGS = {
+    "hybrid-astar": {
+        "heading_bins": "heading_bins",
+        "arc_length": "arc_length",
+        "heuristic_weight": "heuristic_weight",
+    },
+    "rrt": {"iterations": "max_iter", "step": "step", "goal_bias": "goal_bias"},
+}
+PLANNER_FLAGS["rrt-star"] = PLANNER_FLAGS["rrt"]
+
+
 def car_from_args(args):
     """A :class:`~gapath.planners.hybrid_astar.CarModel` from parsed options
-    (missing options take the defaults)."""
-    from gapath.errors import ConfigError
-    from gapath.planners.hybrid_astar import CarModel
-
-    steer = getattr(args, "max_steer", 34.4)
-    try:
-        degrees = float(steer)
-    except (TypeError, ValueError):
-        raise ConfigError(f"--max-steer must be a number of degrees, got {steer!r}") from None
-    if not 0.0 < degrees < 90.0:
-        raise ConfigError(f"--max-steer must be between 0 and 90 degrees (both excluded), got {degrees:g}")
+    (missing options take the defaults of :class:`~gapath.planners.CarSettings`)."""
+    kwargs = {key: getattr(args, dest) for dest, key in CAR_FLAGS.items() if hasattr(args, dest)}
     with cli_vocabulary():
-        return CarModel(
-            wheelbase=getattr(args, "wheelbase", 0.6),
-            max_steer=math.radians(degrees),
-            speed=getattr(args, "speed", 1.0),
-            radius=getattr(args, "radius", 0.3),
-        )
+        return CarSettings(**kwargs).model()
 
 
-@dataclass(eq=False)
-class PlanOutcome:
-    """A path from :func:`plan_with`.
-
-    Attributes
-    ----------
-    planner : str
-    poses : (n, 3) array
-        World poses ``(x, y, theta)`` (``x = col * cell_size``, ``y = row *
-        cell_size``).
-    cells : (m, 2) int array
-        The cells ``(row, col)`` the poses pass through.
-    objectives : dict
-        ``length``, ``turning``, ``clearance``.
-    seconds : float
-    info : dict
-        Planner figures (expansions, iterations, ...).
-    """
-
-    planner: str
-    poses: np.ndarray
-    cells: np.ndarray
-    objectives: dict
-    seconds: float
-    info: dict = field(default_factory=dict)
-
-    def records(self) -> list[dict]:
-        """``paths.json`` content: ``[{"objectives", "path", "poses"}]``."""
-        return [
-            {
-                "objectives": {k: float(v) for k, v in self.objectives.items()},
-                "path": np.asarray(self.cells).tolist(),
-                "poses": np.round(self.poses, 6).tolist(),
-            }
-        ]
-
-    def summary(self, workspace) -> dict:
-        from gapath.results import versions
-
-        return {
-            "settings": {
-                "map": workspace.name,
-                "shape": list(workspace.shape),
-                "start": list(workspace.start),
-                "goal": list(workspace.goal),
-                "cell_size": workspace.cell_size,
-                "planner": self.planner,
-                **{k: v for k, v in self.info.items() if k != "seconds"},
-            },
-            "versions": versions(),
-            "wall_time_s": round(self.seconds, 6),
-            "objectives": {k: float(v) for k, v in self.objectives.items()},
-        }
-
-
-def _cells(poses, cell_size):
-    rc = np.floor(np.asarray(poses)[:, [1, 0]] / cell_size + 0.5).astype(np.int64)
-    keep = np.ones(len(rc), bool)
-    keep[1:] = np.any(rc[1:] != rc[:-1], axis=1)
-    return rc[keep]
+def planner_settings(name: str, args) -> dict:
+    """The settings of planner ``name`` given by the parsed options (missing
+    options are left to the planner's defaults)."""
+    flags = PLANNER_FLAGS.get(name, {})
+    return {key: getattr(args, dest) for dest, key in flags.items() if hasattr(args, dest)}
 
 
 def plan_with(name: str, workspace, args) -> PlanOutcome:
-    """Plan from the workspace's start to its goal with ``name``.
+    """Plan from the workspace's start to its goal with ``name``
+    (:func:`gapath.planners.plan` with the options in ``args``).
 
     Parameters
     ----------
@@ -298,83 +251,30 @@ def plan_with(name: str, workspace, args) -> PlanOutcome:
     ------
     ConfigError
         On an unknown planner or bad options (e.g. steering of 90 degrees or
-        more, a non-positive wheelbase, a start in collision).
+        more, a non-positive wheelbase, a start in collision), naming the
+        flag.
     NoPathError
         If no path was found.
     """
     from gapath.errors import ConfigError
+    from gapath.planners import plan
 
     if name not in PLANNER_CHOICES:
         raise ConfigError(f"unknown planner {name!r}; this module plans with {', '.join(PLANNER_CHOICES)}")
-    car = car_from_args(args)
+    options = dict(planner_settings(name, args), car=car_from_args(args))
+    if name == "hybrid-astar" and getattr(args, "heading", None) is not None:
+        options["heading"] = planner_heading(workspace, args.heading)
+    if name != "hybrid-astar" and hasattr(args, "seed"):
+        options["seed"] = args.seed
     with cli_vocabulary():
-        return _plan_with(name, workspace, args, car)
-
-
-def _plan_with(name, workspace, args, car) -> PlanOutcome:
-    from gapath.planners.hybrid_astar import HybridAStar
-    from gapath.planners.rrt import rrt
-
-    cs = workspace.cell_size
-    t0 = time.perf_counter()
-    if name == "hybrid-astar":
-        planner = HybridAStar(
-            workspace,
-            car,
-            heading_bins=getattr(args, "heading_bins", 72),
-            arc_length=getattr(args, "arc_length", None),
-            heuristic_weight=getattr(args, "heuristic_weight", 1.1),
-        )
-        heading = getattr(args, "heading", None)
-        start = None
-        if heading is not None:
-            sr, sc = workspace.start
-            start = (sc * cs, sr * cs, planner_heading(workspace, heading))
-        res = planner.plan(start)
-        poses = np.asarray(res.poses)
-        info = {
-            "expansions": res.expansions,
-            "reached": res.reached,
-            "cost": res.cost,
-            "min_turning_radius": car.min_turning_radius,
-            "radius": car.radius,
-            "heading_bins": planner.heading_bins,
-            "arc_length": planner.arc_length,
-        }
-    else:
-        res = rrt(
-            workspace,
-            seed=getattr(args, "seed", 1),
-            radius=car.radius,
-            star=name == "rrt-star",
-            max_iter=getattr(args, "iterations", 20000),
-            step=getattr(args, "step", None),
-            goal_bias=getattr(args, "goal_bias", 0.1),
-        )
-        poses = np.asarray(res.poses)
-        info = {
-            "iterations": res.iterations,
-            "nodes": res.nodes,
-            "first_solution": res.first_solution,
-            "radius": car.radius,
-            "seed": getattr(args, "seed", 1),
-        }
-    seconds = time.perf_counter() - t0
-    return PlanOutcome(
-        planner=name,
-        poses=poses,
-        cells=_cells(poses, cs),
-        objectives={"length": res.length, "turning": res.turning, "clearance": res.clearance},
-        seconds=seconds,
-        info=info,
-    )
+        return plan(workspace, name, **options)
 
 
 def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) -> list[Path]:
     """Write ``front.csv`` (one row: length, turning, clearance),
     ``paths.json``, ``summary.json`` and (with ``plots``) ``paths.png`` into
     ``out_dir``; returns the files."""
-    from gapath.results import atomic_write, dumps
+    from gapath.results import atomic_write, dumps, versions
 
     out = Path(out_dir)
     files = [out / "front.csv", out / "paths.json", out / "summary.json"]
@@ -393,7 +293,17 @@ def write_plan(outcome: PlanOutcome, workspace, out_dir, *, plots: bool = True) 
             np.column_stack([xy, np.mod(frame.yaw - p[:, 2] + np.pi, 2 * np.pi) - np.pi]).round(6).tolist()
         )
     atomic_write(files[1], dumps(records, indent=1) + "\n")
-    atomic_write(files[2], dumps(outcome.summary(workspace), indent=1, sort_keys=True) + "\n")
+    summary = {
+        "settings": {
+            **workspace.describe(),
+            "planner": outcome.planner,
+            **{k: v for k, v in outcome.info.items() if k != "seconds"},
+        },
+        "versions": versions(),
+        "wall_time_s": round(outcome.seconds, 6),
+        "objectives": {k: float(v) for k, v in outcome.objectives.items()},
+    }
+    atomic_write(files[2], dumps(summary, indent=1, sort_keys=True) + "\n")
     if plots:
         import matplotlib.pyplot as plt
 
@@ -495,11 +405,10 @@ def _speed_range(text):
 def _check_planner_flags(args, workspace, car, planner_kw) -> None:
     """Bad planner flags are bad input (exit 2), not a failed run: the
     simulation would report a planner that cannot start as blocked."""
-    from gapath.errors import ConfigError
+    from gapath.errors import ConfigError, positive_int
 
     if args.planner in ("rrt", "rrt-star"):
-        if not args.iterations >= 1:
-            raise ConfigError(f"--iterations must be a positive integer, got {args.iterations}")
+        positive_int(args.iterations, "--iterations")
         if args.step is not None and not (math.isfinite(args.step) and args.step > 0):
             raise ConfigError(f"--step must be a positive number of world units, got {args.step:g}")
         if not 0.0 <= args.goal_bias <= 1.0:
@@ -564,13 +473,7 @@ def run(args) -> int:
             if isinstance(exc.__context__, NoPathError):
                 raise NoPathError(str(exc)) from None
             raise
-    planner_kw = {}
-    if args.planner == "hybrid-astar":
-        planner_kw = dict(
-            heading_bins=args.heading_bins, arc_length=args.arc_length, heuristic_weight=args.heuristic_weight
-        )
-    elif args.planner in ("rrt", "rrt-star"):
-        planner_kw = dict(max_iter=args.iterations, step=args.step, goal_bias=args.goal_bias)
+    planner_kw = planner_settings(args.planner, args)
     _check_planner_flags(args, sc.workspace, robot.car, planner_kw)
     compile_s = _warm_up_simulation(args.planner, planner_kw, robot, settings)
     with cli_vocabulary():
@@ -596,14 +499,12 @@ def run(args) -> int:
         data["obstacle_positions"] = np.round(np.nan_to_num(res.obstacles, nan=-1e9), 4).tolist()
     atomic_write(out / "trajectory.json", dumps(data) + "\n")
     c = robot.car
+    workspace_settings = sc.workspace.describe()
+    del workspace_settings["corner_cutting"]  # the simulation's grid planners never cut corners
     summary = {
         **res.summary(),
         "settings": {
-            "map": sc.workspace.name,
-            "shape": list(sc.workspace.shape),
-            "start": list(sc.workspace.start),
-            "goal": list(sc.workspace.goal),
-            "cell_size": sc.workspace.cell_size,
+            **workspace_settings,
             "planner": args.planner,
             "seed": args.seed,
             "map_seed": args.map_seed,

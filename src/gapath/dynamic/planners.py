@@ -10,6 +10,7 @@ from gapath.dynamic.world import Robot
 from gapath.errors import ConfigError, NoPathError
 from gapath.planners.geometry import center_blocked
 from gapath.planners.hybrid_astar import HybridAStar, pose_cell
+from gapath.planners.registry import SIMULATED_PLANNERS
 
 
 def _poses_from_points(points: np.ndarray) -> np.ndarray:
@@ -213,8 +214,12 @@ class DStarLitePlanner(_GridPlanner):
         return self._poses(res.path, start, goal)
 
 
-#: Planner classes by name (the CLI and the experiment use these names).
-PLANNERS = {
+#: Names of the planners the simulation drives: the entries of the planner
+#: registry (:data:`gapath.planners.PLANNERS`) marked ``simulated``.
+PLANNERS = SIMULATED_PLANNERS
+
+#: The simulation's adapter of each planner in :data:`PLANNERS`.
+_ADAPTERS = {
     "hybrid-astar": HybridAStarPlanner,
     "rrt": lambda **kw: RRTPlanner(star=False, **kw),
     "rrt-star": lambda **kw: RRTPlanner(star=True, **kw),
@@ -225,7 +230,7 @@ PLANNERS = {
 
 def make_planner(name: str, **settings) -> Planner:
     """A planner by name: ``hybrid-astar``, ``rrt``, ``rrt-star``, ``astar``
-    or ``dstar-lite``.
+    or ``dstar-lite`` (:data:`PLANNERS`).
 
     Raises
     ------
@@ -234,4 +239,4 @@ def make_planner(name: str, **settings) -> Planner:
     """
     if name not in PLANNERS:
         raise ConfigError(f"unknown planner {name!r}; choose one of {', '.join(PLANNERS)}")
-    return PLANNERS[name](**settings)
+    return _ADAPTERS[name](**settings)

@@ -7,12 +7,18 @@ front, keeping the smoothest path among identical objective vectors.
 
 from __future__ import annotations
 
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from gapath.errors import ConfigError
+from gapath.errors import ConfigError, positive_int
 from gapath.front import PathFront, select_front
+
+if TYPE_CHECKING:
+    from gapath.solver import SolveResult
+    from gapath.workspace import Workspace
 
 
 @dataclass(eq=False)
@@ -27,19 +33,55 @@ class MultiRunResult:
     seeds : the seeds of ``runs``.
     interrupted : True when Ctrl-C stopped the sequence; ``runs`` then holds
         the completed runs and the interrupted one's last generation.
+    n_runs : the number of runs asked for (default ``len(runs)``).
     """
 
-    runs: list
+    runs: list[SolveResult]
     front: PathFront
     seeds: list[int] = field(default_factory=list)
     interrupted: bool = False
+    n_runs: int | None = None
 
     @property
-    def workspace(self):
+    def workspace(self) -> Workspace:
         return self.runs[0].workspace
 
+    def summary(self, extra: dict[str, Any] | None = None) -> dict[str, Any]:
+        """The ``summary.json`` content of the merged front (``gapath solve
+        --runs``): the first run's settings with the first seed and the
+        number of runs asked for, every seed, the summed wall time and
+        evaluations, the front sizes; ``extra`` entries are added (e.g.
+        ``quality`` against a reference).
 
-def merge_fronts(fronts) -> PathFront:
+        Returns
+        -------
+        dict
+
+        Examples
+        --------
+        >>> from gapath import default_workspace
+        >>> m = multirun(default_workspace(), runs=2, pop_size=12, n_gen=2)
+        >>> s = m.summary()
+        >>> s["seeds"], s["settings"]["runs"], len(s["run_front_sizes"])
+        ([1, 2], 2, 2)
+        """
+        from gapath.results import versions
+
+        runs = len(self.runs) if self.n_runs is None else self.n_runs
+        return {
+            "settings": {**self.runs[0].settings, "seed": self.seeds[0], "runs": runs},
+            "seeds": self.seeds,
+            "versions": versions(),
+            "wall_time_s": round(sum(r.seconds for r in self.runs), 3),
+            "evaluations": sum(r.n_eval for r in self.runs),
+            "interrupted": self.interrupted,
+            "front_size": len(self.front),
+            "run_front_sizes": [len(r.front) for r in self.runs],
+            **(extra or {}),
+        }
+
+
+def merge_fronts(fronts: Iterable[PathFront]) -> PathFront:
     """One front from several: feasible, non-dominated, one path per
     objective vector (SPEC tolerance; the smoothest), sorted.
 
@@ -74,7 +116,14 @@ def merge_fronts(fronts) -> PathFront:
     return PathFront(objectives, F[keep], metrics[keep], X[keep], [paths[i] for i in keep])
 
 
-def multirun(workspace, runs: int = 10, seed: int = 1, *, on_run=None, **solve_kwargs) -> MultiRunResult:
+def multirun(
+    workspace: Workspace,
+    runs: int = 10,
+    seed: int = 1,
+    *,
+    on_run: Callable[[SolveResult], object] | None = None,
+    **solve_kwargs: Any,
+) -> MultiRunResult:
     """Run the GA ``runs`` times with seeds ``seed .. seed+runs-1`` and merge.
 
     Parameters
@@ -101,12 +150,7 @@ def multirun(workspace, runs: int = 10, seed: int = 1, *, on_run=None, **solve_k
     """
     from gapath.solver import solve
 
-    try:
-        runs = int(runs)
-    except (TypeError, ValueError):
-        raise ConfigError(f"runs must be a positive integer, got {runs!r}") from None
-    if runs < 1:
-        raise ConfigError(f"runs must be a positive integer, got {runs!r}")
+    runs = positive_int(runs, "runs")
     results, seeds = [], []
     interrupted = False
     for s in range(int(seed), int(seed) + runs):
@@ -118,4 +162,4 @@ def multirun(workspace, runs: int = 10, seed: int = 1, *, on_run=None, **solve_k
         if r.interrupted:
             interrupted = True
             break
-    return MultiRunResult(results, merge_fronts([r.front for r in results]), seeds, interrupted)
+    return MultiRunResult(results, merge_fronts([r.front for r in results]), seeds, interrupted, runs)

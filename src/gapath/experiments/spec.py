@@ -482,7 +482,7 @@ def build_workspace(spec: dict, seed: int | None = None):
 
 def _setting(name: str, value, where: _Where, key: str):
     """One solve setting, validated and in canonical form."""
-    from gapath.objectives import OBJECTIVES
+    from gapath.objectives import check_objective_names
 
     if name == "objectives":
         names = value.split(",") if isinstance(value, str) else value
@@ -491,10 +491,10 @@ def _setting(name: str, value, where: _Where, key: str):
         names = [n.strip() for n in names if n.strip()]
         if not names:
             raise where.error(key, "expected at least one objective")
-        for n in names:
-            if n not in OBJECTIVES:
-                raise where.error(key, f"unknown objective {n!r}; expected some of {', '.join(OBJECTIVES)}")
-        return names
+        try:
+            return check_objective_names(names)
+        except ConfigError as exc:
+            raise where.error(key, str(exc)) from None
     if name in ("pop_size", "n_gen"):
         return _int(value, where, key, minimum=2 if name == "pop_size" else 1)
     if name == "penalty":

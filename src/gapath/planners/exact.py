@@ -47,7 +47,9 @@ from __future__ import annotations
 import signal
 import threading
 import time
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -91,7 +93,19 @@ from gapath.planners._exact_kernels import (
     _trace,
 )
 
-__all__ = ["ExactFront", "monotone_front", "free_front", "EXACT_OBJECTIVES"]
+if TYPE_CHECKING:
+    from gapath.front import PathFront
+    from gapath.workspace import Workspace
+
+__all__ = [
+    "ExactFront",
+    "monotone_front",
+    "free_front",
+    "exact_front",
+    "exact_path_front",
+    "EXACT_MODES",
+    "EXACT_OBJECTIVES",
+]
 
 #: Objectives the exact planners can minimise (``interfering`` is a constraint:
 #: every returned path has ``interfering == 0``).
@@ -767,3 +781,78 @@ def _search_pass(
         total["peak_bytes"], int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes)
     )
     return li, lf, sols[: st[S_SOLS]], st
+
+
+# ---------------------------------------------------------------------------
+# the front a user sees
+# ---------------------------------------------------------------------------
+
+#: Path sets of :func:`exact_path_front`.
+EXACT_MODES = ("monotone", "free")
+
+
+def exact_path_front(
+    workspace: Workspace,
+    objectives: Sequence[str] = ("length", "vulnerability"),
+    mode: str = "monotone",
+    **options: Any,
+) -> PathFront:
+    """The exact front as a :class:`gapath.front.PathFront` (what ``gapath
+    exact`` writes): :func:`monotone_front` or :func:`free_front`, with
+    every path's metrics.
+
+    Parameters
+    ----------
+    workspace : Workspace
+    objectives : sequence of str, default ("length", "vulnerability")
+        Some of :data:`EXACT_OBJECTIVES`.
+    mode : {"monotone", "free"}, default "monotone"
+        Column-monotone paths (the GA's path set) or all 8-connected paths.
+    **options
+        ``max_labels``, ``progress`` (see :func:`free_front`).
+
+    Returns
+    -------
+    PathFront
+
+    Raises
+    ------
+    ConfigError
+        On an unknown mode or objective, or bad options.
+    NoPathError
+        If no feasible path of the mode joins start and goal.
+    LabelBudgetError
+        If the search would hold more than ``max_labels`` labels.
+
+    Examples
+    --------
+    >>> from gapath import Workspace
+    >>> front = exact_path_front(Workspace(np.zeros((3, 4), bool)), ["length"])
+    >>> len(front), front.marked()
+    (1, {'shortest': 0, 'knee': 0})
+    """
+    from gapath.front import PathFront
+
+    ef = exact_front(workspace, objectives, mode, **options)
+    return PathFront.from_paths(workspace, ef.paths, ef.objectives, ef.F)
+
+
+def exact_front(
+    workspace: Workspace,
+    objectives: Sequence[str] = ("length", "vulnerability"),
+    mode: str = "monotone",
+    **options: Any,
+) -> ExactFront:
+    """:func:`monotone_front` (``mode="monotone"``) or :func:`free_front`
+    (``mode="free"``).
+
+    Raises
+    ------
+    ConfigError
+        On an unknown mode (and see the two functions).
+    """
+    if mode == "monotone":
+        return monotone_front(workspace, objectives, **options)
+    if mode == "free":
+        return free_front(workspace, objectives, **options)
+    raise ConfigError(f"unknown exact mode {mode!r}; expected one of {', '.join(EXACT_MODES)}")

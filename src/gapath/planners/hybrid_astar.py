@@ -69,7 +69,7 @@ from dataclasses import dataclass, field
 import numba
 import numpy as np
 
-from gapath.errors import ConfigError, NoPathError
+from gapath.errors import ConfigError, NoPathError, positive_int
 from gapath.planners._geometry import (
     TWO_PI,
     angle_diff,
@@ -727,12 +727,7 @@ class HybridAStar:
             else check_positive(shot_distance, "shot_distance", allow_zero=True)
         )
         self.shot_slack = check_positive(shot_slack, "shot_slack")
-        try:
-            self.max_expansions = int(max_expansions)
-        except (TypeError, ValueError):
-            raise ConfigError(f"max_expansions must be a positive integer, got {max_expansions!r}") from None
-        if self.max_expansions <= 0:
-            raise ConfigError(f"max_expansions must be a positive integer, got {max_expansions!r}")
+        self.max_expansions = positive_int(max_expansions, "max_expansions")
         self._version = 0
         self._hcache: dict = {}
         self._scratch_n = 0
@@ -921,9 +916,9 @@ class HybridAStar:
             layer = check_cost_layer(cost, occ.shape)
             use_layer = bool(layer.any())
         max_len = np.inf if max_length is None else check_positive(max_length, "max_length") / cs
-        budget = self.max_expansions if max_expansions is None else int(max_expansions)
-        if budget <= 0:
-            raise ConfigError(f"max_expansions must be a positive integer, got {max_expansions!r}")
+        budget = (
+            self.max_expansions if max_expansions is None else positive_int(max_expansions, "max_expansions")
+        )
         if hgrid[scell] / 1.09 > max_len + 1.0:
             raise NoPathError(
                 f"no path within max_length={max_length:g}: the grid distance to the goal is "

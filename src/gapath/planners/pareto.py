@@ -125,6 +125,7 @@ from gapath.planners._pareto_kernels import (
     _open_reset,
     _update_changed_edges,
 )
+from gapath.planners.registry import planner_names
 from gapath.workspace import Workspace
 
 __all__ = [
@@ -743,8 +744,9 @@ class WeightedSumDStar(DStarPO):
 # one entry point
 # ---------------------------------------------------------------------------
 
-#: Planner names (CLI ``gapath plan --planner``).
-PLANNERS = ("astar", "dstar-lite", "astar-po", "dstar-po")
+#: Names of the planners :func:`plan` dispatches to: the grid family of the
+#: planner registry (:data:`gapath.planners.PLANNERS`).
+PLANNERS = planner_names("grid")
 
 
 def plan(

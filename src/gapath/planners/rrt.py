@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numba
 import numpy as np
 
-from gapath.errors import ConfigError, NoPathError
+from gapath.errors import ConfigError, NoPathError, positive_int
 from gapath.planners._geometry import disc_free, segment_free
 from gapath.planners.hybrid_astar import check_positive, describe_pose, path_objectives
 
@@ -365,12 +365,7 @@ def rrt(
         else check_positive(goal_tolerance, "goal_tolerance", allow_zero=True) / cs
     )
     dsv = 0.2 if ds is None else check_positive(ds, "ds") / cs
-    try:
-        iters = int(max_iter)
-    except (TypeError, ValueError):
-        raise ConfigError(f"max_iter must be a positive integer, got {max_iter!r}") from None
-    if iters <= 0:
-        raise ConfigError(f"max_iter must be a positive integer, got {max_iter!r}")
+    iters = positive_int(max_iter, "max_iter")
     extra_it = 0 if extra_iterations is None else int(extra_iterations)
     if extra_it < 0:
         raise ConfigError(f"extra_iterations must be >= 0, got {extra_iterations!r}")

@@ -10,12 +10,17 @@ from pymoo.core.problem import Problem
 from gapath.encodings import expand_profiles, make_encoding, split_paths
 from gapath.errors import ConfigError, NoPathError
 from gapath.monotone import Frame
-from gapath.objectives import INTERFERING, OBJECTIVES, SMOOTHNESS, objective_index
+from gapath.objectives import (
+    INTERFERING,
+    OBJECTIVE_NAMES,
+    OBJECTIVES,
+    SMOOTHNESS,
+    check_objective_names,
+    objective_index,
+)
 from gapath.planners import exact
 from gapath.workspace import Workspace
 
-#: Metrics that may be objectives (``interfering`` is the constraint).
-OBJECTIVE_NAMES = ("length", "vulnerability", "smoothness")
 CONSTRAINT_MODES = ("penalty", "constraint")
 
 #: :meth:`GridPathProblem.pareto_front` computes the exact front on its own
@@ -44,11 +49,7 @@ def problem_settings(objectives, constraints, penalty, costmap=None):
     """
     names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
     names = [n.strip() for n in names]
-    layer_names = () if costmap is None else costmap.objective_names
-    for n in names:
-        if n not in OBJECTIVE_NAMES and n not in layer_names:
-            expected = OBJECTIVE_NAMES + tuple(x for x in layer_names if x not in OBJECTIVE_NAMES)
-            raise ConfigError(f"unknown objective {n!r}; expected some of {', '.join(expected)}")
+    check_objective_names(names, () if costmap is None else costmap.objective_names)
     # layer objectives: metrics columns 4, 5, ... (after OBJECTIVES)
     layers = tuple(n for n in names if n not in OBJECTIVE_NAMES)
     base = [n for n in names if n in OBJECTIVE_NAMES]

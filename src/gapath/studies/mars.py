@@ -79,7 +79,7 @@ PAPER_TABLE_I = {
 }
 #: The four objectives F1..F4.
 OBJECTIVES = ("length", "elevation", "solar", "risk")
-#: Planners of the study: label -> gapath planner name.
+#: Planners of the study: label -> name in :data:`gapath.planners.PLANNERS`.
 PLANNERS = {"A*": "astar", "D*": "dstar-lite", "D*-PO": "dstar-po"}
 
 #: Obstacle classes: (label, smallest side, largest side) in cells.
@@ -270,7 +270,7 @@ def run_workspace(
     from gapath.algorithms import paper_nsga2
     from gapath.front import path_front
     from gapath.operators import PlannerSampling
-    from gapath.planners.pareto import plan
+    from gapath.planners import plan
     from gapath.problems import GridPathProblem
 
     ws, cm = study_workspace(index, seed=seed, size=size, dem=dem)
@@ -283,13 +283,13 @@ def run_workspace(
     }
     for label, name in PLANNERS.items():
         t0, c0 = time.perf_counter(), time.process_time()
-        res = plan(cm, name, OBJECTIVES)
+        res = plan(ws, name, costmap=cm, objectives=OBJECTIVES)
         rec[label] = {
             "F": res.F.tolist(),
             "seconds": time.perf_counter() - t0,
             "cpu_seconds": time.process_time() - c0,
-            "expansions": res.expansions,
-            "cells": len(res.path),
+            "expansions": res.info["expansions"],
+            "cells": len(res.cells),
         }
     problem = GridPathProblem(ws, objectives=OBJECTIVES, costmap=cm)
     t0, c0 = time.perf_counter(), time.process_time()
@@ -327,13 +327,13 @@ def _warm_up() -> None:
     from pymoo.optimize import minimize
 
     from gapath.algorithms import paper_nsga2
-    from gapath.planners.pareto import plan
+    from gapath.planners import plan
     from gapath.problems import GridPathProblem
 
     ws = mars_workspace(0, size=12)
     cm = mars_costmap(ws, 0, dem="fractal")
     for name in PLANNERS.values():
-        plan(cm, name, OBJECTIVES)
+        plan(ws, name, costmap=cm, objectives=OBJECTIVES)
     problem = GridPathProblem(ws, objectives=OBJECTIVES, costmap=cm)
     minimize(problem, paper_nsga2(8, tiebreak=None), ("n_gen", 2), seed=1)
 
