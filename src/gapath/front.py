@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Protocol
 
 import numpy as np
 
@@ -17,8 +17,23 @@ from gapath.metrics import dedupe, nondominated
 from gapath.objectives import INTERFERING, OBJECTIVES, SMOOTHNESS
 
 if TYPE_CHECKING:
-    from gapath.problems import GridPathProblem
     from gapath.workspace import Workspace
+
+
+class PathProblem(Protocol):
+    """What :func:`path_front` needs of a problem (a
+    :class:`gapath.problems.GridPathProblem` or ``FreePathProblem``; typed
+    structurally, so that this ground-floor module does not import the
+    problems above it)."""
+
+    objectives: Sequence[str]
+
+    def metrics(self, X: Any) -> np.ndarray: ...
+
+    def objective_values(self, metrics: np.ndarray) -> np.ndarray: ...
+
+    def decode(self, X: Any) -> list: ...
+
 
 #: The paths :meth:`PathFront.marked` picks: label -> objective it minimises
 #: (the knee is picked among all objectives).
@@ -169,7 +184,7 @@ def select_front(F: np.ndarray, metrics: np.ndarray) -> np.ndarray:
     return nd[np.lexsort(F[nd].T[::-1])]
 
 
-def path_front(problem: GridPathProblem, X: Any) -> PathFront:
+def path_front(problem: PathProblem, X: Any) -> PathFront:
     """The front of genomes ``X`` of a :class:`gapath.problems.GridPathProblem`.
 
     Objectives are recomputed unpenalised from the decoded paths.
@@ -189,4 +204,6 @@ def path_front(problem: GridPathProblem, X: Any) -> PathFront:
     F = problem.objective_values(metrics)
     keep = select_front(F, metrics)
     X = X[keep]
-    return PathFront(problem.objectives, F[keep], metrics[keep], X, problem.decode(X) if len(X) else [])
+    return PathFront(
+        tuple(problem.objectives), F[keep], metrics[keep], X, problem.decode(X) if len(X) else []
+    )
