@@ -28,6 +28,7 @@ import sys
 import time
 from pathlib import Path
 
+from gapath.dynamic import SimSettings
 from gapath.experiments.dynamic import run, run_fov, targets, write_outputs
 
 
@@ -40,6 +41,12 @@ def main(argv=None) -> int:
     ap.add_argument("--docs", default=str(Path(__file__).resolve().parents[1] / "docs" / "results"))
     ap.add_argument("--out", default=None, help="also write the JSON lines here")
     ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument(
+        "--prediction",
+        choices=("straight", "bounce"),
+        default="straight",
+        help="moving obstacles predicted on straight lines (NO-MOPP, the default) or with their own model",
+    )
     args = ap.parse_args(argv)
     n = args.runs if args.runs is not None else (5 if args.quick else 100)
     t0 = time.perf_counter()
@@ -50,8 +57,13 @@ def main(argv=None) -> int:
         if count[0] % 25 == 0:
             print(f"{count[0]} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr, flush=True)
 
-    study = run(n, seed=args.seed, progress=progress)
-    fov_rows = [] if (args.quick or args.no_fov) else run_fov(n, seed=args.seed, progress=progress)
+    settings = SimSettings(predict_bounces=args.prediction == "bounce")
+    study = run(n, seed=args.seed, settings=settings, progress=progress)
+    fov_rows = (
+        []
+        if (args.quick or args.no_fov)
+        else run_fov(n, seed=args.seed, settings=settings, progress=progress)
+    )
     lines = [json.dumps({"benchmark": "dynamic_study", **r, "targets": targets(r)}) for r in study.table]
     lines += [json.dumps({"benchmark": "dynamic_study_fov", **r}) for r in fov_rows]
     print("\n".join(lines))

@@ -359,6 +359,13 @@ def _markdown(study: DynamicStudy) -> str:
         f"than {s['sim']['halt_time']} s away), local replanning to a rejoin point "
         f"{s['sim']['rejoin_margin']} m beyond the blocked part, detour limit around moving "
         f"obstacles {s['sim']['detour_limit']} m. Success = goal reached with no collision.",
+        "* Prediction of moving obstacles: "
+        + (
+            "their own reflecting motion model (`predict_bounces=True`, an option; not the paper's)"
+            if s["sim"].get("predict_bounces")
+            else "straight lines at their current velocity, NO-MOPP's eqs. (7)-(10) (the default)"
+        )
+        + ".",
         "* Planner settings: hybrid A* with five steering actions, 1.5 m arcs, 72 heading bins, "
         "heuristic max(Euclidean, grid Dijkstra) x 1.1, Dubins / turn-then-straight analytic "
         "shots; RRT and RRT* with 2 m steps, goal bias 0.1, rewiring radius "
