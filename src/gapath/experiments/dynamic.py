@@ -469,6 +469,10 @@ def write_outputs(
         w.writerows(fov_rows)
         table_csv += "\n" + buf.getvalue()
         jsonl += "".join(dumps({"benchmark": "dynamic_study_fov", **r}) + "\n" for r in fov_rows)
+    if (out / f"{stem}.md").exists():  # keep generated sections of other scripts (the sweep's)
+        from gapath.dynamic.sweep import keep_blocks
+
+        md = keep_blocks((out / f"{stem}.md").read_text(), md)
     for name, data in ((f"{stem}.md", md), (f"{stem}.csv", table_csv), (f"{stem}.jsonl", jsonl)):
         atomic_write(out / name, data)
         written.append(out / name)
