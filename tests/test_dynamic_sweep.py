@@ -222,3 +222,28 @@ def test_sweep_bad_inputs():
         sweep(TINY, scenarios=("maze",), planners=("teleport",), seeds=[0])
     with pytest.raises(ConfigError, match="Difficulty"):
         sweep([("base", replace)], scenarios=("maze",), seeds=[0])
+
+
+def test_length_findings_say_when_the_paper_is_not_reproduced():
+    from gapath.experiments.dynamic import length_findings
+
+    def row(planner, length):
+        return {
+            "scenario": "maze",
+            "planner": planner,
+            "path_length_mean": length,
+            "grid_optimum": 60.0,
+            "length_over_optimum": length / 60.0,
+        }
+
+    runs = [
+        {"scenario": "maze", "planner": p, "obstacle_seed": s, "success": True, "path_length": x + s}
+        for s in range(3)
+        for p, x in (("hybrid-astar", 63.0), ("rrt-star", 62.0))
+    ]
+    text = length_findings([row("hybrid-astar", 64.0), row("rrt-star", 63.0)], runs)
+    assert "length advantage over RRT* is not reproduced" in text
+    assert "drove further in 0" in text and "-1.00 m" in text
+    assert "by construction" in text and "grid optimum (60.00 m)" in text
+    text = length_findings([row("hybrid-astar", 64.0), row("rrt-star", 70.0)])
+    assert "NO-MOPP is shorter, as in the paper" in text
