@@ -29,7 +29,16 @@ import sys
 import time
 from pathlib import Path
 
-from gapath.dynamic.sweep import SCENARIOS, SEEDS, section, splice_block, sweep, sweep_png, verdicts
+from gapath.dynamic.sweep import (
+    SCENARIOS,
+    SEEDS,
+    one_at_a_time,
+    section,
+    splice_block,
+    sweep,
+    sweep_png,
+    verdicts,
+)
 from gapath.experiments.dynamic import LABELS
 
 
@@ -38,6 +47,11 @@ def main(argv=None) -> int:
     ap.add_argument("--seeds", type=int, default=None, help=f"scenario seeds 0..N-1 (default {len(SEEDS)})")
     ap.add_argument("--scenarios", default=",".join(SCENARIOS))
     ap.add_argument("--quick", action="store_true", help="3 seeds on the maze, nothing written")
+    ap.add_argument(
+        "--factors",
+        default=None,
+        help="only these settings (comma-separated: base, moving, speed, sensor, fov); nothing written",
+    )
     ap.add_argument("--docs", default=str(Path(__file__).resolve().parents[1] / "docs" / "results"))
     args = ap.parse_args(argv)
     n = args.seeds if args.seeds is not None else (3 if args.quick else len(SEEDS))
@@ -48,11 +62,15 @@ def main(argv=None) -> int:
         if done % 50 == 0 or done == total:
             print(f"{done}/{total} runs, {time.perf_counter() - t0:.0f} s", file=sys.stderr, flush=True)
 
-    res = sweep(scenarios=scenarios, seeds=range(n), progress=progress)
+    settings = one_at_a_time()
+    if args.factors:
+        keep = {f.strip() for f in args.factors.split(",")}
+        settings = [(label, d) for label, d in settings if label in keep]
+    res = sweep(settings, scenarios=scenarios, seeds=range(n), progress=progress)
     lines = [json.dumps({"benchmark": "dynamic_sweep", **r}) for r in res.table]
     lines += [json.dumps({"benchmark": "dynamic_sweep_verdict", **v}) for v in verdicts(res.rows)]
     print("\n".join(lines))
-    if not args.quick:
+    if not (args.quick or args.factors):
         out = Path(args.docs)
         out.mkdir(parents=True, exist_ok=True)
         (out / "dynamic_sweep.jsonl").write_text("\n".join(lines) + "\n")

@@ -340,6 +340,7 @@ def sweep(
                         "scenario_seed": s,
                         **res.summary(),
                         "grid_optimum": optimum,
+                        "final_speed": float(res.trajectory[-1, 4]) if len(res.trajectory) else 0.0,
                     }
                     rows.append(row)
                     if progress is not None:
@@ -375,7 +376,9 @@ def aggregate_sweep(rows) -> list[dict]:
     """One row per (scenario, setting, planner), in the order first met.
 
     ``success + collisions + blocked + timeouts == runs``; lengths are over
-    the successful runs (NaN when there are none); halts are per run.
+    the successful runs (NaN when there are none); halts are per run;
+    ``collisions_stopped`` counts the collisions in which the robot was
+    standing or backing off (the obstacle ran into it).
     """
     keys = []
     groups = {}
@@ -407,6 +410,9 @@ def aggregate_sweep(rows) -> list[dict]:
                 "success_pct": round(100.0 * len(ok) / len(runs), 1),
                 "success_ci95_pct": [round(100.0 * v, 1) for v in wilson(len(ok), len(runs))],
                 "collisions": sum(r["reason"] == "collision" for r in runs),
+                "collisions_stopped": sum(
+                    r["reason"] == "collision" and r.get("final_speed", 1.0) <= 0.0 for r in runs
+                ),
                 "blocked": sum(r["reason"] == "blocked" for r in runs),
                 "timeouts": sum(r["reason"] == "timeout" for r in runs),
                 "halts_median": halts[0],
@@ -559,7 +565,8 @@ def sweep_markdown(result: SweepResult, labels: dict | None = None, lead: str = 
             "",
             f"<details><summary>{scen}: every planner and setting</summary>",
             "",
-            "| setting | planner | success (95 % CI) | coll. / blocked / timeout | halts per run, median "
+            "| setting | planner | success (95 % CI) | coll. (robot stopped) / blocked / timeout | "
+            "halts per run, median "
             "(range) | driven length m, median (range) | length / grid optimum, median (range) |",
             "|---|---|---|---|---|---|---|",
         ]
@@ -570,7 +577,9 @@ def sweep_markdown(result: SweepResult, labels: dict | None = None, lead: str = 
             lines.append(
                 f"| {level if level != last else ''} | {labels.get(r['planner'], r['planner'])} | "
                 f"{r['success']}/{r['runs']} ({lo:.0f}-{hi:.0f} %) | "
-                f"{r['collisions']} / {r['blocked']} / {r['timeouts']} | "
+                f"{r['collisions']}"
+                + (f" ({r['collisions_stopped']})" if "collisions_stopped" in r else "")
+                + f" / {r['blocked']} / {r['timeouts']} | "
                 f"{_range(r, 'halts', 1)} | {_range(r, 'length', 2)} | {_range(r, 'length_over_optimum', 3)} |"
             )
             last = level
