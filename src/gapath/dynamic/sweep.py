@@ -644,13 +644,15 @@ def sweep_png(result: SweepResult, path, labels: dict | None = None):
 # the sweep's section of docs/results/dynamic.md
 # ---------------------------------------------------------------------------
 
-_BEGIN = "<!-- begin {name} (generated) -->"
+_BEGIN = "<!-- begin {name} ({kind}) -->"
 _END = "<!-- end {name} -->"
+_KINDS = ("generated", "hand-written")
 
 
-def splice_block(text: str, name: str, body: str) -> str:
+def splice_block(text: str, name: str, body: str, kind: str = "generated") -> str:
     """``text`` with the block ``name`` (between its begin and end markers)
-    replaced by ``body``, or ``body`` appended in a new block.
+    replaced by ``body``, or ``body`` appended in a new block. ``kind``
+    (``"generated"`` or ``"hand-written"``) is written into the begin marker.
 
     Examples
     --------
@@ -658,22 +660,29 @@ def splice_block(text: str, name: str, body: str) -> str:
     >>> splice_block(t, "x", "two\\n").count("two"), splice_block(t, "x", "two\\n").count("one")
     (1, 0)
     """
-    begin, end = _BEGIN.format(name=name), _END.format(name=name)
+    if kind not in _KINDS:
+        raise ConfigError(f"kind must be one of {_KINDS}, got {kind!r}")
+    begin, end = _BEGIN.format(name=name, kind=kind), _END.format(name=name)
     block = f"{begin}\n{body.rstrip()}\n{end}\n"
-    i = text.find(begin)
+    i = -1
+    for k in _KINDS:
+        i = text.find(_BEGIN.format(name=name, kind=k))
+        if i >= 0:
+            break
     j = text.find(end, i + 1) if i >= 0 else -1
     if i >= 0 and j >= 0:
         return text[:i] + block + text[j + len(end) :].lstrip("\n")
     return text.rstrip("\n") + "\n\n" + block
 
 
-def blocks(text: str) -> dict[str, str]:
-    """The marked blocks of ``text``: ``{name: body}`` in order."""
+def blocks(text: str) -> dict[str, tuple[str, str]]:
+    """The marked blocks of ``text``: ``{name: (kind, body)}`` in order."""
     import re
 
     out = {}
-    for m in re.finditer(r"<!-- begin (.+?) \(generated\) -->\n(.*?)<!-- end \1 -->", text, re.S):
-        out[m.group(1)] = m.group(2)
+    pattern = r"<!-- begin (.+?) \((generated|hand-written)\) -->\n(.*?)<!-- end \1 -->"
+    for m in re.finditer(pattern, text, re.S):
+        out[m.group(1)] = (m.group(2), m.group(3))
     return out
 
 
@@ -682,9 +691,9 @@ def keep_blocks(old_text: str, new_text: str) -> str:
     appended (so that regenerating one part of a document keeps the other
     parts' generated sections)."""
     have = blocks(new_text)
-    for name, body in blocks(old_text).items():
+    for name, (kind, body) in blocks(old_text).items():
         if name not in have:
-            new_text = splice_block(new_text, name, body)
+            new_text = splice_block(new_text, name, body, kind)
     return new_text
 
 
