@@ -377,6 +377,13 @@ def register(subparsers) -> None:
         default=180.0,
         help="half-angle of the field of view in degrees: 45, 90 or 180 in the paper (default: %(default)s)",
     )
+    p.add_argument(
+        "--prediction",
+        choices=("straight", "bounce"),
+        default="straight",
+        help="how moving obstacles are predicted: 'straight' lines at their current velocity "
+        "(NO-MOPP's eqs. (7)-(10)) or 'bounce', their own reflecting motion model (default: %(default)s)",
+    )
     p.add_argument("--dt", type=float, default=0.1, help="tick, seconds (default: %(default)s)")
     p.add_argument(
         "--max-time",
@@ -455,7 +462,9 @@ def run(args) -> int:
     car = car_from_args(args)
     with cli_vocabulary():
         robot = Robot(car=car, sensor_range=args.sensor_range, fov=args.fov)
-        settings = SimSettings(dt=args.dt, max_time=args.max_time)
+        settings = SimSettings(
+            dt=args.dt, max_time=args.max_time, predict_bounces=args.prediction == "bounce"
+        )
     obstacles = dict(
         n_stationary=args.stationary,
         n_crossers=(args.obstacles + 1) // 2,
@@ -518,6 +527,7 @@ def run(args) -> int:
                 "fov_deg": robot.fov,
             },
             "dt": settings.dt,
+            "prediction": args.prediction,
         },
         "versions": versions(),
         "compile_s": round(compile_s, 4),

@@ -27,6 +27,9 @@ class StationaryObstacle:
 
 
 MOVING_MODES = ("bounce", "pass")
+#: Prediction models of moving obstacles (``SimSettings.predict_bounces``
+#: False / True); the first is the default.
+PREDICTION_MODELS = ("straight", "bounce")
 
 
 @dataclass
@@ -167,11 +170,13 @@ class SimSettings:
     appear_clearance : float, default 1.0
         A stationary obstacle appears only this far from the robot's disc, a
         moving one only three times as far (gap between the discs).
-    predict_bounces : bool, default True
-        Predict moving obstacles with their motion model (constant velocity
-        reflected off the known map, solved piecewise, to within the chord
-        of one tick); False: straight lines only (the paper's eqs. (7)-(10),
-        :func:`path_contact`).
+    predict_bounces : bool, default False
+        False (the default, NO-MOPP's eqs. (7)-(10), :func:`path_contact`):
+        a tracked moving obstacle is predicted on a straight line at its
+        current velocity. True: with the obstacles' own motion model
+        (constant velocity reflected off the known map, solved piecewise, to
+        within the chord of one tick) -- an oracle the paper does not have,
+        kept as an option (``gapath simulate --prediction bounce``).
     record_world : bool, default True
         Record the moving obstacles' positions every tick (for animations).
     """
@@ -192,7 +197,7 @@ class SimSettings:
     blocked_patience: float = 15.0
     retry_interval: float = 1.0
     appear_clearance: float = 1.0
-    predict_bounces: bool = True
+    predict_bounces: bool = False
     record_world: bool = True
 
     def __post_init__(self):

@@ -51,7 +51,9 @@ __all__ = [
     "SCENARIO_ORDER",
     "SEED_TABLES",
     "run",
+    "length_findings",
     "run_fov",
+    "run_sweep",
     "write_outputs",
 ]
 
@@ -141,6 +143,8 @@ def targets(row: dict) -> dict:
         out["ratio_le_seeds"] = bool(row["length_over_direct"] <= SEED_RATIO[row["scenario"]])
     if row["scenario"] == "maze":
         out["global_plan_median_le_50ms"] = bool(row["global_plan_ms_median"] <= 50.0)
+        if "global_plan_ms_max" in row:  # "per plan": the maximum decides
+            out["global_plan_max_le_50ms"] = bool(row["global_plan_ms_max"] <= 50.0)
     return out
 
 
@@ -172,10 +176,15 @@ def aggregate(rows, scenario, planner, direct, optimum) -> dict:
         "direct_distance": round(direct, 3),
         "grid_optimum": round(optimum, 3),
         "length_over_direct": round(length / direct, 4),
+        "length_over_optimum": round(length / optimum, 4),
         "global_plan_ms_median": round(1000 * _median([r["global_plan_seconds"] for r in runs]), 3),
         "global_plan_ms_mean": round(1000 * _mean([r["global_plan_seconds"] for r in runs]), 3),
+        "global_plan_ms_max": round(
+            1000 * max([r["global_plan_seconds"] for r in runs], default=math.nan), 3
+        ),
         "total_plan_ms_median": round(1000 * _median([r["total_plan_seconds"] for r in runs]), 3),
         "total_plan_ms_mean": round(1000 * _mean([r["total_plan_seconds"] for r in runs]), 3),
+        "total_plan_ms_max": round(1000 * max([r["total_plan_seconds"] for r in runs], default=math.nan), 3),
         "replans_mean": round(_mean([r["replans"] for r in runs]), 2),
         "halts_mean": round(_mean([r["halts"] for r in runs]), 2),
         "back_offs_mean": round(_mean([r["back_offs"] for r in runs]), 2),
@@ -359,6 +368,13 @@ def _markdown(study: DynamicStudy) -> str:
         f"than {s['sim']['halt_time']} s away), local replanning to a rejoin point "
         f"{s['sim']['rejoin_margin']} m beyond the blocked part, detour limit around moving "
         f"obstacles {s['sim']['detour_limit']} m. Success = goal reached with no collision.",
+        "* Prediction of moving obstacles: "
+        + (
+            "their own reflecting motion model (`predict_bounces=True`, an option; not the paper's)"
+            if s["sim"].get("predict_bounces")
+            else "straight lines at their current velocity, NO-MOPP's eqs. (7)-(10) (the default)"
+        )
+        + ".",
         "* Planner settings: hybrid A* with five steering actions, 1.5 m arcs, 72 heading bins, "
         "heuristic max(Euclidean, grid Dijkstra) x 1.1, Dubins / turn-then-straight analytic "
         "shots; RRT and RRT* with 2 m steps, goal bias 0.1, rewiring radius "
@@ -382,33 +398,118 @@ def _markdown(study: DynamicStudy) -> str:
             f"(8-connected A*, no corner cutting) {_fmt(rows[0]['grid_optimum'])} m.",
             "",
             "| planner | success % | coll. / blocked / timeout | path length mean (m) | "
-            "length / direct | global plan length (m) | global plan ms (median / mean) | "
-            "total plan ms (median / mean) | replans | halts | sim time (s) |",
-            "|---|---|---|---|---|---|---|---|---|---|---|",
+            "length / direct | length / grid optimum | global plan length (m) | global plan ms "
+            "(median / mean / max) | total plan ms (median / mean / max) | replans | halts | sim time (s) |",
+            "|---|---|---|---|---|---|---|---|---|---|---|---|",
         ]
         for r in rows:
             lines.append(
                 f"| {LABELS.get(r['planner'], r['planner'])} | {_fmt(r['success_pct'], 0)} | "
                 f"{r['collisions']} / {r['blocked']} / {r['timeouts']} | "
                 f"{_fmt(r['path_length_mean'])} | {_fmt(r['length_over_direct'], 3)} | "
+                f"{_fmt(r.get('length_over_optimum', math.nan), 3)} | "
                 f"{_fmt(r['global_length_mean'])} | {_fmt(r['global_plan_ms_median'], 1)} / "
-                f"{_fmt(r['global_plan_ms_mean'], 1)} | {_fmt(r['total_plan_ms_median'], 1)} / "
-                f"{_fmt(r['total_plan_ms_mean'], 1)} | {_fmt(r['replans_mean'], 1)} | "
+                f"{_fmt(r['global_plan_ms_mean'], 1)} / {_fmt(r.get('global_plan_ms_max', math.nan), 1)} | "
+                f"{_fmt(r['total_plan_ms_median'], 1)} / {_fmt(r['total_plan_ms_mean'], 1)} / "
+                f"{_fmt(r.get('total_plan_ms_max', math.nan), 1)} | {_fmt(r['replans_mean'], 1)} | "
                 f"{_fmt(r['halts_mean'], 1)} | {_fmt(r['sim_time_mean_s'], 1)} |"
             )
         seeds = [t for t in SEED_TABLES if t[0] == scen]
         if seeds:
             lines += [
                 "",
-                f"The seeds on their {scen} (MATLAB 2021a, 100 runs, success {SEED_SUCCESS_PCT:g} %):",
+                f"NO-MOPP (Neeraja & Narsimha) on their {scen} (MATLAB 2021a, 100 runs, success "
+                f"{SEED_SUCCESS_PCT:g} %):",
                 "",
                 "| NO-MOPP row | path length mean (m) | length / direct | execution time (s) |",
                 "|---|---|---|---|",
             ]
             for _, name, length, secs, direct in seeds:
                 lines.append(f"| {name} | {length:.2f} | {length / direct:.3f} | {secs:.3f} |")
+        lines += ["", length_findings(rows, study.rows)]
         lines.append("")
     return "\n".join(lines) + "\n"
+
+
+def _paired_lengths(runs, scen, a, b):
+    """Runs of ``scen`` where planners ``a`` and ``b`` both succeeded (same
+    obstacle seed): ``(n, runs where b drove further, median of b - a)``."""
+    la = {
+        r["obstacle_seed"]: r["path_length"]
+        for r in runs
+        if r["scenario"] == scen and r["planner"] == a and r["success"]
+    }
+    lb = {
+        r["obstacle_seed"]: r["path_length"]
+        for r in runs
+        if r["scenario"] == scen and r["planner"] == b and r["success"]
+    }
+    common = sorted(set(la) & set(lb))
+    if not common:
+        return 0, 0, math.nan
+    diffs = [lb[k] - la[k] for k in common]
+    return len(common), sum(d > 0 for d in diffs), float(statistics.median(diffs))
+
+
+def length_findings(rows, runs=None) -> str:
+    """Plain words on one scenario's driven lengths: NO-MOPP (hybrid A*)
+    against RRT* and RRT beside the paper's claim (with ``runs``, the study's
+    per-run rows, also paired over the runs both finished), and every planner
+    over the grid optimum (the like-for-like yardstick: our maps' detour is
+    built in)."""
+    by = {r["planner"]: r for r in rows}
+    hy = by.get("hybrid-astar")
+    if hy is None or not rows:
+        return ""
+    scen = rows[0]["scenario"]
+    out = []
+    paper = {name: length for sc, name, length, _, _ in SEED_TABLES if sc == scen}
+    nomopp = next((v for k, v in paper.items() if "after local" in k), None)
+    for other in ("rrt-star", "rrt"):
+        r = by.get(other)
+        if r is None or math.isnan(r["path_length_mean"]) or math.isnan(hy["path_length_mean"]):
+            continue
+        ours = 100.0 * (r["path_length_mean"] / hy["path_length_mean"] - 1.0)
+        theirs = 100.0 * (paper[LABELS[other]] / nomopp - 1.0) if nomopp and LABELS[other] in paper else None
+        paper_txt = f"; in the paper {theirs:+.1f} %" if theirs is not None else ""
+        n, longer, med = _paired_lengths(runs, scen, "hybrid-astar", other) if runs else (0, 0, math.nan)
+        paired = (
+            f" Paired over the {n} runs both finished, {LABELS[other]} drove further in {longer} "
+            f"(median difference {med:+.2f} m)."
+            if n
+            else ""
+        )
+        # the paper's claim holds when NO-MOPP is shorter on the mean and in most paired runs
+        holds = ours > 0 and (not n or longer > n / 2)
+        if holds:
+            verdict = f"NO-MOPP is shorter, as in the paper, by {ours:.1f} %" + (
+                f" against the paper's {theirs:.1f} %" if theirs is not None else ""
+            )
+            if theirs is not None and ours < 0.5 * theirs:
+                verdict += " (the size of the paper's advantage is not reproduced)"
+        else:
+            verdict = f"the paper's length advantage over {LABELS[other]} is not reproduced"
+            if ours > 0 and n:
+                verdict += f" (shorter on the mean, but {LABELS[other]} drove further in only {longer} of {n} paired runs)"
+        out.append(
+            f"{LABELS[other]} drove {r['path_length_mean']:.2f} m against NO-MOPP's "
+            f"{hy['path_length_mean']:.2f} m (means over successful runs, {ours:+.1f} %{paper_txt}): "
+            f"{verdict}.{paired}"
+        )
+    if scen == "maze":
+        out.append(
+            "Length over the straight line is not a like-for-like test here: the maze was braided "
+            "until its shortest grid path was at most 1.20 times the straight line, so a ratio "
+            "below NO-MOPP's 1.308 needs only a path within 9 % of the grid optimum; it holds by "
+            "construction, not by planning. The yardstick is the grid optimum of the same map "
+            "(8-connected A*, no corner cutting; any-angle paths can be a little shorter, so a "
+            "ratio just below 1 is possible)."
+        )
+    ratios = ", ".join(
+        f"{LABELS.get(r['planner'], r['planner'])} {r.get('length_over_optimum', math.nan):.3f}" for r in rows
+    )
+    out.append(f"Driven length over the grid optimum ({rows[0]['grid_optimum']:.2f} m): {ratios}.")
+    return "**Lengths.** " + " ".join(out) + "\n"
 
 
 def _obstacle_text(o: dict) -> str:
@@ -422,6 +523,16 @@ def _obstacle_text(o: dict) -> str:
         f"and {nw} wandering ones, all bouncing, radius {o.get('obstacle_radius', 0.4)} m, "
         f"speeds {lo}-{hi} m/s"
     )
+
+
+def run_sweep(settings=None, **kwargs):
+    """The study's difficulty sweep: :func:`gapath.dynamic.sweep.sweep`
+    (same parameters; obstacle count, speed relative to the robot, sensor
+    range and field of view varied one at a time around a hard base, over
+    scenario seeds, for hybrid A*, RRT*, grid A* and D* Lite)."""
+    from gapath.dynamic.sweep import sweep
+
+    return sweep(settings, **kwargs)
 
 
 def write_outputs(
@@ -462,6 +573,10 @@ def write_outputs(
         w.writerows(fov_rows)
         table_csv += "\n" + buf.getvalue()
         jsonl += "".join(dumps({"benchmark": "dynamic_study_fov", **r}) + "\n" for r in fov_rows)
+    if (out / f"{stem}.md").exists():  # keep generated sections of other scripts (the sweep's)
+        from gapath.dynamic.sweep import keep_blocks
+
+        md = keep_blocks((out / f"{stem}.md").read_text(), md)
     for name, data in ((f"{stem}.md", md), (f"{stem}.csv", table_csv), (f"{stem}.jsonl", jsonl)):
         atomic_write(out / name, data)
         written.append(out / name)

@@ -45,6 +45,13 @@ def register(subparsers) -> None:
     p.add_argument(
         "--fov-study", action="store_true", help="also run NO-MOPP with +-45, +-90 and +-180 degree sensors"
     )
+    p.add_argument(
+        "--prediction",
+        choices=("straight", "bounce"),
+        default="straight",
+        help="moving obstacles predicted on straight lines (NO-MOPP) or with their own "
+        "reflecting model (default: %(default)s)",
+    )
     p.add_argument("--no-gif", action="store_true", help="skip the animations")
     p.add_argument("--quiet", action="store_true")
     p.set_defaults(func=run_command)
@@ -54,12 +61,13 @@ def run_command(args) -> int:
     import sys
     from dataclasses import replace
 
-    from gapath.dynamic import Robot
+    from gapath.dynamic import Robot, SimSettings
 
     n = args.runs if args.runs is not None else (5 if args.quick else 100)
     planners = tuple(p.strip() for p in args.planners.split(",") if p.strip())
     scenarios = tuple(s.strip() for s in args.scenarios.split(",") if s.strip())
     robot = replace(Robot(), fov=args.fov)
+    settings = SimSettings(predict_bounces=args.prediction == "bounce")
     total = n * len(planners) * len(scenarios)
     done = [0]
 
@@ -75,11 +83,12 @@ def run_command(args) -> int:
         seed=args.seed,
         map_seed=args.map_seed,
         robot=robot,
+        settings=settings,
         progress=progress,
     )
     fov_rows = []
     if args.fov_study and not args.quick:
-        fov_rows = run_fov(n, scenarios=scenarios, seed=args.seed, map_seed=args.map_seed)
+        fov_rows = run_fov(n, scenarios=scenarios, seed=args.seed, map_seed=args.map_seed, settings=settings)
     files = write_outputs(study, args.out, gif=not args.no_gif, fov_rows=fov_rows)
     if not args.quiet:
         print(file=sys.stderr)
