@@ -10,8 +10,9 @@ Shared conventions (those of :mod:`gapath.planners._pareto_kernels`)
     carried as (straight, diagonal) step counts.
 
 The composite (one search step)
-    Every open node ``x`` is projected to a vector ``P(x)`` of ``q`` columns;
-    column ``c`` is mapped to [0, 1] by ``(P_c - lo_c) / (hi_c - lo_c)``, the
+    Every open node ``x`` is projected to its cost vector ``P(x)``, one
+    column per objective (the length column ``g + h`` for A*, the distance
+    travelled plus the octile heuristic); column ``c`` is mapped to [0, 1] by ``(P_c - lo_c) / (hi_c - lo_c)``, the
     minimum and maximum over the open nodes *now* (a column with
     ``hi_c = lo_c`` maps to 0), and the composite is ``sum_c w_c`` times
     that. The open node of smallest composite is expanded (ties: the static
@@ -78,27 +79,23 @@ def _edge(G, N, x, src, frm, to, d, kind, cells, soltab, khat):
 
 
 @numba.njit(cache=True)
-def _ranges(olist, size, G, hlen, use_h, lo, hi):
+def _ranges(olist, size, G, hlen, lo, hi):
     """lo, hi of every projected column over the open nodes ``olist[:size]``:
-    column j < M is G[:, j], column M the length heuristic ``hlen``."""
+    column 0 is G[:, 0] + hlen (the length key g + h), column j G[:, j]."""
     m = G.shape[1]
-    for c in range(m + 1):
+    for c in range(m):
         lo[c] = np.inf
         hi[c] = -np.inf
     for i in range(size):
         x = olist[i]
         for j in range(m):
             v = G[x, j]
+            if j == 0:
+                v += hlen[x]
             if v < lo[j]:
                 lo[j] = v
             if v > hi[j]:
                 hi[j] = v
-        if use_h:
-            v = hlen[x]
-            if v < lo[m]:
-                lo[m] = v
-            if v > hi[m]:
-                hi[m] = v
 
 
 @numba.njit(cache=True)
@@ -110,14 +107,13 @@ def _step_weights(wq, lo, hi, out):
 
 
 @numba.njit(cache=True, inline="always")
-def _composite(G, x, hx, sw, lo, use_h):
-    m = G.shape[1]
+def _composite(G, x, hx, sw, lo):
     s = 0.0
-    for j in range(m):
+    if sw[0] > 0:
+        s = sw[0] * (G[x, 0] + hx - lo[0])
+    for j in range(1, G.shape[1]):
         if sw[j] > 0:
             s += sw[j] * (G[x, j] - lo[j])
-    if use_h and sw[m] > 0:
-        s += sw[m] * (hx - lo[m])
     return s
 
 
@@ -130,7 +126,7 @@ def _static(G, x, sec):
 
 
 @numba.njit(cache=True)
-def _pop_best(olist, size, G, hlen, use_h, sw, lo, sec):
+def _pop_best(olist, size, G, hlen, sw, lo, sec):
     """Position in ``olist`` of the open node of smallest composite (ties:
     static sum ``sec``, then the cell index)."""
     best = -1
@@ -139,7 +135,7 @@ def _pop_best(olist, size, G, hlen, use_h, sw, lo, sec):
     bx = -1
     for i in range(size):
         x = olist[i]
-        c = _composite(G, x, hlen[x], sw, lo, use_h)
+        c = _composite(G, x, hlen[x], sw, lo)
         if c < bc:
             take = True
         elif c == bc:
@@ -188,13 +184,13 @@ def _push(olist, opos, size, x):
 
 
 @numba.njit(cache=True)
-def renormalised_astar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec, use_h):
+def renormalised_astar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec):
     """Lavin's A* baseline from cell ``s`` to ``t``: best-first search with
-    a closed set (no re-expansion), projection ``P(x) = [g_1(x) .. g_M(x),
-    h(x)]`` (the cost sums so far, and the octile distance to ``t`` as its
-    own column when ``use_h``), renormalised at every step.
+    a closed set (no re-expansion), projection ``P(x) = [g_1(x) + h(x),
+    g_2(x) .. g_M(x)]`` (the cost sums so far, the octile distance to ``t``
+    added to the length), renormalised at every step.
 
-    ``wq`` (M + 1,) the weights of the projected columns (0: unused), ``sec``
+    ``wq`` (M,) the weights of the objective columns (0: unused), ``sec``
     (M,) the static tie-break weights. Returns ``(path cell indices,
     expansions)``; empty when ``t`` is unreachable.
     """
@@ -208,9 +204,9 @@ def renormalised_astar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec, use_h)
     state = np.zeros(n, np.int8)
     olist = np.empty(n, np.int64)
     opos = np.full(n, -1, np.int64)
-    lo = np.empty(m + 1)
-    hi = np.empty(m + 1)
-    sw = np.empty(m + 1)
+    lo = np.empty(m)
+    hi = np.empty(m)
+    sw = np.empty(m)
     tmp = n
     for i in range(n):
         hlen[i] = _octile(i, t, w)
@@ -219,9 +215,9 @@ def renormalised_astar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec, use_h)
     expansions = 0
     reached = False
     while size > 0:
-        _ranges(olist, size, G, hlen, use_h, lo, hi)
+        _ranges(olist, size, G, hlen, lo, hi)
         _step_weights(wq, lo, hi, sw)
-        i = _pop_best(olist, size, G, hlen, use_h, sw, lo, sec)
+        i = _pop_best(olist, size, G, hlen, sw, lo, sec)
         u = olist[i]
         size = _remove_at(olist, opos, size, i)
         state[u] = _CLOSED
@@ -290,18 +286,18 @@ def renormalised_dstar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec, max_po
     state = np.zeros(n, np.int8)
     olist = np.empty(n, np.int64)
     opos = np.full(n, -1, np.int64)
-    lo = np.empty(m + 1)
-    hi = np.empty(m + 1)
-    sw = np.empty(m + 1)
+    lo = np.empty(m)
+    hi = np.empty(m)
+    sw = np.empty(m)
     tmp = n
     size = _push(olist, opos, 0, t)
     state[t] = _OPEN
     expansions = 0
     reached = False
     while size > 0 and expansions < max_pops:
-        _ranges(olist, size, G, hlen, False, lo, hi)
+        _ranges(olist, size, G, hlen, lo, hi)  # hlen = 0: no focusing heuristic
         _step_weights(wq, lo, hi, sw)
-        i = _pop_best(olist, size, G, hlen, False, sw, lo, sec)
+        i = _pop_best(olist, size, G, hlen, sw, lo, sec)
         x = olist[i]
         size = _remove_at(olist, opos, size, i)
         state[x] = _CLOSED

@@ -101,11 +101,14 @@ Renormalised baselines (Lavin's A* and D*, ``baseline="renormalised"``)
     III-A). :func:`weighted_sum_astar` and :func:`renormalised_dstar` with
     ``baseline="renormalised"`` do that (kernels in
     :mod:`gapath.planners._renorm_kernels`): every open node is projected to
-    its cost sums so far, with the length split into the distance
-    travelled ``g`` and the octile heuristic ``h`` as two columns (the
-    paper's five cost layers: distance, heuristic, elevation, solar, risk),
-    each column is min-max scaled over the open nodes, and the node of
-    smallest (weighted) sum is expanded. The order changes from step to
+    its cost vector, one column per objective (for A*, the length column is
+    ``g + h``, distance travelled plus octile heuristic: the paper's distance
+    and heuristic layers both "contribute to F1"), each column is min-max
+    scaled over the open nodes, and the node of smallest (weighted) sum is
+    expanded. With a single objective the scaling does not change the
+    order, and the searches are plain A* and Dijkstra ("the algorithms
+    yield the same solutions for single path cost problems", section
+    IV-A). The order changes from step to
     step, so neither search is exact: the returned path minimises no fixed
     function, and that is the baseline the paper measured against.
 
@@ -540,19 +543,14 @@ def _renormalised(costmap, objectives, start, goal, origin, weights, *, dstar) -
     dst = check_cell(ws.goal if goal is None else goal, "goal", occ)
     origin = _check_origin(origin, src, occ.shape)
     model = _Model(costmap, objectives, origin, pareto=False, weights=weights)
-    m = len(model.columns)
-    raw = model.wts[0] * model.scale  # the user's weights, per internal column
-    use_h = bool(model.used[0]) and not dstar
-    wq = np.zeros(m + 1)
-    wq[:m] = raw
-    wq[m] = raw[0] if use_h else 0.0
+    wq = np.ascontiguousarray(model.wts[0] * model.scale)  # the user's weights, per internal column
     h, w = occ.shape
     args = (src[0] * w + src[1], dst[0] * w + dst[1], model.occ, model.cc, model.kind, model.cells)
     args += (model.soltab, model.khat, wq, np.ascontiguousarray(model.wts[1]))
     if dstar:
         idx, expansions = rk.renormalised_dstar(*args, 50 * h * w)
     else:
-        idx, expansions = rk.renormalised_astar(*args, use_h)
+        idx, expansions = rk.renormalised_astar(*args)
     if len(idx) == 0:
         raise _no_path(ws, src, dst, expansions)
     return _result(model, idx, expansions, t0, "dstar" if dstar else "astar")
@@ -581,9 +579,8 @@ def weighted_sum_astar(
         One non-negative weight per objective (not all zero); default 1 each.
     baseline : {"weighted", "renormalised"}
         ``"weighted"``: static normalisers, an exact search of the weighted
-        sum. ``"renormalised"``: Lavin's A* (the length counts as two
-        columns, distance travelled and heuristic, each with the length's
-        weight).
+        sum. ``"renormalised"``: Lavin's A* (each objective renormalised
+        over the open list at every step, the length as ``g + h``).
 
     Returns
     -------

@@ -956,10 +956,12 @@ def _markdown(study: MarsStudy, stats: dict) -> str:
             if rate2 is not None
             else "."
         ),
-        "* Planners: **A* renorm. and D* renorm. = the paper's baselines**: the four objectives, "
-        "the length split into distance travelled and heuristic (the paper's five layers), each "
-        "min-max normalised to [0, 1] over the open list at every search step and summed with "
-        "equal weights (paper section III-A). A* renorm. is forward A* with a closed set; D* "
+        "* Planners: **A* renorm. and D* renorm. = the paper's baselines**: each of the four "
+        "objectives of an open node (for A*, the length as distance travelled plus heuristic) "
+        "min-max normalised to [0, 1] over the open list at every search step, summed with "
+        "equal weights (paper section III-A; the paper does not say whether the distance and the "
+        "heuristic are scaled together or apart: together keeps single-objective A* plain A*, "
+        "as its section IV-A says). A* renorm. is forward A* with a closed set; D* "
         "renorm. is the first search of Stentz's D* (backwards from the goal, no focusing "
         "heuristic, closed states reopened when a cheaper cost reaches them), implemented for "
         "a first plan only (D*'s replanning is not; no workspace is replanned, as in the "
