@@ -256,6 +256,19 @@ def renormalised_astar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec):
     return out, expansions
 
 
+@numba.njit(cache=True, inline="always")
+def _leads_to(back, x, y, t, n):
+    """True if the back-pointer chain from ``x`` passes ``y`` before ``t``."""
+    v = x
+    k = 0
+    while v != t and v >= 0 and k <= n:
+        if v == y:
+            return True
+        v = back[v]
+        k += 1
+    return False
+
+
 @numba.njit(cache=True)
 def renormalised_dstar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec, max_pops):
     """Lavin's D* baseline: the first search of Stentz's D* (1994), from the
@@ -268,8 +281,10 @@ def renormalised_dstar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec, max_po
     passable move ``Y -> X`` is (re)inserted with ``h(Y) = c(Y, X) + h(X)``
     and ``b(Y) = X`` when it is NEW, when ``b(Y) = X`` and ``h(Y)`` differs
     (propagation), or when ``b(Y) != X`` and the new cost is better under the
-    step's normalisation; CLOSED states are reopened by that rule (D*'s
-    LOWER states). The search stops when ``s`` is expanded, or after
+    step's normalisation and ``X``'s back-pointer chain does not pass
+    ``Y`` (with a fixed order that cannot happen; with an order that changes
+    between steps a stale chain could close a cycle); CLOSED states are
+    reopened by that rule (D*'s LOWER states). The search stops when ``s`` is expanded, or after
     ``max_pops`` expansions (then no path is returned). The path follows
     ``b`` from ``s``.
 
@@ -322,7 +337,10 @@ def renormalised_dstar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec, max_po
                 for j in range(1, m):
                     update = update or G[y, j] != G[tmp, j]
             else:
-                update = _better(G, tmp, y, sw, sec)
+                # a cheaper cost by this step's scaling; never through y itself
+                # (the scaling changes between steps, so a stale chain could
+                # otherwise close a back-pointer cycle)
+                update = _better(G, tmp, y, sw, sec) and not _leads_to(back, x, y, t, n)
             if update:
                 for j in range(m):
                     G[y, j] = G[tmp, j]
