@@ -56,7 +56,7 @@ def test_quick_study(tmp_path, capsys):
     ):
         line = next(x for x in md.splitlines() if x.startswith(title))
         assert "terrain: HiRISE Mars DTM" in line or "terrain: **seeded fractal" in line
-    assert md.count("benchmarks/mars_study.py --size 40") >= 4  # the command at the top and per table
+    assert md.count("benchmarks/mars_study.py --n 5 --size 40") >= 4  # the command at the top and per table
     csv = (tmp_path / "mars.csv").read_text().splitlines()
     assert csv[0].startswith("solar_rate,algorithm,n,F1_length")
     assert sum(x.startswith("0.01,") for x in csv) == 5

@@ -545,8 +545,18 @@ def _renormalised(costmap, objectives, start, goal, origin, weights, *, dstar) -
     model = _Model(costmap, objectives, origin, pareto=False, weights=weights)
     wq = np.ascontiguousarray(model.wts[0] * model.scale)  # the user's weights, per internal column
     h, w = occ.shape
-    args = (src[0] * w + src[1], dst[0] * w + dst[1], model.occ, model.cc, model.kind, model.cells)
-    args += (model.soltab, model.khat, wq, np.ascontiguousarray(model.wts[1]))
+    args = (
+        src[0] * w + src[1],
+        dst[0] * w + dst[1],
+        model.occ,
+        model.cc,
+        model.kind,
+        model.cells,
+        model.soltab,
+        model.khat,
+        wq,
+        np.ascontiguousarray(model.wts[1]),
+    )
     if dstar:
         idx, expansions = rk.renormalised_dstar(*args, 50 * h * w)
     else:

@@ -851,6 +851,10 @@ def _command(settings: dict) -> str:
     args = []
     if settings.get("n_workspaces") != FULL["n_workspaces"]:
         args.append(f"--n {settings['n_workspaces']}")
+    if settings.get("seed", 2015) != 2015:
+        args.append(f"--seed {settings['seed']}")
+    if settings.get("size", 100) != 100:
+        args.append(f"--size {settings['size']}")
     if settings.get("solar_rate", 1.0) != 1.0:
         args.append(f"--solar-rate {settings['solar_rate']:g}")
     cmp = settings.get("compare_solar_rate", 0.01)
