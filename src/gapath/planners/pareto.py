@@ -90,9 +90,39 @@ Weighted-sum baselines (the paper's A* and D*)
     :func:`weighted_sum_astar` and :class:`WeightedSumDStar` minimise
     ``sum_j w_j G_j / N_j`` (equal weights by default) with the same kernels
     but a plain priority queue (no Pareto filter). The paper renormalises
-    the costs over the open list at every step; a static normalisation is
-    used here so that the searches stay exact (A* and D* then return paths
-    of equal cost).
+    the costs over the open list at every step; the static normalisation
+    (``baseline="weighted"``, the default) keeps the searches exact (A* and
+    D* then return paths of equal cost); the paper's rule is
+    ``baseline="renormalised"`` (below).
+
+Renormalised baselines (Lavin's A* and D*, ``baseline="renormalised"``)
+    The paper's A* and D* sum the objectives after normalising each to
+    [0, 1] *over the nodes in the open list, at every search step* (section
+    III-A). :func:`weighted_sum_astar` and :func:`renormalised_dstar` with
+    ``baseline="renormalised"`` do that (kernels in
+    :mod:`gapath.planners._renorm_kernels`): every open node is projected to
+    its cost vector, one column per objective (for A*, the length column is
+    ``g + h``, distance travelled plus octile heuristic: the paper's distance
+    and heuristic layers both "contribute to F1"), each column is min-max
+    scaled over the open nodes, and the node of smallest (weighted) sum is
+    expanded. With a single objective the scaling does not change the
+    order, and the searches are plain A* and Dijkstra ("the algorithms
+    yield the same solutions for single path cost problems", section
+    IV-A). The order changes from step to
+    step, so neither search is exact: the returned path minimises no fixed
+    function, and that is the baseline the paper measured against.
+
+    * A*: forward best-first search with a closed set (a node is expanded
+      once); a cheaper tentative cost, judged by the step's normalisation,
+      replaces the stored one of an open node.
+    * D*: the first search of Stentz's D* (1994): backwards from the goal,
+      each state's cost to the goal and back-pointer, no focusing
+      heuristic (the original D*), CLOSED states reopened when a cheaper
+      cost (by the step's normalisation) reaches them, back-pointer
+      children updated when their parent's cost changes; stops when the
+      start is expanded. Only this first plan is implemented: D*'s
+      replanning after cost changes (RAISE states) is not, and the study
+      never replans (the paper's Table I plans once per workspace).
 
 Path objectives (the returned ``F``)
     Recomputed on the returned path by
@@ -132,6 +162,8 @@ __all__ = [
     "ParetoPlanResult",
     "astar_po",
     "weighted_sum_astar",
+    "renormalised_dstar",
+    "BASELINES",
     "DStarPO",
     "WeightedSumDStar",
     "plan",
@@ -141,6 +173,10 @@ __all__ = [
 
 #: The paper's four objectives F1..F4.
 DEFAULT_OBJECTIVES = ("length", "elevation", "solar", "risk")
+#: The baselines' composite costs: ``"weighted"`` (static normalisers, an
+#: exact search) or ``"renormalised"`` (Lavin's: renormalised over the open
+#: list at every step).
+BASELINES = ("weighted", "renormalised")
 
 
 class _Model:
@@ -304,7 +340,8 @@ class ParetoPlanResult:
     seconds : float
         Wall-clock time of the call.
     planner : str
-        ``astar``, ``dstar-lite``, ``astar-po`` or ``dstar-po``.
+        ``astar``, ``dstar-lite``, ``astar-po`` or ``dstar-po``; ``dstar``
+        for :func:`renormalised_dstar`.
     """
 
     path: np.ndarray
@@ -482,18 +519,71 @@ def astar_po(
     )
 
 
+def _check_baseline(baseline) -> str:
+    if baseline not in BASELINES:
+        raise ConfigError(f"baseline must be one of {', '.join(BASELINES)}, got {baseline!r}")
+    return baseline
+
+
+def _renormalised(costmap, objectives, start, goal, origin, weights, *, dstar) -> ParetoPlanResult:
+    """Lavin's renormalised A* (``dstar=False``) or D* (module docstring)."""
+    from gapath.planners import _renorm_kernels as rk
+
+    t0 = time.perf_counter()
+    ws = costmap.workspace
+    occ = ws.occ
+    src = check_cell(ws.start if start is None else start, "start", occ)
+    dst = check_cell(ws.goal if goal is None else goal, "goal", occ)
+    origin = _check_origin(origin, src, occ.shape)
+    model = _Model(costmap, objectives, origin, pareto=False, weights=weights)
+    wq = np.ascontiguousarray(model.wts[0] * model.scale)  # the user's weights, per internal column
+    h, w = occ.shape
+    args = (
+        src[0] * w + src[1],
+        dst[0] * w + dst[1],
+        model.occ,
+        model.cc,
+        model.kind,
+        model.cells,
+        model.soltab,
+        model.khat,
+        wq,
+        np.ascontiguousarray(model.wts[1]),
+    )
+    if dstar:
+        idx, expansions = rk.renormalised_dstar(*args, 50 * h * w)
+    else:
+        idx, expansions = rk.renormalised_astar(*args)
+    if len(idx) == 0:
+        raise _no_path(ws, src, dst, expansions)
+    return _result(model, idx, expansions, t0, "dstar" if dstar else "astar")
+
+
 def weighted_sum_astar(
-    costmap, objectives=DEFAULT_OBJECTIVES, *, weights=None, start=None, goal=None, origin=None
+    costmap,
+    objectives=DEFAULT_OBJECTIVES,
+    *,
+    weights=None,
+    start=None,
+    goal=None,
+    origin=None,
+    baseline="weighted",
 ) -> ParetoPlanResult:
     """A* on the normalised weighted sum of the objectives (the paper's A*
-    baseline): minimises ``sum_j w_j G_j / N_j`` (module docstring), equal
-    weights by default.
+    baseline): by default minimises ``sum_j w_j G_j / N_j`` (module
+    docstring), equal weights by default; with ``baseline="renormalised"``
+    the paper's own rule (objectives renormalised over the open list at
+    every step, module docstring).
 
     Parameters
     ----------
     costmap, objectives, start, goal, origin : see :func:`astar_po`.
     weights : sequence of float, optional
         One non-negative weight per objective (not all zero); default 1 each.
+    baseline : {"weighted", "renormalised"}
+        ``"weighted"``: static normalisers, an exact search of the weighted
+        sum. ``"renormalised"``: Lavin's A* (each objective renormalised
+        over the open list at every step, the length as ``g + h``).
 
     Returns
     -------
@@ -515,8 +605,51 @@ def weighted_sum_astar(
     [[2, 0], [1, 1], [0, 2], [0, 3], [0, 4], [1, 5], [2, 6]]
     >>> weighted_sum_astar(cm, ("length", "risk"), weights=(1, 0.01)).path.tolist()
     [[2, 0], [2, 1], [2, 2], [2, 3], [2, 4], [2, 5], [2, 6]]
+    >>> res = weighted_sum_astar(cm, ("length", "risk"), baseline="renormalised")
+    >>> res.path[0].tolist(), res.path[-1].tolist()
+    ([2, 0], [2, 6])
     """
+    if _check_baseline(baseline) == "renormalised":
+        return _renormalised(costmap, objectives, start, goal, origin, weights, dstar=False)
     return _astar(costmap, objectives, start, goal, origin, pareto=False, weights=weights, planner="astar")
+
+
+def renormalised_dstar(
+    costmap, objectives=DEFAULT_OBJECTIVES, *, weights=None, start=None, goal=None, origin=None
+) -> ParetoPlanResult:
+    """Lavin's D* baseline: the first search of Stentz's D* from the goal
+    back to the start, with the objectives renormalised over the open list
+    at every step (module docstring). It plans once; for replanning use
+    :class:`WeightedSumDStar` (D* Lite, exact weighted sum) or
+    :class:`DStarPO`.
+
+    Parameters
+    ----------
+    costmap, objectives, start, goal, origin : see :func:`astar_po`.
+    weights : sequence of float, optional
+        One non-negative weight per objective (not all zero); default 1 each.
+
+    Returns
+    -------
+    ParetoPlanResult
+        ``planner`` is ``"dstar"``.
+
+    Raises
+    ------
+    ConfigError, NoPathError
+        As :func:`astar_po`.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gapath import Workspace
+    >>> from gapath.costmap import Costmap
+    >>> ws = Workspace(np.zeros((3, 7), bool), start=(2, 0), goal=(2, 6))
+    >>> res = renormalised_dstar(Costmap(ws, risk=(2, 3)), ("length", "risk"))
+    >>> res.planner, res.path[0].tolist(), res.path[-1].tolist()
+    ('dstar', [2, 0], [2, 6])
+    """
+    return _renormalised(costmap, objectives, start, goal, origin, weights, dstar=True)
 
 
 # ---------------------------------------------------------------------------
@@ -758,6 +891,7 @@ def plan(
     weights=None,
     start=None,
     goal=None,
+    baseline="weighted",
 ) -> ParetoPlanResult:
     """Plan one path with a named planner.
 
@@ -769,6 +903,12 @@ def plan(
     objectives, start, goal : see :func:`astar_po`.
     priority : Pareto planners' priority (see :func:`astar_po`).
     weights : weighted-sum planners' weights.
+    baseline : {"weighted", "renormalised"}
+        The composite of ``astar`` and ``dstar-lite``: ``"weighted"``
+        (static normalisers; A* and D* Lite, exact) or ``"renormalised"``
+        (Lavin's A* and D*: renormalised over the open list at every step;
+        ``dstar-lite`` then runs :func:`renormalised_dstar`, the first search
+        of Stentz's D*, not D* Lite). Ignored by the Pareto planners.
 
     Raises
     ------
@@ -777,8 +917,13 @@ def plan(
     NoPathError
         If the goal cannot be reached.
     """
+    _check_baseline(baseline)
     if planner == "astar":
-        return weighted_sum_astar(costmap, objectives, weights=weights, start=start, goal=goal)
+        return weighted_sum_astar(
+            costmap, objectives, weights=weights, start=start, goal=goal, baseline=baseline
+        )
+    if planner == "dstar-lite" and baseline == "renormalised":
+        return renormalised_dstar(costmap, objectives, weights=weights, start=start, goal=goal)
     if planner == "astar-po":
         return astar_po(costmap, objectives, priority=priority, start=start, goal=goal)
     if planner == "dstar-lite":

@@ -200,7 +200,7 @@ class PlannerInfo:
 # the options of each family: the wrapper's own plus the keyword settings of
 # the planner it calls (tests/test_plan_registry.py checks them against the
 # signatures)
-_GRID_OPTIONS = ("costmap", "objectives", "priority", "weights")
+_GRID_OPTIONS = ("costmap", "objectives", "priority", "weights", "baseline")
 _HYBRID_OPTIONS = (
     "car",
     "heading",
@@ -258,6 +258,7 @@ def _grid(name: str) -> Callable[..., tuple]:
         objectives: Any = ("length",),
         priority: str | None = None,
         weights: Any = None,
+        baseline: str = "weighted",
     ) -> tuple:
         from gapath.costmap import Costmap
         from gapath.planners.pareto import plan as plan_on_costmap
@@ -266,7 +267,9 @@ def _grid(name: str) -> Callable[..., tuple]:
             costmap = Costmap(workspace)
         elif costmap.workspace is not workspace and costmap.workspace != workspace:
             raise ConfigError("the costmap is over another workspace than the one to plan on")
-        res = plan_on_costmap(costmap, name, objectives, priority=priority, weights=weights)
+        res = plan_on_costmap(
+            costmap, name, objectives, priority=priority, weights=weights, baseline=baseline
+        )
         cells = np.asarray(res.path)
         info = {
             "expansions": res.expansions,

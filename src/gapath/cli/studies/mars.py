@@ -40,6 +40,20 @@ def add_arguments(p) -> None:
         "astar or none (all random)",
     )
     p.add_argument(
+        "--solar-rate",
+        type=float,
+        default=1.0,
+        help="the solar vector's turn per path step in the main tables, radians "
+        "(default: %(default)s, Lavin section IV)",
+    )
+    p.add_argument(
+        "--compare-solar-rate",
+        type=_rate_or_none,
+        default=0.01,
+        help="the planners are run again at this rate, radians per path step, or none "
+        "(default: %(default)s, Lavin section II)",
+    )
+    p.add_argument(
         "--terrain",
         choices=TERRAINS,
         default="auto",
@@ -55,6 +69,22 @@ def add_arguments(p) -> None:
     )
     p.add_argument("--jsonl", default=None, help="also append the JSON lines to this file")
     p.add_argument("--quiet", action="store_true", help="no JSON lines on stdout")
+
+
+def _rate_or_none(text: str):
+    """``--compare-solar-rate``: a number of radians, or ``none``."""
+    import argparse
+    import math
+
+    if text.strip().lower() == "none":
+        return None
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number of radians or 'none', got {text!r}") from None
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"expected a finite number of radians, got {text!r}")
+    return value
 
 
 def run(args) -> int:
@@ -98,11 +128,15 @@ def run(args) -> int:
             ga_pop=args.ga_pop,
             ga_gen=args.ga_gen,
             ga_seed_from=args.ga_seed_from,
+            solar_rate=args.solar_rate,
+            compare_solar_rate=args.compare_solar_rate,
             on_record=lambda r: emit({"kind": "mars_workspace", **record_line(r)}),
         )
         files = write_results(study, out)
         for row in study.rows:
             emit({"kind": "mars_table", **study.settings, **row})
+        for row in study.rows_compare:
+            emit({"kind": "mars_table_solar_compare", **study.settings, **row})
         emit({"kind": "mars_stats", **study.settings, **study_stats(study.records), "seconds": study.seconds})
     finally:
         if sink is not None:
