@@ -24,14 +24,11 @@ The composite (one search step)
 
 from __future__ import annotations
 
-import math
-
 import numba
 import numpy as np
 
-from gapath.planners._grid import DC, DR, can_step
+from gapath.grid import DC, DR, SQRT2, can_step
 
-SQRT2 = math.sqrt(2.0)
 _CELL = 1
 
 # node states

@@ -532,8 +532,8 @@ def _renormalised(costmap, objectives, start, goal, origin, weights, *, dstar) -
     t0 = time.perf_counter()
     ws = costmap.workspace
     occ = ws.occ
-    src = check_cell(ws.start if start is None else start, "start", occ)
-    dst = check_cell(ws.goal if goal is None else goal, "goal", occ)
+    src = check_free_cell(ws.start if start is None else start, "start", occ)
+    dst = check_free_cell(ws.goal if goal is None else goal, "goal", occ)
     origin = _check_origin(origin, src, occ.shape)
     model = _Model(costmap, objectives, origin, pareto=False, weights=weights)
     wq = np.ascontiguousarray(model.wts[0] * model.scale)  # the user's weights, per internal column
