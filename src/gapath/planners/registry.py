@@ -494,7 +494,7 @@ def plan(workspace: Workspace, planner: str = "dstar-po", **options: Any) -> Pla
     >>> plan(ws, "astar", iterations=10)
     Traceback (most recent call last):
     ...
-    gapath.errors.ConfigError: unknown option 'iterations' for planner 'astar'; expected some of costmap, objectives, priority, weights
+    gapath.errors.ConfigError: unknown option 'iterations' for planner 'astar'; expected some of costmap, objectives, priority, weights, baseline
     """
     info = planner_info(planner)
     for key in options:
