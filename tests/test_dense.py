@@ -323,3 +323,15 @@ def test_walk_lines_keep_the_stated_protocol_apart_from_added_seeds():
     assert "Over seeds 1, 2 alone: every map at or above the paper in 0 of 1 rows, the median " in text
     assert "in 0 of 1." in text
     assert "| 32x32 | 0.5 | 36 | 50 (480, -) | 20 (480, -) | 10 (480, -) | 1 of 3 |" in text
+
+
+def test_cli_generator_walk_rejects_a_missing_csv_before_running(tmp_path, capsys):
+    out = tmp_path / "s"
+    args = ["experiment", "dense", "--quick", "--generator", "walk", "--from-csv", str(tmp_path / "no.csv")]
+    assert main([*args, "--out", str(out), "--workers", "0", "--quiet"]) == 2
+    assert "--from-csv: cannot read" in capsys.readouterr().err
+    assert not (out / "table1-walk-map1").exists()
+    (tmp_path / "bad.csv").write_text("a,b\n1,2\n")
+    args[-1] = str(tmp_path / "bad.csv")
+    assert main([*args, "--out", str(out), "--workers", "0", "--quiet"]) == 2
+    assert "is not a dense.csv" in capsys.readouterr().err

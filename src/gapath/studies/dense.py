@@ -2093,8 +2093,19 @@ def _run_walk(out, grids, p0s, runs, n_gen, map_seeds, sfx, *, engine, results, 
     map seed, then the report with both generators."""
     import time
 
+    from gapath.errors import ConfigError
     from gapath.experiments.runner import run_experiment
 
+    cols = sorted(
+        (int(m[1]), p) for p in out.glob("table1-map*") if (m := re.fullmatch(r"table1-map(\d+)", p.name))
+    )
+    if from_csv is None and not cols:
+        raise ConfigError(
+            f"--generator walk reports beside the columns generator's rows: none in {str(out)!r}; "
+            "run `gapath experiment dense` with the same --out first, or give --from-csv"
+        )
+    if from_csv is not None:
+        read_dense_csv(from_csv)  # fail before the runs, not after
     wall, failed, walk_dirs = {}, 0, []
     for m in map_seeds:
         name = f"table1-walk-map{m}"
@@ -2114,16 +2125,6 @@ def _run_walk(out, grids, p0s, runs, n_gen, map_seeds, sfx, *, engine, results, 
         if r.ran:
             wall[name] = time.perf_counter() - t0
         walk_dirs.append(out / name)
-    from gapath.errors import ConfigError
-
-    cols = sorted(
-        (int(m[1]), p) for p in out.glob("table1-map*") if (m := re.fullmatch(r"table1-map(\d+)", p.name))
-    )
-    if from_csv is None and not cols:
-        raise ConfigError(
-            f"--generator walk reports beside the columns generator's rows: none in {str(out)!r}; "
-            "run `gapath experiment dense` with the same --out first, or give --from-csv"
-        )
     main = dict(cols).get(MAP_SEED, cols[0][1] if cols else None)
     main_seed = MAP_SEED if MAP_SEED in dict(cols) else (cols[0][0] if cols else None)
     rep = dense_report(
