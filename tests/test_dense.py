@@ -258,10 +258,12 @@ def test_report_from_a_synthetic_csv(tmp_path):
     # the headline: median [min, max] over the columns maps, map 1, the new
     # map per run, the walk maps, the verdicts
     assert (
-        "| 8x8 | 0.5 | 100 | 95 [90, 100] | 100 | 100 | 100 [100, 100] | reproduced (below) | reproduced |"
+        "| 8x8 | 0.5 | 100 | 95 [90, 100], 95 | 100 | 100 | 100 [100, 100], 100 | reproduced (below) | reproduced |"
         in md
     )
-    assert "| 32x32 | 0.5 | 36 | 69 [40, 98] | 98 | 81 | 20 [20, 20] | ABOVE by 33 | BELOW by 16 |" in md
+    assert (
+        "| 32x32 | 0.5 | 36 | 69 [40, 98], 69 | 98 | 81 | 20 [20, 20], 20 | ABOVE by 33 | BELOW by 16 |" in md
+    )
     assert "**columns generator**: goal NOT met (every map at or above the paper in 1 of 2 rows)" in md
     assert "**walk generator**: goal NOT met" in md
     # every table has its command at the top
@@ -292,7 +294,7 @@ def test_walk_run_beside_the_columns_rows(tmp_path):
     rep = dense.run(tmp_path / "s", generator="walk", map_seeds=(1, 2), **kw)
     assert rep["failed"] == 0
     md = (tmp_path / "s" / "dense.md").read_text()
-    assert "## The walk generator" in md and "walk: median [min, max] over maps 1, 2" in md
+    assert "## The walk generator" in md and "walk: median [min, max], mean over maps 1, 2" in md
     spec = ResultStore(tmp_path / "s" / "table1-walk-map2").spec().to_dict()
     names = sorted({m["file"]["name"] for m in spec["maps"]})
     assert names[0] == "walk-16x16-p0.3-s2.txt" and len(names) == 4
