@@ -1737,7 +1737,18 @@ def headline_lines(parts: list[dict], *, commands: dict, runs: dict) -> list[str
     if has_per_run:
         pr = [d for d in dist if d["per_run"] is not None and d["paper_success_pct"] is not None]
         ok = sum(d["per_run"] >= d["paper_success_pct"] for d in pr)
-        said.append(f"- **columns, a new map per run**: at or above the paper in {ok} of {len(pr)} rows.")
+        gaps = [(float(np.mean(list(d["columns"].values()))) - d["per_run"], d) for d in pr if d["columns"]]
+        gap_text = ""
+        if gaps:
+            gap, d = max(gaps, key=lambda t: abs(t[0]))
+            gap_text = (
+                f" The mean over the {len(d['columns'])} columns map seeds differs from it by up to "
+                f"{_f(abs(gap), 3)} points ({d['grid']}x{d['grid']} p0 {d['p0']:g}): "
+                f"{len(d['columns'])} maps are few where the success varies this much from map to map."
+            )
+        said.append(
+            f"- **columns, a new map per run**: at or above the paper in {ok} of {len(pr)} rows." + gap_text
+        )
     text += [
         "The goal (at or above the paper in every row over random maps, with both generators):",
         "",
