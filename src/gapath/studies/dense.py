@@ -19,13 +19,27 @@ random path, more obstacles around it as ``p0`` grows) and treats its
 64x64 case as one map solved in several runs ("the same problem is solved
 later ... feasible paths are found in 80 % runs"). So a row here is one map,
 ``dense_workspace(grid, p0, map_seed)``, with GA seeds 1..100; the map seed
-is :data:`MAP_SEED` (= 1, the experiment's first seed, fixed before any run
-was made) for every row, so the maps of a grid are nested like the paper's.
+is :data:`MAP_SEED` (= 1, the experiment's first seed) for every row, so the
+maps of a grid are nested like the paper's. Map 1 was not chosen blind: it
+had succeeded in every row under the earlier protocol (a new map per run),
+so the report headlines the distribution over map seeds, map 1 being one of
+them.
 Which map a row gets matters (a few maps trap this GA), so the report also
 gives the rows on further map seeds (``--map-seeds``) and the variant with
 a new map for every run (``map_seed="run"``, ``--per-run-maps``: the
 expected success over random maps). The choice is recorded in
 ``docs/CONVENTIONS.md``.
+
+*Two map generators.* ``"columns"`` (:func:`gapath.dense_workspace`, the
+default) keeps free a random walk of -2..2 rows per column ending with the
+integer encoding's own end-fix climb, so its corridor hugs the bottom rows
+and climbs the right edge; ``"walk"`` (:func:`walk_workspace`) keeps free a
+goal-biased 8-connected walk (:func:`goal_walk_path`) that crosses the grid
+near the diagonal. ``run(generator="walk")`` (``--generator walk``) runs the
+Table 1 rows on walk maps and reports them beside the columns rows; the
+report's headline is the success per row over map seeds (median and range,
+:func:`headline_lines`), and it lists every map's free cells and exact
+shortest lengths (:func:`map_stats`).
 
 Then the larger grids with population 500 (same stop rule, 500 generations
 at most), again one map each: 64x64 with about 791 obstacles and 128x128
@@ -46,6 +60,7 @@ from __future__ import annotations
 
 import csv
 import io
+import re
 from pathlib import Path
 
 import numpy as np
@@ -53,18 +68,32 @@ import numpy as np
 from gapath.experiments.spec import ExperimentSpec
 
 __all__ = [
+    "GENERATORS",
     "LARGE",
     "MAP_SEED",
+    "MATCH_POINTS",
     "P0S",
     "PAPER_LARGE",
     "PAPER_TABLE1",
+    "WALK_BIAS",
+    "WALK_PROTOCOL_SEEDS",
     "dense_report",
+    "distribution_rows",
+    "generated_workspace",
+    "goal_walk_path",
+    "headline_lines",
     "large_spec",
     "map_seed_of",
+    "map_stats",
+    "map_stats_lines",
     "p0_for_obstacles",
     "paper_row",
+    "read_dense_csv",
     "table1_spec",
     "unsuccessful_runs",
+    "walk_lines",
+    "walk_table1_spec",
+    "walk_workspace",
 ]
 
 #: Obstacle probabilities of Table 1.
@@ -249,16 +278,231 @@ def large_spec(
     )
 
 
+def walk_table1_spec(
+    maps_dir,
+    grids=(8, 16, 32),
+    p0s=P0S,
+    runs: int = 100,
+    *,
+    map_seed: int = MAP_SEED,
+    pop_size: int = 200,
+    n_gen: int = 500,
+    engine: str = "fast",
+    first_seed: int = 1,
+    name: str = "dense-table1-walk",
+) -> ExperimentSpec:
+    """:func:`table1_spec` on the maps of the ``"walk"`` generator
+    (:func:`walk_workspace`, map seed ``map_seed``): the maps are written as
+    text grids into ``maps_dir`` (``walk-<n>x<n>-p<p0>-s<seed>.txt``, start
+    ``S`` bottom-left, goal ``G`` top-right) and the spec names those files,
+    so the store records each map's sha256.
+
+    Raises
+    ------
+    ValueError
+        If ``map_seed`` is not a non-negative integer (a new walk map per run
+        is not offered: the files are written per map).
+
+    Examples
+    --------
+    >>> import tempfile
+    >>> spec = walk_table1_spec(tempfile.mkdtemp(), grids=(8,), p0s=(0.5,), runs=2)
+    >>> [(r["map"]["file"]["name"], r["seed"]) for r in spec.runs()]
+    [('walk-8x8-p0.5-s1.txt', 1), ('walk-8x8-p0.5-s1.txt', 2)]
+    """
+    from gapath.results import atomic_write
+
+    mseed = _map_seed(map_seed)
+    if mseed == "run":
+        raise ValueError("map_seed: the walk generator takes one map seed per store, not 'run'")
+    maps_dir = Path(maps_dir).resolve()
+    maps_dir.mkdir(parents=True, exist_ok=True)
+    maps = []
+    for n in grids:
+        for p0 in p0s:
+            ws = walk_workspace(int(n), float(p0), mseed)
+            path = maps_dir / f"{ws.name}.txt"
+            text = ws.to_text()
+            if not path.exists() or path.read_text() != text:
+                atomic_write(path, text)
+            maps.append({"file": {"path": str(path)}})
+    return ExperimentSpec(
+        name=name,
+        description="Ahmed & Deb 2013, Table 1, on maps whose kept free path is a goal-biased "
+        f"8-connected walk (gapath.studies.dense.walk_workspace), map seed {mseed}.",
+        maps=maps,
+        encodings=["integer"],
+        engines=[engine],
+        settings=dict(objectives="length,vulnerability", pop_size=pop_size, n_gen=n_gen, seed_from="none"),
+        seeds={"start": first_seed, "count": runs},
+        options={"stop_at_first_feasible": True},
+    )
+
+
+_WALK_NAME = re.compile(r"^walk-(\d+)x(\d+)-p([0-9.]+)-s(\d+)(?:\.txt)?$")
+
+
+def _dense_args(map_spec) -> dict | None:
+    """``{"n", "p0", "seed"}`` of a dense map spec, or of a walk map file
+    written by :func:`walk_table1_spec`; None for other maps."""
+    if not isinstance(map_spec, dict):
+        return None
+    if "dense" in map_spec:
+        return map_spec["dense"]
+    m = _WALK_NAME.match(str(map_spec.get("file", {}).get("name", "")))
+    if m is None:
+        return None
+    return {"n": int(m[1]), "p0": float(m[3]), "seed": int(m[4]), "generator": "walk"}
+
+
 def map_seed_of(store_dir):
     """The map seed of a dense store's rows (an int, or ``"run"`` when every
     run has its own map; None for a store of mixed or non-dense maps)."""
     from gapath.experiments.store import ResultStore
 
-    seeds = {
-        m["dense"]["seed"] if isinstance(m, dict) and "dense" in m else None
-        for m in ResultStore(store_dir).spec().to_dict()["maps"]
-    }
+    seeds = {(_dense_args(m) or {}).get("seed") for m in ResultStore(store_dir).spec().to_dict()["maps"]}
     return seeds.pop() if len(seeds) == 1 else None
+
+
+# ---------------------------------------------------------------------------
+# a second map generator (issue 17 §1): a goal-biased 8-connected walk
+# ---------------------------------------------------------------------------
+
+#: The map generators of the study: ``"columns"`` is
+#: :func:`gapath.dense_workspace` (each column moves -2..2 rows, then the goal
+#: column is climbed: the integer encoding's own end-fixing shape);
+#: ``"walk"`` is :func:`walk_workspace` (a goal-biased 8-connected walk).
+GENERATORS = ("columns", "walk")
+
+#: The walk's pull towards the goal: a move's weight is
+#: ``exp(-WALK_BIAS * (distance after - distance before))`` (Euclidean
+#: distance to the goal, in cells).
+WALK_BIAS = 1.25
+
+#: The walk map seeds of the protocol stated before the walk runs were made
+#: (issue 17: seeds 1-4, 30 GA runs per row); seeds added later are reported
+#: too, and the report gives this subset's summary beside theirs.
+WALK_PROTOCOL_SEEDS = (1, 2, 3, 4)
+
+_WALK_MOVES = ((0, 1), (-1, 1), (1, 1), (-1, 0), (1, 0))  # (row, column step sign)
+
+
+def goal_walk_path(shape, start, goal, rng: np.random.Generator, bias: float = WALK_BIAS) -> np.ndarray:
+    """A random 8-connected walk from ``start`` to ``goal`` pulled towards the
+    goal, never stepping back a column.
+
+    Each step picks one of the moves ahead, ahead-diagonal (up or down) or
+    vertical (up or down) that stays on the grid and does not revisit a
+    cell, with weight ``exp(-bias * (d' - d))`` (``d``: Euclidean distance to
+    the goal before, ``d'`` after the move); in the goal's column it goes
+    straight to the goal. The path wanders anywhere between start and goal
+    (it does not follow the bottom rows and the last column the way
+    :func:`gapath.workspace.random_monotone_path` does) yet stays
+    representable by the column-monotone encodings: its cells in a column are
+    one vertical run entered from a neighbour of the previous column's last
+    cell.
+
+    Parameters
+    ----------
+    shape : (rows, cols).
+    start, goal : (row, col) cells in different columns.
+    rng : the random generator (the only source of randomness).
+    bias : the pull towards the goal (0: a uniform choice of the moves).
+
+    Returns
+    -------
+    (m, 2) int array of cells, start to goal, each step 8-connected.
+
+    Raises
+    ------
+    ConfigError
+        If start and goal share a column.
+
+    Examples
+    --------
+    >>> p = goal_walk_path((8, 8), (7, 0), (0, 7), np.random.default_rng(1))
+    >>> p[0].tolist(), p[-1].tolist(), bool((np.abs(np.diff(p, axis=0)).max(axis=1) == 1).all())
+    ([7, 0], [0, 7], True)
+    """
+    from gapath.errors import ConfigError
+
+    h, w = (int(v) for v in shape)
+    (sr, sc), (gr, gc) = (int(v) for v in start), (int(v) for v in goal)
+    if sc == gc:
+        raise ConfigError(f"start {start} and goal {goal} share a column: no column-monotone walk")
+    step_c = 1 if gc > sc else -1
+    r, c = sr, sc
+    cells, seen = [(r, c)], {(r, c)}
+    while (r, c) != (gr, gc):
+        if c == gc:  # the goal's column: straight to the goal
+            r += 1 if gr > r else -1
+        else:
+            d0 = np.hypot(gr - r, gc - c)
+            cand = [
+                (r + dr, c + dc * step_c)
+                for dr, dc in _WALK_MOVES
+                if 0 <= r + dr < h and (r + dr, c + dc * step_c) not in seen
+            ]
+            weight = np.array([np.exp(-bias * (np.hypot(gr - a, gc - b) - d0)) for a, b in cand])
+            r, c = cand[int(rng.choice(len(cand), p=weight / weight.sum()))]
+        cells.append((r, c))
+        seen.add((r, c))
+    return np.asarray(cells, dtype=np.int64)
+
+
+def walk_workspace(n, p0: float, seed: int = 0, *, start=None, goal=None, bias: float = WALK_BIAS):
+    """:func:`gapath.dense_workspace` with :func:`goal_walk_path` as the kept
+    free path: the walk is drawn first, then every other cell becomes an
+    obstacle with probability ``p0`` (the same uniform draws for every
+    ``p0``, so the maps of a seed nest as ``p0`` grows). Seeded and
+    deterministic.
+
+    Raises
+    ------
+    ConfigError
+        On a bad size, ``p0`` outside [0, 1], or start and goal in one column.
+
+    Examples
+    --------
+    >>> ws = walk_workspace(8, 1.0, 3)
+    >>> ws.shape, int((~ws.occ).sum()) == len(goal_walk_path((8, 8), (7, 0), (0, 7),
+    ...                                                      np.random.default_rng(3)))
+    ((8, 8), True)
+    """
+    from gapath.errors import ConfigError
+    from gapath.workspace import Workspace
+
+    h, w = (int(n), int(n)) if np.isscalar(n) else (int(n[0]), int(n[1]))
+    if h < 1 or w < 2:
+        raise ConfigError(f"walk_workspace: expected at least 1 row and 2 columns, got {h}x{w}")
+    if not (0.0 <= float(p0) <= 1.0):
+        raise ConfigError(f"p0 must be in [0, 1], got {p0!r}")
+    start = (h - 1, 0) if start is None else tuple(start)
+    goal = (0, w - 1) if goal is None else tuple(goal)
+    rng = np.random.default_rng(seed)
+    path = goal_walk_path((h, w), start, goal, rng, bias)
+    occ = rng.random((h, w)) < p0
+    occ[path[:, 0], path[:, 1]] = False
+    return Workspace(occ, start, goal, name=f"walk-{h}x{w}-p{p0:g}-s{seed}")
+
+
+def generated_workspace(generator: str, n, p0: float, seed: int):
+    """The map of ``generator`` (one of :data:`GENERATORS`) for ``(n, p0,
+    seed)``.
+
+    Raises
+    ------
+    ConfigError
+        On an unknown generator.
+    """
+    from gapath.errors import ConfigError
+    from gapath.workspace import dense_workspace
+
+    if generator == "columns":
+        return dense_workspace(n, p0, seed)
+    if generator == "walk":
+        return walk_workspace(n, p0, seed)
+    raise ConfigError(f"generator: expected one of {', '.join(GENERATORS)}, got {generator!r}")
 
 
 # ---------------------------------------------------------------------------
@@ -288,7 +532,7 @@ def _rows(store_dir) -> list[dict]:
     rows, _, _ = configuration_rows(spec, store.results(spec.runs()), store.failed_keys() - done)
     out = []
     for conf, row in zip(spec.configurations(), rows):
-        d = conf["map"]["dense"]
+        d = _dense_args(conf["map"])
         out.append(
             {
                 "grid": d["n"],
@@ -318,7 +562,7 @@ def unsuccessful_runs(store_dir) -> dict:
     store = ResultStore(store_dir)
     out = {}
     for r in store.results(_widened_spec(store).runs()):
-        d = r["run"]["map"]["dense"]
+        d = _dense_args(r["run"]["map"])
         if r.get("status") == "ok" and not r["indicators"]["feasible"]:
             out.setdefault((d["n"], d["p0"]), []).append(int(r["seed"]))
     return {k: sorted(v) for k, v in sorted(out.items())}
@@ -423,6 +667,9 @@ def dense_report(
     basename: str = "dense",
     wall_seconds: dict | None = None,
     workers=None,
+    walk_dirs=(),
+    from_csv=None,
+    map_stats_seeds: int | None = None,
 ) -> dict:
     """Write ``<basename>.md``, ``.csv`` and ``.png`` into ``results_dir``:
     our Table 1 beside the paper's, its rows on other maps, and the larger
@@ -443,6 +690,14 @@ def dense_report(
         (``map_seed="run"``), reported in their own sections.
     wall_seconds : ``{store name: seconds}`` wall times to record.
     workers : the pool size, to record with the times.
+    walk_dirs : stores of :func:`walk_table1_spec` (one per map seed): the
+        walk generator's rows, in the headline and their own section.
+    from_csv : a ``dense.csv`` written earlier, read instead of the stores
+        (``table1_dir`` etc. may then be None): every part it holds is
+        reported again (its walk rows unless ``walk_dirs`` are given); the
+        lists of unsuccessful runs and the cost of its runs are not in it.
+    map_stats_seeds : map seeds 1..k of the maps section (default: the
+        columns rows' map seeds, and the walk rows').
 
     Returns
     -------
@@ -461,11 +716,30 @@ def dense_report(
     >>> rep["table1"][0]["success_pct"], rep["table1"][0]["paper_success_pct"]
     (100.0, 100.0)
     """
-    from gapath.experiments.report import markdown_table
-    from gapath.plotting import png_bytes
-    from gapath.results import atomic_write
 
     results_dir = Path(results_dir)
+    csv_rows = read_dense_csv(from_csv) if from_csv is not None else None
+    walk = {map_seed_of(d): _with_paper(_rows(d)) for d in walk_dirs if _exists(d)}
+    if csv_rows is not None:
+        (t1, main_seed, seeded, others, per_run, large, large_seed, large_per_run, walk) = _csv_parts(
+            csv_rows, walk
+        )
+        misses = per_run_misses = other_dirs = None
+    else:
+        t1, main_seed, seeded, others, other_dirs, misses = _store_parts(
+            table1_dir, seeded_dir, other_map_dirs
+        )
+        per_run = _with_paper(_rows(per_run_dir)) if _exists(per_run_dir) else []
+        per_run_misses = unsuccessful_runs(per_run_dir) if per_run else None
+        large = _rows(large_dir) if _exists(large_dir) else []
+        large_seed = map_seed_of(large_dir) if large else None
+        large_per_run = _rows(large_per_run_dir) if _exists(large_per_run_dir) else []
+    return _write_report(**locals())
+
+
+def _store_parts(table1_dir, seeded_dir, other_map_dirs):
+    """The main table (with the seeded variant's columns) and the other
+    maps' rows of :func:`dense_report`, from their stores."""
     main_seed = map_seed_of(table1_dir)
     t1 = _with_paper(_rows(table1_dir))
     seeded = {}
@@ -482,10 +756,188 @@ def dense_report(
     other_dirs = {map_seed_of(d): d for d in other_map_dirs if _exists(d)}
     other_dirs.pop(main_seed, None)
     others = {m: _with_paper(_rows(d)) for m, d in other_dirs.items()}
-    per_run = _with_paper(_rows(per_run_dir)) if _exists(per_run_dir) else []
-    large = _rows(large_dir) if _exists(large_dir) else []
-    large_per_run = _rows(large_per_run_dir) if _exists(large_per_run_dir) else []
-    misses = unsuccessful_runs(table1_dir)
+    return t1, main_seed, seeded, others, other_dirs, unsuccessful_runs(table1_dir)
+
+
+def _csv_parts(csv_rows, walk):
+    """The parts of :func:`dense_report` from the rows of a ``dense.csv``
+    (its walk rows unless ``walk`` already holds stored ones)."""
+
+    def part(name):
+        return [dict(r) for r in csv_rows if r["part"] == name]
+
+    t1 = part("table1")
+    main_seed = t1[0]["map_seed"] if t1 else None
+    seeded = {(r["grid"], r["p0"]): r for r in t1 if r.get("seeded_success_pct") is not None}
+    others, csv_walk = {}, {}
+    for r in part("table1-other-map"):
+        others.setdefault(r["map_seed"], []).append(r)
+    for r in part("table1-walk"):
+        csv_walk.setdefault(r["map_seed"], []).append(r)
+    large = part("large")
+    large_seed = large[0]["map_seed"] if large else None
+    return (
+        t1,
+        main_seed,
+        seeded,
+        others,
+        part("table1-per-run-maps"),
+        large,
+        large_seed,
+        part("large-per-run-maps"),
+        walk or csv_walk,
+    )
+
+
+_NOT_IN_CSV = "not in dense.csv (see this file's history before issue 17)."
+
+
+def _walk_dirs_by_seed(walk_dirs) -> dict:
+    return {map_seed_of(d): d for d in walk_dirs if _exists(d)}
+
+
+def _runs_text(counts) -> str | None:
+    counts = sorted(set(counts))
+    if not counts:
+        return None
+    return str(counts[0]) if len(counts) == 1 else f"{counts[0]} to {counts[-1]}"
+
+
+def _commands(main_seed, t1, others, per_run, seeded, large, walk, from_csv) -> dict:
+    """The ``gapath experiment dense`` commands behind the report's rows."""
+    seeds = (
+        [main_seed, *sorted(m for m in others if isinstance(m, int))] if isinstance(main_seed, int) else []
+    )
+    runs = _runs_text([r["runs"] for r in t1]) or "100"
+    cols = "gapath experiment dense" + (f" --map-seeds {_seed_arg(seeds)}" if seeds != [MAP_SEED] else "")
+    cols += "" if runs == "100" else f" --runs {runs}"
+    cols += " --per-run-maps" if per_run else ""
+    cols += " --seeded" if seeded else ""
+    cols += f" --large-runs {large[0]['runs']}" if large else " --large-runs 0"
+    cols += " --out DIR"
+    wseeds = sorted(m for m in walk if isinstance(m, int))
+    wruns = _runs_text([r["runs"] for rows in walk.values() for r in rows]) or "100"
+    wcmd = (
+        f"gapath experiment dense --generator walk --map-seeds {_seed_arg(wseeds) or MAP_SEED} "
+        f"--runs {wruns} --out DIR"
+    )
+    last = (wcmd if walk else cols) + (f" --from-csv {from_csv}" if from_csv is not None else "")
+    return {"columns": cols, "walk": wcmd, "last": last}
+
+
+def walk_lines(walk: dict, t1: list[dict], *, command: str) -> list[str]:
+    """The walk generator's section of ``dense.md``: its protocol and
+    command, then every row's success on each walk map beside the paper.
+
+    Examples
+    --------
+    >>> rows = {1: [{"grid": 8, "p0": 0.5, "success_pct": 90.0, "runs": 30, "obstacles_mean": 25.0,
+    ...              "median_generations": 3.0}]}
+    >>> "| 8x8 | 0.5 | 100 | 90 (25, 3) | 0 of 1 |" in "\\n".join(walk_lines(rows, [], command="c"))
+    True
+    """
+    from gapath.experiments.report import markdown_table
+
+    if not walk:
+        return []
+    seeds = sorted(walk, key=str)
+    by = {m: {(r["grid"], round(r["p0"], 3)): r for r in rows} for m, rows in walk.items()}
+    keys = sorted({k for m in by for k in by[m]})
+    runs = _runs_text([r["runs"] for rows in walk.values() for r in rows])
+    head = ["grid", "p0", "paper %", *[f"walk map {m}: % (obstacles, median gen.)" for m in seeds]]
+    head.append("maps at or above the paper")
+    body = []
+    for k in keys:
+        paper = (paper_row(*k) or {}).get("success_pct")
+        vals = [by[m].get(k) for m in seeds]
+        ok = sum(v is not None and paper is not None and v["success_pct"] >= paper for v in vals)
+        body.append(
+            [
+                f"{k[0]}x{k[0]}",
+                f"{k[1]:g}",
+                _f(paper, 3),
+                *[
+                    "-"
+                    if v is None
+                    else f"{_f(v['success_pct'], 3)} ({_f(v['obstacles_mean'], 4)}, "
+                    f"{_f(v.get('median_generations'))})"
+                    for v in vals
+                ],
+                f"{ok} of {sum(v is not None for v in vals)}",
+            ]
+        )
+    stated = [m for m in seeds if m in WALK_PROTOCOL_SEEDS]
+    subset = ""
+    if set(seeds) - set(WALK_PROTOCOL_SEEDS) and stated:
+        sub = distribution_rows([dict(r, part="table1-walk", map_seed=m) for m in stated for r in walk[m]])
+        g = _goal_counts(sub, "walk")
+        subset = (
+            f" The protocol stated before the runs was map seeds {_seed_text(WALK_PROTOCOL_SEEDS)}; "
+            f"seeds {_seed_text(sorted(set(seeds) - set(WALK_PROTOCOL_SEEDS)))} were added after "
+            f"those had been seen, to match the columns generator's map seeds. Over seeds "
+            f"{_seed_text(stated)} alone: every map at or above the paper in {g['every']} of "
+            f"{g['rows']} rows, the median over maps in {g['median']} of {g['rows']}."
+        )
+    return [
+        "## The walk generator",
+        "",
+        f"Regenerate: `{command}`.",
+        "",
+        f"Protocol (a reduced one): walk map seeds {_seed_text(seeds)}, "
+        f"{runs} GA runs per row and map (GA seeds 1, 2, ...), every other setting as the "
+        "columns rows (population 200, at most 500 generations, stop at the first feasible "
+        'path, all-random initial population). The paper says only that it draws "a random '
+        "valid path\" and keeps it free. The columns generator's path is a random walk of -2 "
+        "to 2 rows per column that ends with the integer encoding's own end-fix climb, so its "
+        "corridor hugs the bottom rows and climbs the right edge, the shape the encoding's "
+        "end-fixing and edge rule give its random individuals. The walk generator "
+        "(`walk_workspace`) keeps free a random 8-connected walk pulled towards the goal (a "
+        "move's weight is exp(-1.25 x the change of its Euclidean distance to the goal); it "
+        "never steps back a column, so the integer encoding can still represent it), which "
+        "crosses the grid near the diagonal and enters the goal's column near the goal. Its "
+        "mean length at p0 = 1 over 500 seeds is 11.5 cells on 8x8, 23.6 on 16x16 and 47.5 on "
+        "32x32 (the paper's p0 = 1 rows leave 10, 23 and 57 cells free; the columns "
+        "generator: 13.5, 30.4 and 66.8). Each cell: success % (obstacles, median generation "
+        "of the first feasible path)." + subset,
+        "",
+        markdown_table(head, body),
+        "",
+    ]
+
+
+def _write_report(
+    *,
+    t1,
+    main_seed,
+    seeded,
+    others,
+    other_dirs,
+    misses,
+    per_run,
+    per_run_misses,
+    large,
+    large_seed,
+    large_per_run,
+    walk,
+    csv_rows,
+    results_dir,
+    basename,
+    wall_seconds,
+    workers,
+    table1_dir,
+    seeded_dir,
+    per_run_dir,
+    large_dir,
+    large_per_run_dir,
+    map_stats_seeds,
+    from_csv,
+    walk_dirs,
+    **_,
+) -> dict:
+    """The files of :func:`dense_report` from its parts' rows."""
+    from gapath.experiments.report import markdown_table
+    from gapath.plotting import png_bytes
+    from gapath.results import atomic_write
 
     # CSV: every part, full precision
     cols = [
@@ -519,9 +971,10 @@ def dense_report(
     parts = [("table1", main_seed, t1)] + [("table1-other-map", m, rows) for m, rows in others.items()]
     parts += [
         ("table1-per-run-maps", "run", per_run),
-        ("large", map_seed_of(large_dir) if large else None, large),
+        ("large", large_seed, large),
         ("large-per-run-maps", "run", large_per_run),
     ]
+    parts += [("table1-walk", m, rows) for m, rows in sorted(walk.items())]
     for part, mseed, rows in parts:
         for row in rows:
             r = dict(row, part=part, map_seed=mseed)
@@ -532,7 +985,13 @@ def dense_report(
             )
 
     # Markdown
-    spec = _saved_spec(table1_dir)
+    if csv_rows is None:
+        spec = _saved_spec(table1_dir)
+    else:  # the CSV keeps the settings per row, not the GA seed list
+        spec = {
+            "settings": {"pop_size": t1[0]["pop_size"], "n_gen": t1[0]["n_gen"]} if t1 else {},
+            "seeds": [1, 2],
+        }
     settings = spec["settings"]
     counts = sorted({row["runs"] for row in t1}) or [0]
     runs_per_row = (f"{counts[0]}" if len(counts) == 1 else f"{counts[0]} to {counts[-1]}") + (
@@ -583,14 +1042,57 @@ def dense_report(
                 if row.get("seeded_success_pct") is None
                 else f"{_f(row['seeded_success_pct'], 3)}, {_f(row['seeded_median_generations'])}"
             )
+    commands = _commands(main_seed, t1, others, per_run, seeded, large, walk, from_csv)
+    regen_cols = (
+        f"Regenerate: `{commands['columns']}`"
+        + (f" (rewritten here from `{from_csv}` by `{commands['last']}`)" if csv_rows is not None else "")
+        + "."
+    )
     text = [
-        "# Dense obstacles: Ahmed & Deb (2013), Table 1, reproduced",
+        "# Dense obstacles: Ahmed & Deb (2013), Table 1, over random maps",
         "",
         "Generated by `gapath experiment dense` (module `gapath.studies.dense`). "
         f"Integer encoding, objectives length and vulnerability (penalty), population "
         f"{settings.get('pop_size')}, at most {settings.get('n_gen')} generations, stopped "
-        f"at the first feasible path; {maps_text}; all-random initial population "
-        f'(`seed_from="none"`); engine `{t1[0]["engine"] if t1 else "-"}`.',
+        f"at the first feasible path; all-random initial population "
+        f'(`seed_from="none"`); engine `{t1[0]["engine"] if t1 else "-"}`.'
+        + (
+            f" This page was regenerated from `{from_csv}` (the columns generator's rows) and "
+            "the walk generator's stores: the stores of the columns runs are not kept, so the "
+            "lists of the GA seeds of their unsuccessful runs and their cost are not repeated "
+            "here (they are in this file's history before issue 17)."
+            if csv_rows is not None
+            else ""
+        ),
+        "",
+    ]
+    parts_flat = [dict(r, part=p, map_seed=m) for p, m, rows in parts for r in rows]
+    runs_of = {
+        "columns": _runs_text([r["runs"] for p, _, rows in parts[: 1 + len(others)] for r in rows]),
+        "walk": _runs_text([r["runs"] for rows in walk.values() for r in rows]),
+    }
+    text += headline_lines(
+        parts_flat,
+        commands=commands,
+        runs=runs_of,
+    )
+    stat_seeds = {
+        "columns": sorted(m for m in [main_seed, *others] if isinstance(m, int)),
+        "walk": sorted(m for m in walk if isinstance(m, int)),
+    }
+    if map_stats_seeds:
+        stat_seeds = {g: list(range(1, int(map_stats_seeds) + 1)) if v else [] for g, v in stat_seeds.items()}
+    grids = sorted({r["grid"] for r in t1}) or [8, 16, 32]
+    p0s = sorted({r["p0"] for r in t1}) or list(P0S)
+    stats = [r for g, seeds in stat_seeds.items() if seeds for r in map_stats(g, grids, p0s, seeds)]
+    text += map_stats_lines(stats, command=commands["last"])
+    text += walk_lines(walk, t1, command=commands["walk"])
+    text += [
+        f"## Map {main_seed}: one map per row (the columns generator)" if single else "## Table 1",
+        "",
+        regen_cols,
+        "",
+        f"The rows here: {maps_text}.",
         "",
     ]
     if single:
@@ -599,9 +1101,15 @@ def dense_report(
             "one integer obstacle count per row (a map's, not a mean), repeats the same "
             "minimum lengths down the rows of a grid (one random path, more obstacles around "
             'it as p0 grows), and says of its 64x64 case, one map, that "feasible paths are '
-            "found in 80 % runs\". The map seed was fixed (the experiment's first seed) "
-            "before any run was made. A few maps trap this GA, so which map a row gets "
-            "matters: see the rows on other maps and with a new map for every run below.",
+            "found in 80 % runs\". The map seed is the experiment's first seed, 1, but it "
+            "was not chosen blind: this table was first run with a new map for every run, "
+            "where seed 1 is the first run's map (GA seed 1 on map seed 1), and that run had "
+            "found a feasible path in every row; "
+            'the headline changed from "not met: 21 of 30 rows" (a new map per run) to "met: '
+            '30 of 30 rows on map 1" after those results were known. Hence the headline of '
+            "this page is the distribution over map seeds, and this table is one of its "
+            "columns. A few maps trap this GA, so which map a row gets matters: see the rows "
+            "on other maps and with a new map for every run below.",
             "",
         ]
     text += [
@@ -643,7 +1151,7 @@ def dense_report(
             '`gapath.solve(..., pop_size=200, seed=seed, seed_from="none")`):'
         ),
         "",
-        *_miss_lines(misses),
+        *(_miss_lines(misses) if misses is not None else [_NOT_IN_CSV]),
         "",
     ]
     if others:
@@ -671,6 +1179,8 @@ def dense_report(
         per_map = {m: len(t1) - len(_below(list(by[m].values()))) for m in seeds_all}
         text += [
             "## The same rows on other maps",
+            "",
+            regen_cols,
             "",
             f"Success % of {runs_per_row} GA runs per row on the maps `dense_workspace(grid, "
             f"p0, map seed)` for map seeds {', '.join(map(str, seeds_all))} (the main table "
@@ -708,6 +1218,8 @@ def dense_report(
         text += [
             "## A new map for every run",
             "",
+            regen_cols,
+            "",
             "The same protocol with one GA run on each of 100 maps per row (map seed = GA "
             "seed = 1..100): the success rate expected over random maps of our generator, "
             "not over runs on one map. " + _below_text(per_run) + ". The map seeds of the "
@@ -717,7 +1229,7 @@ def dense_report(
             "",
             markdown_table(head, body),
             "",
-            *_miss_lines(unsuccessful_runs(per_run_dir)),
+            *(_miss_lines(per_run_misses) if per_run_misses is not None else [_NOT_IN_CSV]),
             "",
         ]
     if large or large_per_run:
@@ -734,7 +1246,7 @@ def dense_report(
         ]
         body = []
         for mseed, rows in (
-            (map_seed_of(large_dir) if large else None, large),
+            (large_seed, large),
             ("new per run", large_per_run),
         ):
             for row in rows:
@@ -756,6 +1268,8 @@ def dense_report(
         text += [
             f"## Larger grids (population {ref['pop_size']})",
             "",
+            regen_cols,
+            "",
             f"At most {ref['n_gen']} generations, population {ref['pop_size']}, "
             "stopped at the first feasible path; one map per grid solved by several GA "
             'runs, as the paper\'s 64x64 case (rows "new per run": a new map for every '
@@ -768,17 +1282,20 @@ def dense_report(
             markdown_table(head, body),
             "",
         ]
-    timing = {"table1": table1_dir}
-    if seeded:
-        timing["table1-seeded"] = seeded_dir
-    timing.update({f"table1-map{m}": d for m, d in other_dirs.items()})
-    if per_run:
-        timing["table1-per-run-maps"] = per_run_dir
-    if large:
-        timing["large"] = large_dir
-    if large_per_run:
-        timing["large-per-run-maps"] = large_per_run_dir
-    lines = []
+    timing = {}
+    if csv_rows is None:
+        timing["table1"] = table1_dir
+        if seeded:
+            timing["table1-seeded"] = seeded_dir
+        timing.update({f"table1-map{m}": d for m, d in other_dirs.items()})
+        if per_run:
+            timing["table1-per-run-maps"] = per_run_dir
+        if large:
+            timing["large"] = large_dir
+        if large_per_run:
+            timing["large-per-run-maps"] = large_per_run_dir
+    timing.update({f"table1-walk-map{m}": d for m, d in _walk_dirs_by_seed(walk_dirs).items()})
+    lines = [] if csv_rows is None else ["- the columns runs: " + _NOT_IN_CSV]
     for part, d in timing.items():
         t = _timing(d)
         line = f"- {part}: {t['runs']} runs, {t['seconds']:.0f} s of optimisation in total"
@@ -800,7 +1317,7 @@ def dense_report(
     for suffix, data in (
         (".md", "\n".join(text)),
         (".csv", buf.getvalue()),
-        (".png", png_bytes(_plot(t1, per_run, others))),
+        (".png", png_bytes(_plot(t1, per_run, others, walk))),
     ):
         atomic_write(results_dir / f"{basename}{suffix}", data)
         files.append(results_dir / f"{basename}{suffix}")
@@ -822,16 +1339,41 @@ def _saved_spec(store_dir) -> dict:
     return _widened_spec(ResultStore(store_dir)).to_dict()
 
 
-def _plot(rows, per_run=(), others=None):
+def _plot(rows, per_run=(), others=None, walk=None):
     import matplotlib.pyplot as plt
 
-    fig, (a1, a2) = plt.subplots(1, 2, figsize=(10, 3.8))
+    fig, (a1, a2) = plt.subplots(1, 2, figsize=(12, 4.6))
     grids = sorted({r["grid"] for r in rows}, key=lambda g: g if isinstance(g, int) else g[0])
     for i, g in enumerate(grids):
         rr = [r for r in rows if r["grid"] == g]
         p0 = [r["p0"] for r in rr]
         color = f"C{i}"
-        a1.plot(p0, [r["success_pct"] for r in rr], "o-", color=color, label=f"{g}x{g} gapath")
+        a1.plot(
+            p0,
+            [r["success_pct"] for r in rr],
+            "o-" if not others else "o",
+            color=color,
+            ms=4 if others else 6,
+            label=f"{g}x{g} " + ("columns, map 1" if others else "gapath"),
+        )
+        if others:
+            med = [
+                float(
+                    np.median(
+                        [r["success_pct"]]
+                        + [
+                            o["success_pct"]
+                            for rm in others.values()
+                            for o in rm
+                            if o["grid"] == g and o["p0"] == r["p0"]
+                        ]
+                    )
+                )
+                for r in rr
+            ]
+            a1.plot(
+                p0, med, "-", color=color, lw=2, label=f"{g}x{g} columns, median over {len(others) + 1} maps"
+            )
         a2.plot(
             p0,
             [np.nan if r["median_generations"] is None else r["median_generations"] for r in rr],
@@ -857,7 +1399,20 @@ def _plot(rows, per_run=(), others=None):
                 color=color,
                 alpha=0.12,
                 lw=0,
-                label=f"{g}x{g} gapath, min-max over {len(others) + 1} maps",
+                label=f"{g}x{g} columns, min-max over {len(others) + 1} maps",
+            )
+        if walk:
+            wr = distribution_rows(
+                [dict(o, part="table1-walk", map_seed=m) for m, rows_m in walk.items() for o in rows_m]
+            )
+            wr = [d for d in wr if d["grid"] == g]
+            a1.plot(
+                [d["p0"] for d in wr],
+                [d["walk_median"] for d in wr],
+                "-.",
+                color=color,
+                alpha=0.9,
+                label=f"{g}x{g} walk maps, median over {len(walk)}",
             )
         pr = [r for r in per_run if r["grid"] == g]
         if pr:
@@ -867,7 +1422,7 @@ def _plot(rows, per_run=(), others=None):
                 ":",
                 color=color,
                 alpha=0.8,
-                label=f"{g}x{g} gapath, new map per run",
+                label=f"{g}x{g} columns, new map per run",
             )
         paper = [(r["p0"], paper_row(g, r["p0"])) for r in rr]
         paper = [(p, q) for p, q in paper if q]
@@ -896,11 +1451,446 @@ def _plot(rows, per_run=(), others=None):
     a2.set_xlabel("p0")
     a2.set_ylabel("median generation of the first feasible path")
     a2.set_yscale("log")
-    a1.legend(fontsize=6)
+    a1.legend(fontsize=5, ncol=3, loc="lower left")
     a2.legend(fontsize=7)
     a1.set_title("Table 1: success", fontsize=9)
     a2.set_title("Table 1: speed", fontsize=9)
     return a1
+
+
+# ---------------------------------------------------------------------------
+# the report's headline: the distribution over maps, both generators
+# ---------------------------------------------------------------------------
+
+#: Points of success within which a row "reproduces" the paper (headline).
+MATCH_POINTS = 10.0
+
+_INT_COLS = {"grid", "runs", "failed", "pop_size", "n_gen", "seeded_runs", "paper_obstacles"}
+
+
+def read_dense_csv(path) -> list[dict]:
+    """The rows of a ``dense.csv`` written by :func:`dense_report`, numbers
+    parsed (empty cells None; ``map_seed`` an int, ``"run"`` or None).
+
+    Raises
+    ------
+    ConfigError
+        If the file is missing or has no ``part`` column.
+    """
+    from gapath.errors import ConfigError
+
+    path = Path(path)
+    try:
+        text = path.read_text()
+    except OSError as exc:
+        raise ConfigError(f"--from-csv: cannot read {str(path)!r}: {exc.strerror}") from None
+    reader = csv.DictReader(io.StringIO(text))
+    if "part" not in (reader.fieldnames or ()):
+        raise ConfigError(f"--from-csv: {str(path)!r} is not a dense.csv (no 'part' column)")
+    out = []
+    for raw in reader:
+        row = {}
+        for k, v in raw.items():
+            if v in ("", None):
+                row[k] = None
+            elif k in ("part", "engine"):
+                row[k] = v
+            elif k == "map_seed":
+                row[k] = v if v == "run" else int(v)
+            elif k in _INT_COLS:
+                row[k] = int(float(v))
+            else:
+                row[k] = float(v)
+        out.append(row)
+    return out
+
+
+def _median_range(vals) -> tuple:
+    vals = [v for v in vals if v is not None]
+    if not vals:
+        return None, None, None
+    return float(np.median(vals)), float(min(vals)), float(max(vals))
+
+
+def _spread(vals, mean: bool = False) -> str:
+    vals = [v for v in vals if v is not None]
+    med, lo, hi = _median_range(vals)
+    if med is None:
+        return "-"
+    return f"{_f(med, 3)} [{_f(lo, 3)}, {_f(hi, 3)}]" + (f", {_f(float(np.mean(vals)), 3)}" if mean else "")
+
+
+def distribution_rows(parts: list[dict]) -> list[dict]:
+    """Per Table 1 row ``(grid, p0)``, the success over maps of each
+    generator, from CSV-shaped rows (``part``, ``map_seed``, ``grid``,
+    ``p0``, ``success_pct``, ``runs``): ``columns`` ``{map seed: %}``
+    (parts ``table1`` and ``table1-other-map``), ``per_run`` (part
+    ``table1-per-run-maps``), ``walk`` ``{map seed: %}`` (part
+    ``table1-walk``), the paper's %, and each generator's median, min and
+    max over its maps.
+
+    Examples
+    --------
+    >>> rows = distribution_rows([
+    ...     {"part": "table1", "map_seed": 1, "grid": 8, "p0": 0.5, "success_pct": 100.0},
+    ...     {"part": "table1-other-map", "map_seed": 2, "grid": 8, "p0": 0.5, "success_pct": 80.0},
+    ...     {"part": "table1-walk", "map_seed": 1, "grid": 8, "p0": 0.5, "success_pct": 90.0}])
+    >>> r = rows[0]
+    >>> r["columns_median"], r["columns_min"], r["walk_median"], r["paper_success_pct"]
+    (90.0, 80.0, 90.0, 100.0)
+    """
+    by: dict = {}
+    for row in parts:
+        key = (int(row["grid"]), round(float(row["p0"]), 3))
+        d = by.setdefault(key, {"grid": key[0], "p0": key[1], "columns": {}, "walk": {}, "per_run": None})
+        part = row["part"]
+        if part in ("table1", "table1-other-map"):
+            d["columns"][row["map_seed"]] = row["success_pct"]
+        elif part == "table1-walk":
+            d["walk"][row["map_seed"]] = row["success_pct"]
+        elif part == "table1-per-run-maps":
+            d["per_run"] = row["success_pct"]
+    out = []
+    for key in sorted(by):
+        d = by[key]
+        if not d["columns"] and not d["walk"]:
+            continue
+        d["columns"] = dict(sorted(d["columns"].items()))
+        d["walk"] = dict(sorted(d["walk"].items()))
+        for gen in ("columns", "walk"):
+            med, lo, hi = _median_range(d[gen].values())
+            d.update({f"{gen}_median": med, f"{gen}_min": lo, f"{gen}_max": hi})
+        d["paper_success_pct"] = (paper_row(*key) or {}).get("success_pct")
+        out.append(d)
+    return out
+
+
+def _verdict(value, paper) -> str:
+    if value is None or paper is None:
+        return "-"
+    gap = value - paper
+    if abs(gap) <= MATCH_POINTS:
+        return "reproduced" if gap >= 0 else "reproduced (below)"
+    return f"ABOVE by {_f(gap, 3)}" if gap > 0 else f"BELOW by {_f(-gap, 3)}"
+
+
+def _seed_text(seeds) -> str:
+    seeds = sorted(seeds)
+    if seeds and seeds == list(range(seeds[0], seeds[-1] + 1)) and len(seeds) > 2:
+        return f"{seeds[0]}-{seeds[-1]}"
+    return ", ".join(map(str, seeds))
+
+
+def _seed_arg(seeds) -> str:
+    """Map seeds as ``--map-seeds`` takes them (``1-10``, ``1,3``)."""
+    return _seed_text(seeds).replace(", ", ",")
+
+
+def _goal_counts(dist, gen) -> dict:
+    rows = [d for d in dist if d[gen] and d["paper_success_pct"] is not None]
+    return {
+        "rows": len(rows),
+        "median": sum(d[f"{gen}_median"] >= d["paper_success_pct"] for d in rows),
+        "every": sum(d[f"{gen}_min"] >= d["paper_success_pct"] for d in rows),
+        "maps": sum(len(d[gen]) for d in rows),
+        "maps_ok": sum(v >= d["paper_success_pct"] for d in rows for v in d[gen].values()),
+    }
+
+
+def headline_lines(parts: list[dict], *, commands: dict, runs: dict) -> list[str]:
+    """The headline sections of ``dense.md`` from CSV-shaped rows (see
+    :func:`distribution_rows`): success per row as median [min, max] over
+    the maps of each generator beside the paper, map 1 and the new map per
+    run as columns, a verdict per row and the goal's counts.
+
+    ``commands``: ``{"columns": ..., "last": ...}``, the command that
+    produced the columns rows and the one that regenerates the page; ``runs``: GA runs per row and map of each.
+
+    Examples
+    --------
+    >>> rows = [{"part": "table1", "map_seed": 1, "grid": 32, "p0": 0.5, "success_pct": 98.0},
+    ...         {"part": "table1-other-map", "map_seed": 2, "grid": 32, "p0": 0.5,
+    ...          "success_pct": 80.0}]
+    >>> text = "\\n".join(headline_lines(rows, commands={"columns": "c"}, runs={"columns": 100}))
+    >>> "| 32x32 | 0.5 | 36 | 89 [80, 98], 89 | 98 | ABOVE by 53 |" in text
+    True
+    """
+    from gapath.experiments.report import markdown_table
+
+    dist = distribution_rows(parts)
+    if not dist:
+        return []
+    col_seeds = sorted({s for d in dist for s in d["columns"]}, key=str)
+    walk_seeds = sorted({s for d in dist for s in d["walk"]}, key=str)
+    has_per_run = any(d["per_run"] is not None for d in dist)
+    main = 1 if 1 in col_seeds else (col_seeds[0] if col_seeds else None)
+    head = ["grid", "p0", "paper %"]
+    if col_seeds:
+        head += [f"columns: median [min, max], mean over maps {_seed_text(col_seeds)}", f"columns map {main}"]
+    if has_per_run:
+        head.append("columns, new map per run")
+    if walk_seeds:
+        head.append(f"walk: median [min, max], mean over maps {_seed_text(walk_seeds)}")
+    head += ["columns median vs paper"] if col_seeds else []
+    head += ["walk median vs paper"] if walk_seeds else []
+    body = []
+    for d in dist:
+        paper = d["paper_success_pct"]
+        line = [f"{d['grid']}x{d['grid']}", f"{d['p0']:g}", _f(paper, 3)]
+        if col_seeds:
+            line += [_spread(d["columns"].values(), mean=True), _f(d["columns"].get(main), 3)]
+        if has_per_run:
+            line.append(_f(d["per_run"], 3))
+        if walk_seeds:
+            line.append(_spread(d["walk"].values(), mean=True))
+        if col_seeds:
+            line.append(_verdict(d["columns_median"], paper))
+        if walk_seeds:
+            line.append(_verdict(d["walk_median"], paper))
+        body.append(line)
+    text = [
+        "## Headline: success over random maps, beside the paper",
+        "",
+        f"Regenerate: `{commands.get('last', commands.get('columns'))}`"
+        + (
+            f" (the columns rows come from `{commands['columns']}`)"
+            if commands.get("columns") and commands.get("last")
+            else ""
+        )
+        + ".",
+        "",
+        "Success % per Table 1 row as the median [min, max] over map seeds, for two map "
+        "generators: **columns** (`gapath.dense_workspace`, the one used so far: a random "
+        "walk of -2 to 2 rows per column, then the goal column climbed, the integer "
+        "encoding's own end-fix shape) and **walk** (`gapath.studies.dense.walk_workspace`: "
+        "a goal-biased 8-connected walk, see below). "
+        + (f"Columns: {runs.get('columns')} GA runs per row and map. " if col_seeds else "")
+        + (f"Walk: {runs.get('walk')} GA runs per row and map (a reduced protocol). " if walk_seeds else "")
+        + (
+            "New map per run: one GA run on each of 100 maps per row (map seed = GA seed). "
+            if has_per_run
+            else ""
+        )
+        + "The mean over maps estimates the success expected over random maps (as the new map "
+        "per run does, with fewer maps). "
+        + f"Verdict (on the median): within {MATCH_POINTS:g} points of the paper is *reproduced*; further "
+        "above or below is a different result, marked ABOVE or BELOW.",
+        "",
+        markdown_table(head, body),
+        "",
+    ]
+    # plain words
+    said = []
+    for gen, label in (("columns", "columns generator"), ("walk", "walk generator")):
+        if not any(d[gen] for d in dist):
+            continue
+        above = [
+            d
+            for d in dist
+            if d[gen] and _verdict(d[f"{gen}_median"], d["paper_success_pct"]).startswith("ABOVE")
+        ]
+        below = [
+            d
+            for d in dist
+            if d[gen] and _verdict(d[f"{gen}_median"], d["paper_success_pct"]).startswith("BELOW")
+        ]
+        g = _goal_counts(dist, gen)
+
+        def _list(rows, gen=gen):
+            return ", ".join(
+                f"{d['grid']}x{d['grid']} p0 {d['p0']:g} ({_f(d[f'{gen}_median'], 3)} vs "
+                f"{_f(d['paper_success_pct'], 3)})"
+                for d in rows
+            )
+
+        big = [d for d in dist if d["grid"] == max(x["grid"] for x in dist) and d["p0"] >= 0.5 and d[gen]]
+        big_text = ""
+        if big and all(d["paper_success_pct"] is not None for d in big):
+            n = big[0]["grid"]
+            far = sum(abs(d[f"{gen}_median"] - d["paper_success_pct"]) > 35 for d in big)
+            big_text = (
+                f"At {n}x{n} with p0 >= 0.5 its median over maps is "
+                f"{_f(min(d[f'{gen}_median'] for d in big), 3)}-{_f(max(d[f'{gen}_median'] for d in big), 3)} % "
+                f"against the paper's {_f(min(d['paper_success_pct'] for d in big), 3)}-"
+                f"{_f(max(d['paper_success_pct'] for d in big), 3)} %, more than 35 points apart in "
+                f"{far} of {len(big)} rows"
+                + (
+                    ": a different result, not a match. "
+                    if 2 * far >= len(big)
+                    else (": those rows are a different result. " if far else ". ")
+                )
+            )
+        met = g["every"] == g["rows"]
+        said.append(
+            f"- **{label}**: goal {'met' if met else 'NOT met'} ("
+            f"every map at or above the paper in {g['every']} of {g['rows']} rows). "
+            + big_text
+            + f"The median over maps is at or above the paper in {g['median']} of "
+            f"{g['rows']} rows; {g['maps_ok']} of {g['maps']} (row, map) pairs are at or above it. "
+            + (
+                f"Not reproduced, ABOVE the paper by more than {MATCH_POINTS:g} points: {_list(above)}. "
+                if above
+                else ""
+            )
+            + (f"Not reproduced, BELOW: {_list(below)}." if below else "")
+        )
+    if has_per_run:
+        pr = [d for d in dist if d["per_run"] is not None and d["paper_success_pct"] is not None]
+        ok = sum(d["per_run"] >= d["paper_success_pct"] for d in pr)
+        gaps = [(float(np.mean(list(d["columns"].values()))) - d["per_run"], d) for d in pr if d["columns"]]
+        gap_text = ""
+        if gaps:
+            gap, d = max(gaps, key=lambda t: abs(t[0]))
+            gap_text = (
+                f" The mean over the {len(d['columns'])} columns map seeds differs from it by up to "
+                f"{_f(abs(gap), 3)} points ({d['grid']}x{d['grid']} p0 {d['p0']:g}): "
+                f"{len(d['columns'])} maps are few where the success varies this much from map to map."
+            )
+        said.append(
+            f"- **columns, a new map per run**: at or above the paper in {ok} of {len(pr)} rows." + gap_text
+        )
+    text += [
+        "The goal (at or above the paper in every row over random maps, with both generators):",
+        "",
+        *said,
+        "",
+        "The 10 rows of a grid share one map per seed: `dense_workspace(grid, p0, seed)` (and "
+        "`walk_workspace`) draws the "
+        "free path and the cells' uniform numbers from the seed alone, so the maps of a grid "
+        "differ only in the threshold p0 and nest (every obstacle at p0 is an obstacle at any "
+        "larger p0). A row's success on map 1 is therefore not an independent sample: "
+        '"30 of 30 rows at or above the paper on map 1" rests on three maps (one per grid '
+        "size), and on map 1, which had already succeeded in every row when it was chosen "
+        "(see below). The distribution over map seeds is the figure to read; map 1 is one of "
+        "its columns.",
+        "",
+    ]
+    return text
+
+
+def _path_length(path) -> float:
+    d = np.diff(np.asarray(path, dtype=float), axis=0)
+    return float(np.hypot(d[:, 0], d[:, 1]).sum())
+
+
+def map_stats(generator: str, grids=(8, 16, 32), p0s=P0S, seeds=(MAP_SEED,)) -> list[dict]:
+    """Each map's free-cell count, obstacle count and exact shortest path
+    lengths: ``shortest_free`` (8-connected, :func:`gapath.planners.astar`)
+    and ``shortest_monotone`` (the shortest column-monotone path, what the
+    integer encoding can represent:
+    :func:`gapath.planners.weighted_sum.weighted_sum_path` with length
+    only), for the maps ``generated_workspace(generator, grid, p0, seed)``.
+
+    Examples
+    --------
+    >>> (r,) = map_stats("columns", (8,), (1.0,), (1,))
+    >>> r["free"] + r["obstacles"] == 64, r["shortest_monotone"] >= r["shortest_free"] >= 7 * 2**0.5
+    (True, True)
+    """
+    from gapath.planners import astar
+    from gapath.planners.weighted_sum import weighted_sum_path
+
+    out = []
+    for n in grids:
+        for p0 in p0s:
+            for s in seeds:
+                ws = generated_workspace(generator, int(n), float(p0), int(s))
+                out.append(
+                    {
+                        "generator": generator,
+                        "grid": int(n),
+                        "p0": float(p0),
+                        "map_seed": int(s),
+                        "free": int((~ws.occ).sum()),
+                        "obstacles": ws.n_obstacles,
+                        "shortest_free": float(astar(ws).length),
+                        "shortest_monotone": _path_length(weighted_sum_path(ws, 1.0, 0.0)),
+                    }
+                )
+    return out
+
+
+def _p1_lengths(stats) -> list[str]:
+    out = []
+    for n in sorted({r["grid"] for r in stats}):
+        paper = paper_row(n, 1.0)
+        parts = [
+            f"{g} {_f(float(np.median([r['shortest_monotone'] for r in rows])), 4)}"
+            for g in dict.fromkeys(r["generator"] for r in stats)
+            if (rows := [r for r in stats if r["generator"] == g and r["grid"] == n and r["p0"] == 1.0])
+        ]
+        if parts and paper:
+            out.append(f"{n}x{n}: paper {_f(paper['mean_min_path_length'], 4)}, median " + ", ".join(parts))
+    return out
+
+
+def map_stats_lines(stats: list[dict], *, command: str) -> list[str]:
+    """The maps section of ``dense.md``: per Table 1 row, the paper's obstacle
+    count and length beside each generator's obstacles, free cells and exact
+    shortest lengths (map 1, and median [min, max] over the seeds).
+
+    Examples
+    --------
+    >>> text = "\\n".join(map_stats_lines(map_stats("walk", (8,), (1.0,), (1, 2)), command="c"))
+    >>> "| 8x8 | 1 | 54 | 11.07 |" in text
+    True
+    """
+    from gapath.experiments.report import markdown_table
+
+    if not stats:
+        return []
+    gens = list(dict.fromkeys(r["generator"] for r in stats))
+    by: dict = {}
+    for r in stats:
+        by.setdefault((r["grid"], round(r["p0"], 3)), {}).setdefault(r["generator"], []).append(r)
+    head = ["grid", "p0", "paper obstacles", "paper mean min length"]
+    for g in gens:
+        seeds = sorted({r["map_seed"] for r in stats if r["generator"] == g})
+        head += [
+            f"{g} map 1: obstacles / free / shortest 8-conn. / shortest monotone",
+            f"{g} maps {_seed_text(seeds)}: obstacles",
+            f"{g}: shortest monotone",
+        ]
+    body = []
+    for (n, p0), per in sorted(by.items()):
+        paper = paper_row(n, p0) or {}
+        line = [
+            f"{n}x{n}",
+            f"{p0:g}",
+            str(paper.get("obstacles", "-")),
+            _f(paper.get("mean_min_path_length"), 4),
+        ]
+        for g in gens:
+            rows = per.get(g, [])
+            m1 = next((r for r in rows if r["map_seed"] == 1), None)
+            line.append(
+                "-"
+                if m1 is None
+                else f"{m1['obstacles']} / {m1['free']} / {_f(m1['shortest_free'], 4)} / "
+                f"{_f(m1['shortest_monotone'], 4)}"
+            )
+            line.append(_spread([float(r["obstacles"]) for r in rows]).replace(" [", " ["))
+            line.append(_spread([r["shortest_monotone"] for r in rows]))
+        body.append(line)
+    return [
+        "## The maps: obstacles, free cells and exact shortest lengths",
+        "",
+        f"Regenerate: `{command}`.",
+        "",
+        "Every map of the report, computed from the generators (no GA): its obstacle count, "
+        "free cells, the exact shortest 8-connected path (A*) and the exact shortest "
+        "column-monotone path (the shortest path the integer encoding can represent; dynamic "
+        "programme `weighted_sum_path(ws, 1, 0)`), beside the paper's obstacle count and mean "
+        "minimum length. The paper's 16x16 p0 0.8 row reads 286 obstacles on a grid of 256 "
+        "cells: a misprint (its neighbours are 164 at p0 0.7 and 214 at 0.9). At p0 = 1 only "
+        "the kept path is free, so the exact shortest path is about the kept path's length: "
+        + "; ".join(_p1_lengths(stats))
+        + ". A mean minimum length below a map's exact shortest path is impossible, so where "
+        "the paper's is lower its maps kept a straighter path than ours.",
+        "",
+        markdown_table(head, body),
+        "",
+    ]
 
 
 # ---------------------------------------------------------------------------
@@ -937,6 +1927,8 @@ def run(
     scheduler=None,
     progress: bool = True,
     retry_failed: bool = True,
+    generator: str = "columns",
+    from_csv=None,
 ) -> dict:
     """Run the dense-obstacle study into the stores under ``out`` (resumably)
     and write its report (what ``gapath experiment dense`` does).
@@ -965,6 +1957,15 @@ def run(
         ``docs/results``; with ``quick``: ``out``).
     workers, scheduler, progress, retry_failed : as
         :func:`gapath.experiments.runner.run_experiment`.
+    generator : ``"columns"`` (default, :func:`gapath.dense_workspace`) or
+        ``"walk"`` (:func:`walk_workspace`): with ``"walk"`` only the Table 1
+        rows run, one store per map seed, ``out/table1-walk-map<S>`` (maps in
+        ``out/walk-maps``), and the report puts them beside the
+        ``"columns"`` rows (from their stores under ``out``, or from
+        ``from_csv``).
+    from_csv : a ``dense.csv`` written earlier: the ``"columns"`` rows of the
+        report come from it instead of the stores (when the stores are gone;
+        the lists of unsuccessful runs and the cost then are not reported).
 
     Returns
     -------
@@ -982,8 +1983,11 @@ def run(
     """
     import time
 
+    from gapath.errors import ConfigError
     from gapath.experiments.runner import run_experiment
 
+    if generator not in GENERATORS:
+        raise ConfigError(f"generator: expected one of {', '.join(GENERATORS)}, got {generator!r}")
     grids = tuple(grids) if grids else (QUICK["grids"] if quick else (8, 16, 32))
     p0s = tuple(p0s) if p0s else (QUICK["p0s"] if quick else P0S)
     runs = runs or (QUICK["runs"] if quick else 100)
@@ -994,6 +1998,20 @@ def run(
         large_runs = QUICK["large_runs"] if quick else 10
     out = Path(out)
     sfx = "-quick" if quick else ""
+    if generator == "walk":
+        return _run_walk(
+            out,
+            grids,
+            p0s,
+            runs,
+            n_gen,
+            map_seeds,
+            sfx,
+            engine=engine,
+            results=Path(results) if results else (out if quick else Path("docs/results")),
+            from_csv=from_csv,
+            run_kw=dict(workers=workers, scheduler=scheduler, progress=progress, retry_failed=retry_failed),
+        )
     jobs = [
         (
             f"table1-map{m}",
@@ -1082,5 +2100,60 @@ def run(
         large_per_run_dir=out / "large-per-run-maps" if large_runs > 0 else None,
         wall_seconds=wall,
         workers=workers,
+    )
+    return {**rep, "failed": failed, "wall_seconds": wall}
+
+
+def _run_walk(out, grids, p0s, runs, n_gen, map_seeds, sfx, *, engine, results, from_csv, run_kw) -> dict:
+    """``run(generator="walk")``: the Table 1 rows on walk maps, one store per
+    map seed, then the report with both generators."""
+    import time
+
+    from gapath.errors import ConfigError
+    from gapath.experiments.runner import run_experiment
+
+    cols = sorted(
+        (int(m[1]), p) for p in out.glob("table1-map*") if (m := re.fullmatch(r"table1-map(\d+)", p.name))
+    )
+    if from_csv is None and not cols:
+        raise ConfigError(
+            f"--generator walk reports beside the columns generator's rows: none in {str(out)!r}; "
+            "run `gapath experiment dense` with the same --out first, or give --from-csv"
+        )
+    if from_csv is not None:
+        read_dense_csv(from_csv)  # fail before the runs, not after
+    wall, failed, walk_dirs = {}, 0, []
+    for m in map_seeds:
+        name = f"table1-walk-map{m}"
+        spec = walk_table1_spec(
+            out / "walk-maps",
+            grids,
+            p0s,
+            runs,
+            map_seed=m,
+            n_gen=n_gen,
+            engine=engine,
+            name=f"dense-{name}{sfx}",
+        )
+        t0 = time.perf_counter()
+        r = run_experiment(spec, out / name, **run_kw)
+        failed += r.failed
+        if r.ran:
+            wall[name] = time.perf_counter() - t0
+        walk_dirs.append(out / name)
+    main = dict(cols).get(MAP_SEED, cols[0][1] if cols else None)
+    main_seed = MAP_SEED if MAP_SEED in dict(cols) else (cols[0][0] if cols else None)
+    rep = dense_report(
+        None if from_csv else main,
+        results,
+        None if from_csv else out / f"large-map{main_seed}",
+        seeded_dir=None if from_csv else out / f"table1-map{main_seed}-seeded",
+        other_map_dirs=[] if from_csv else [p for _, p in cols if p != main],
+        per_run_dir=None if from_csv else out / "table1-per-run-maps",
+        large_per_run_dir=None if from_csv else out / "large-per-run-maps",
+        walk_dirs=walk_dirs,
+        from_csv=from_csv,
+        wall_seconds=wall,
+        workers=run_kw.get("workers"),
     )
     return {**rep, "failed": failed, "wall_seconds": wall}

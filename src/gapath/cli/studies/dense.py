@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from gapath.experiments.spec import ENGINE_ALIASES, ENGINES
 from gapath.studies import dense as _study
-from gapath.studies.dense import MAP_SEED, QUICK
+from gapath.studies.dense import GENERATORS, MAP_SEED, QUICK
 
 
 def register(subparsers) -> None:
@@ -59,6 +59,22 @@ def register(subparsers) -> None:
         help="GA engine: fast (default, FastNSGA2 on arrays) or pymoo (stock pymoo NSGA2), "
         "as gapath solve; paper and auto, the former names, mean pymoo and fast",
     )
+    p.add_argument(
+        "--generator",
+        choices=GENERATORS,
+        default="columns",
+        help="map generator: columns (default, gapath.dense_workspace: a random walk of -2..2 rows "
+        "per column, then the goal column climbed) or walk (a goal-biased 8-connected walk kept "
+        "free; runs the Table 1 rows only, DIR/table1-walk-map<S>, and reports them beside the "
+        "columns rows)",
+    )
+    p.add_argument(
+        "--from-csv",
+        default=None,
+        metavar="FILE",
+        help="take the columns generator's rows from a dense.csv written earlier instead of "
+        "their stores (with --generator walk: e.g. docs/results/dense.csv)",
+    )
     add_executor_options(p)
     p.set_defaults(func=run)
 
@@ -82,6 +98,8 @@ def run(args) -> int:
             scheduler=args.scheduler,
             progress=not args.quiet,
             retry_failed=args.retry_failed,
+            generator=args.generator,
+            from_csv=args.from_csv,
         )
     except KeyboardInterrupt:
         print(f"interrupted: finished runs are kept in {args.out}; run the same command to resume")
