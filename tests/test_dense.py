@@ -203,7 +203,7 @@ def test_walk_does_not_take_the_encodings_end_fix_shape():
     # the columns generator climbs the last column from the bottom rows
     # (its end-fix); the walk reaches the goal's column near the goal and
     # keeps closer to the start-goal diagonal
-    from gapath.workspace import random_monotone_path
+    from gapath.generators import random_monotone_path
 
     n, start, goal = 16, (15, 0), (0, 15)
     walk = [dense.goal_walk_path((n, n), start, goal, np.random.default_rng(s)) for s in range(20)]

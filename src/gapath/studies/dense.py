@@ -397,7 +397,7 @@ def goal_walk_path(shape, start, goal, rng: np.random.Generator, bias: float = W
     the goal before, ``d'`` after the move); in the goal's column it goes
     straight to the goal. The path wanders anywhere between start and goal
     (it does not follow the bottom rows and the last column the way
-    :func:`gapath.workspace.random_monotone_path` does) yet stays
+    :func:`gapath.generators.random_monotone_path` does) yet stays
     representable by the column-monotone encodings: its cells in a column are
     one vertical run entered from a neighbour of the previous column's last
     cell.
@@ -496,7 +496,7 @@ def generated_workspace(generator: str, n, p0: float, seed: int):
         On an unknown generator.
     """
     from gapath.errors import ConfigError
-    from gapath.workspace import dense_workspace
+    from gapath.generators import dense_workspace
 
     if generator == "columns":
         return dense_workspace(n, p0, seed)
