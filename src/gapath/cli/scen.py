@@ -73,10 +73,9 @@ def check_scenarios(scenarios, planner="astar", map_path=None, on_line=None):
         If a map's size differs from its scenario's.
     """
     from gapath.cli._args import matches_optimum
-    from gapath.costmap import Costmap
     from gapath.errors import ConfigError, NoPathError
     from gapath.loaders import load_occupancy
-    from gapath.planners.pareto import plan
+    from gapath.planners import plan
     from gapath.workspace import Workspace
 
     maps: dict[Path, np.ndarray] = {}
@@ -97,7 +96,7 @@ def check_scenarios(scenarios, planner="astar", map_path=None, on_line=None):
         else:
             ws = Workspace(occ, sc.start, sc.goal, corner_cutting=False, name=path.stem)
             try:
-                length = float(plan(Costmap(ws), planner, ("length",)).length)
+                length = float(plan(ws, planner, objectives=("length",)).result.length)
             except NoPathError:
                 length = None
         ok = matches_optimum(length, sc.optimal)

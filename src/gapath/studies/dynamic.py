@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gapath.errors import ConfigError
+from gapath.errors import positive_int
 from gapath.results import dumps
 
 __all__ = [
@@ -241,12 +241,7 @@ def run(
     from gapath.dynamic.scenarios import make_scenario
     from gapath.planners.astar import astar
 
-    try:
-        n = int(n_runs)
-    except (TypeError, ValueError):
-        raise ConfigError(f"n_runs must be a positive integer, got {n_runs!r}") from None
-    if n < 1:
-        raise ConfigError(f"n_runs must be a positive integer, got {n_runs!r}")
+    n = positive_int(n_runs, "n_runs")
     for p in planners:
         make_planner(p)  # validates the name
     robot = Robot() if robot is None else robot

@@ -54,7 +54,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gapath.errors import ConfigError, NoPathError
+from gapath.errors import ConfigError, NoPathError, positive_int
 
 __all__ = [
     "mars_workspace",
@@ -615,8 +615,7 @@ def mars_study(
     """
     from gapath.operators.sampling.planner_sampling import SEED_SOURCES
 
-    if int(n_workspaces) <= 0:
-        raise ConfigError(f"n_workspaces must be positive, got {n_workspaces!r}")
+    n_workspaces = positive_int(n_workspaces, "n_workspaces")
     if ga_seed_from not in SEED_SOURCES:
         raise ConfigError(f"ga_seed_from must be one of {', '.join(SEED_SOURCES)}, got {ga_seed_from!r}")
     for name, rate in (("solar_rate", solar_rate), ("compare_solar_rate", compare_solar_rate)):
