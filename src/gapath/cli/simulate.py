@@ -76,7 +76,7 @@ def add_planner_arguments(parser) -> None:
         "--max-steer",
         type=float,
         default=CarSettings.max_steer_deg,
-        help="maximum steering angle in degrees, below 90 (default: %(default)s)",
+        help="maximum steering angle in degrees, below 90 (default: %(default).2f, 0.6 rad)",
     )
     _add(
         parser,

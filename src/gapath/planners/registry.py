@@ -32,10 +32,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from gapath.errors import ConfigError
+from gapath.planners.hybrid_astar import CarModel
 
 if TYPE_CHECKING:
     from gapath.costmap import Costmap
-    from gapath.planners.hybrid_astar import CarModel
     from gapath.workspace import Workspace
 
 __all__ = [
@@ -63,8 +63,9 @@ class CarSettings:
     ----------
     wheelbase : float, default 0.6
         Distance between the axles, world units.
-    max_steer_deg : float, default 34.4
-        Largest steering angle in degrees, strictly between 0 and 90.
+    max_steer_deg : float, default ``degrees(0.6)`` (34.38)
+        Largest steering angle in degrees, strictly between 0 and 90
+        (CarModel's default of 0.6 rad).
     speed : float, default 1.0
         World units per second (the simulation's cruise speed).
     radius : float, default 0.3
@@ -77,10 +78,11 @@ class CarSettings:
     1.0
     """
 
-    wheelbase: float = 0.6
-    max_steer_deg: float = 34.4
-    speed: float = 1.0
-    radius: float = 0.3
+    # the defaults are CarModel's (the steering in degrees: 0.6 rad)
+    wheelbase: float = CarModel.wheelbase
+    max_steer_deg: float = math.degrees(CarModel.max_steer)
+    speed: float = CarModel.speed
+    radius: float = CarModel.radius
 
     def model(self) -> CarModel:
         """The :class:`~gapath.planners.hybrid_astar.CarModel` (steering in
@@ -93,7 +95,6 @@ class CarSettings:
             90 degrees, or a car :class:`CarModel` rejects (e.g. a
             non-positive wheelbase).
         """
-        from gapath.planners.hybrid_astar import CarModel
 
         steer = self.max_steer_deg
         try:
