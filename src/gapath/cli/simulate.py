@@ -412,14 +412,12 @@ def _speed_range(text):
 def _check_planner_flags(args, workspace, car, planner_kw) -> None:
     """Bad planner flags are bad input (exit 2), not a failed run: the
     simulation would report a planner that cannot start as blocked."""
-    from gapath.errors import ConfigError, positive_int
 
     if args.planner in ("rrt", "rrt-star"):
-        positive_int(args.iterations, "--iterations")
-        if args.step is not None and not (math.isfinite(args.step) and args.step > 0):
-            raise ConfigError(f"--step must be a positive number of world units, got {args.step:g}")
-        if not 0.0 <= args.goal_bias <= 1.0:
-            raise ConfigError(f"--goal-bias must be in [0.0, 1.0], got {args.goal_bias:g}")
+        from gapath.planners.rrt import rrt_settings
+
+        with cli_vocabulary():
+            rrt_settings(workspace.cell_size, radius=car.radius, **planner_kw)
     elif args.planner == "hybrid-astar":
         from gapath.planners.hybrid_astar import HybridAStar
 

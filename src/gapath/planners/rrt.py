@@ -44,7 +44,7 @@ from gapath.errors import ConfigError, NoPathError, positive_int
 from gapath.planners._geometry import disc_free, segment_free
 from gapath.planners.hybrid_astar import check_positive, describe_pose, path_objectives
 
-__all__ = ["RRTPath", "rrt", "rrt_star"]
+__all__ = ["RRTPath", "rrt", "rrt_settings", "rrt_star"]
 
 
 @dataclass(frozen=True, eq=False)
@@ -276,6 +276,55 @@ def _point(value, name):
     return vals[0], vals[1]
 
 
+def rrt_settings(
+    cell_size: float,
+    *,
+    radius: float = 0.3,
+    step: float | None = None,
+    goal_bias: float = 0.1,
+    goal_tolerance: float | None = None,
+    max_iter: int = 20000,
+    rewire_radius: float | None = None,
+    extra_iterations: int | None = None,
+    ds: float | None = None,
+) -> tuple:
+    """The checked settings of :func:`rrt` (same names and defaults), in
+    cell units: ``(radius, step, goal_bias, goal_tolerance, ds, max_iter,
+    extra_iterations, rewire_radius)``. Callers that take the settings from
+    elsewhere (the CLI) check them here before a run.
+
+    Raises
+    ------
+    ConfigError
+        Naming the first setting out of its range.
+
+    Examples
+    --------
+    >>> rrt_settings(0.5, step=1.0)[1]
+    2.0
+    >>> rrt_settings(1.0, goal_bias=2)
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: goal_bias must be in [0.0, 1.0], got 2
+    """
+    cs = float(cell_size)
+    r = check_positive(radius, "radius", allow_zero=True) / cs
+    stp = 2.0 if step is None else check_positive(step, "step") / cs
+    bias = _unit(goal_bias, "goal_bias", 0.0, 1.0)
+    tol = (
+        0.5
+        if goal_tolerance is None
+        else check_positive(goal_tolerance, "goal_tolerance", allow_zero=True) / cs
+    )
+    dsv = 0.2 if ds is None else check_positive(ds, "ds") / cs
+    iters = positive_int(max_iter, "max_iter")
+    extra_it = 0 if extra_iterations is None else int(extra_iterations)
+    if extra_it < 0:
+        raise ConfigError(f"extra_iterations must be >= 0, got {extra_iterations!r}")
+    rew = 3.0 * stp if rewire_radius is None else check_positive(rewire_radius, "rewire_radius") / cs
+    return r, stp, bias, tol, dsv, iters, extra_it, rew
+
+
 def rrt(
     workspace,
     start=None,
@@ -356,20 +405,17 @@ def rrt(
         if extra.shape != occ.shape:
             raise ConfigError(f"blocked must have the grid's shape {occ.shape}, got {extra.shape}")
         occ = occ | extra
-    r = check_positive(radius, "radius", allow_zero=True) / cs
-    stp = 2.0 if step is None else check_positive(step, "step") / cs
-    bias = _unit(goal_bias, "goal_bias", 0.0, 1.0)
-    tol = (
-        0.5
-        if goal_tolerance is None
-        else check_positive(goal_tolerance, "goal_tolerance", allow_zero=True) / cs
+    r, stp, bias, tol, dsv, iters, extra_it, rew = rrt_settings(
+        cs,
+        radius=radius,
+        step=step,
+        goal_bias=goal_bias,
+        goal_tolerance=goal_tolerance,
+        max_iter=max_iter,
+        rewire_radius=rewire_radius,
+        extra_iterations=extra_iterations,
+        ds=ds,
     )
-    dsv = 0.2 if ds is None else check_positive(ds, "ds") / cs
-    iters = positive_int(max_iter, "max_iter")
-    extra_it = 0 if extra_iterations is None else int(extra_iterations)
-    if extra_it < 0:
-        raise ConfigError(f"extra_iterations must be >= 0, got {extra_iterations!r}")
-    rew = 3.0 * stp if rewire_radius is None else check_positive(rewire_radius, "rewire_radius") / cs
     if start is None:
         sr, sc = workspace.start
         start = (sc * cs, sr * cs)
