@@ -415,6 +415,12 @@ class FastNSGA2(Algorithm):
         DiscreteSBX and DiscretePM) with numba twins that return bit-identical
         children from the same random draws (default True); other operators,
         or False, go through the operator's own ``_do``.
+    constraint_handling : None (default: feasible first, by ``CV``, as
+        pymoo's NSGA-II) or a :class:`gapath.constraints.AdaptivePenalty`:
+        survival and tournament then rank every individual on
+        ``F + penalty * CV`` (no feasibility-first rule) with a penalty that
+        adapts to the share of feasible survivors. Use it with a problem in
+        constraint mode (``G`` = interfering cells).
     **kwargs : passed to :class:`pymoo.core.algorithm.Algorithm`
         (``termination``, ``output``, ``callback``, ``save_history``, ...).
         Unlike pymoo's NSGA2, a ``termination`` given here is kept; default:
@@ -468,6 +474,7 @@ class FastNSGA2(Algorithm):
         eliminate_duplicates: bool = True,
         n_max_iterations: int = 100,
         fast_operators: bool = True,
+        constraint_handling=None,
         **kwargs,
     ):
         # state behind the pymoo views (set before Algorithm.__init__ assigns them)
@@ -501,6 +508,12 @@ class FastNSGA2(Algorithm):
         self.eliminate_duplicates = bool(eliminate_duplicates)
         self.n_max_iterations = int(n_max_iterations)
         self.fast_operators = bool(fast_operators)
+        if constraint_handling is not None and not callable(getattr(constraint_handling, "penalise", None)):
+            raise ConfigError(
+                "constraint_handling must be None or a gapath.constraints.AdaptivePenalty, "
+                f"got {type(constraint_handling).__name__}"
+            )
+        self.constraint_handling = constraint_handling
         self.timings = dict.fromkeys(PHASES, 0.0)
 
     # == the generation loop ==================================================
@@ -571,8 +584,10 @@ class FastNSGA2(Algorithm):
         A = self._arrays
         smooth = A.data.get("smoothness")
         use_smooth = self.tiebreak is not None and smooth is not None
+        # a penalty handling ranks infeasible rows among the feasible ones
+        cv = A.CV if self.constraint_handling is None else np.zeros(len(A))
         return (
-            A.CV.astype(float),
+            cv.astype(float),
             A.rank.astype(float),
             np.asarray(smooth if use_smooth else A.CV, dtype=float),
             A.crowding.astype(float),
@@ -698,14 +713,21 @@ class FastNSGA2(Algorithm):
         smoothness (when the tie-break is on) and crowding, best first, with
         ``rank`` and ``crowding`` set."""
         t0 = self.clock()
-        feasible = np.flatnonzero(arrays.CV <= 0)
-        ranks = pareto_ranks(arrays.F[feasible])
+        handling = self.constraint_handling
+        if handling is None:
+            F, CV = arrays.F, arrays.CV
+        else:  # every row ranked on its penalised objectives
+            F, CV = handling.penalise(arrays.F, arrays.CV), np.zeros(len(arrays))
+        feasible = np.flatnonzero(CV <= 0)
+        ranks = pareto_ranks(F[feasible])
         t0 = self._tick("sorting", t0)
         smooth = arrays.data.get("smoothness") if self.tiebreak is not None else None
         smooth = np.zeros(len(arrays)) if smooth is None else np.asarray(smooth, dtype=float)
-        order, rank, crowding = order_survivors(arrays.F, smooth, arrays.CV, feasible, ranks, n_survive)
+        order, rank, crowding = order_survivors(F, smooth, CV, feasible, ranks, n_survive)
         survivors = arrays.take(order)
         survivors.rank, survivors.crowding = rank, crowding
+        if handling is not None and len(survivors):
+            handling.update(float(np.mean(survivors.CV <= 0)))
         self._tick("survival", t0)
         return survivors
 
@@ -863,6 +885,8 @@ class FastNSGA2(Algorithm):
 
     def _setup(self, problem, **kwargs):
         self.timings = dict.fromkeys(PHASES, 0.0)
+        if self.constraint_handling is not None:
+            self.constraint_handling.reset()
         self._fast_sbx = self.fast_operators and sbx_supported(self.crossover)
         self._fast_pm = self.fast_operators and pm_supported(self.mutation, problem)
         self._fast_discrete = self.fast_operators and discrete_supported(
@@ -881,7 +905,11 @@ class FastNSGA2(Algorithm):
         if A is None or len(A) == 0:
             self._opt_idx = None
         elif (A.CV <= 0).any():
-            self._opt_idx = np.flatnonzero(A.rank == 0)
+            if self.constraint_handling is None:
+                self._opt_idx = np.flatnonzero(A.rank == 0)
+            else:  # ranks mix feasible and infeasible rows: the feasible non-dominated
+                feasible = np.flatnonzero(A.CV <= 0)
+                self._opt_idx = feasible[pareto_ranks(A.F[feasible]) == 0]
         else:
             self._opt_idx = np.array([np.argmin(A.CV)])
 

@@ -43,56 +43,99 @@ def run(
     encodings=ENCODING_ORDER,
     protocols=tuple(PROTOCOLS),
     progress=None,
+    penalties=(1000.0,),
+    binary_rates=("bits",),
+    on_run=None,
 ) -> dict:
     """Run the comparison.
 
+    Parameters
+    ----------
+    workspace : default the bundled scenario.
+    runs, pop_size, n_gen, seed : runs per encoding (seeds ``seed ..
+        seed+runs-1``), population, generations.
+    encodings, protocols : which encodings and protocols (:data:`PROTOCOLS`).
+    progress : called with each row when it is complete.
+    penalties : the obstacle handlings, each a penalty per interfering cell
+        (a number) or ``"adaptive"`` (:class:`gapath.constraints.AdaptivePenalty`
+        from 1000); every protocol and encoding runs under each.
+    binary_rates : the binary encoding's initial bit-flip rates, each
+        ``"bits"`` (1 / number of bits) or ``"grid"`` (1 / n, Ahmed & Deb's);
+        the binary encoding runs once per rate.
+    on_run : called with ``(row_key, SolveResult)`` after every run, the key
+        being ``(protocol, penalty, encoding, binary_rate)``.
+
     Returns
     -------
-    dict with ``rows`` (one per protocol and encoding: merged and per-run
-    hypervolume ratios, share of exact points found, seconds), ``fronts``
-    (merged objective matrices) and ``exact`` (the reference front).
+    dict with ``rows`` (one per protocol, penalty, encoding and binary rate:
+    merged and per-run hypervolume ratios, share of exact points found,
+    seconds), ``per_run`` (the same keys as ``on_run`` -> the per-run
+    hypervolume ratios in seed order), ``fronts`` (merged objective
+    matrices, by ``(protocol, encoding)`` for the first penalty and rate)
+    and ``exact`` (the reference front).
     """
     from gapath.workspace import default_workspace
 
     ws = default_workspace() if workspace is None else workspace
     exact = monotone_front(ws, ("length", "vulnerability"))
-    rows, fronts = [], {}
-    for protocol in protocols:
-        for enc in encodings:
-            t0 = time.perf_counter()
-            m = multirun(
-                ws,
-                runs=runs,
-                seed=seed,
+    rows, fronts, per_runs = [], {}, {}
+    variants = [
+        (protocol, pen, enc, rate)
+        for protocol in protocols
+        for pen in penalties
+        for enc in encodings
+        for rate in (binary_rates if enc == "binary" else (None,))
+    ]
+    for protocol, pen, enc, rate in variants:
+        t0 = time.perf_counter()
+        key = (protocol, pen, enc, rate)
+        m = multirun(
+            ws,
+            runs=runs,
+            seed=seed,
+            encoding=enc,
+            pop_size=pop_size,
+            n_gen=n_gen,
+            seed_from=PROTOCOLS[protocol],
+            on_run=None if on_run is None else (lambda r, key=key: on_run(key, r)),
+            **_handling_kwargs(pen, rate),
+        )
+        per_run = np.array([hv_ratio(r.front.F, exact.F) for r in m.runs])
+        per_runs[key] = per_run.tolist()
+        q1, med, q3 = np.percentile(per_run, [25, 50, 75])
+        rows.append(
+            dict(
+                protocol=protocol,
+                penalty=pen,
                 encoding=enc,
+                binary_rate=rate,
+                runs=runs,
                 pop_size=pop_size,
                 n_gen=n_gen,
-                seed_from=PROTOCOLS[protocol],
+                merged_hv_ratio=round(float(hv_ratio(m.front.F, exact.F)), 6),
+                merged_exact_points_found=round(float(coverage(m.front.F, exact.F)), 4),
+                merged_front_size=len(m.front),
+                run_hv_median=round(float(med), 6),
+                run_hv_q1=round(float(q1), 6),
+                run_hv_q3=round(float(q3), 6),
+                run_hv_min=round(float(per_run.min()), 6),
+                run_hv_max=round(float(per_run.max()), 6),
+                seconds=round(time.perf_counter() - t0, 2),
             )
-            per_run = np.array([hv_ratio(r.front.F, exact.F) for r in m.runs])
-            q1, med, q3 = np.percentile(per_run, [25, 50, 75])
-            rows.append(
-                dict(
-                    protocol=protocol,
-                    encoding=enc,
-                    runs=runs,
-                    pop_size=pop_size,
-                    n_gen=n_gen,
-                    merged_hv_ratio=round(float(hv_ratio(m.front.F, exact.F)), 6),
-                    merged_exact_points_found=round(float(coverage(m.front.F, exact.F)), 4),
-                    merged_front_size=len(m.front),
-                    run_hv_median=round(float(med), 6),
-                    run_hv_q1=round(float(q1), 6),
-                    run_hv_q3=round(float(q3), 6),
-                    run_hv_min=round(float(per_run.min()), 6),
-                    run_hv_max=round(float(per_run.max()), 6),
-                    seconds=round(time.perf_counter() - t0, 2),
-                )
-            )
-            fronts[(protocol, enc)] = m.front.F
-            if progress:
-                progress(rows[-1])
-    return {"rows": rows, "fronts": fronts, "exact": exact.F, "workspace": ws}
+        )
+        fronts.setdefault((protocol, enc), m.front.F)
+        if progress:
+            progress(rows[-1])
+    return {"rows": rows, "per_run": per_runs, "fronts": fronts, "exact": exact.F, "workspace": ws}
+
+
+def _handling_kwargs(penalty, binary_rate) -> dict:
+    """solve's keywords for a penalty (a number or ``"adaptive"``) and a
+    binary bit-flip rate (None for other encodings)."""
+    kw = {"constraints": "adaptive", "penalty": 1000.0} if penalty == "adaptive" else {"penalty": float(penalty)}
+    if binary_rate is not None and binary_rate != "bits":
+        kw["pm_prob_var"] = binary_rate
+    return kw
 
 
 def _markdown(result) -> str:
