@@ -163,7 +163,11 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--parts", default="fig3,table1")
     ap.add_argument("--fig3-seeds", type=int, default=5, help="GA seeds 1..N per map and encoding")
-    ap.add_argument("--fig3-maps", default="1,2,3", help="corridor-free map seeds (besides the bundled map)")
+    ap.add_argument(
+        "--fig3-maps",
+        default="bundled,1,2",
+        help="'bundled' (the bundled map) and corridor-free map seeds, comma-separated",
+    )
     ap.add_argument("--table1-maps", default="1-5", help="dense map seeds")
     ap.add_argument("--table1-seeds", type=int, default=10, help="GA seeds 1..N per map")
     ap.add_argument("--handlings", default=",".join(_handling_label(h).split()[-1] for h in HANDLINGS))
@@ -180,7 +184,9 @@ def main(argv=None) -> int:
     parts = args.parts.split(",")
     t0 = time.perf_counter()
     if "fig3" in parts:
-        maps = [default_workspace()] + [corridor_free_workspace(int(s)) for s in _seeds(args.fig3_maps)]
+        names = args.fig3_maps.split(",")
+        maps = [default_workspace()] if "bundled" in names else []
+        maps += [corridor_free_workspace(s) for s in _seeds(",".join(n for n in names if n != "bundled"))]
         fig3(maps, args.fig3_seeds, handlings, tuple(args.encodings.split(",")))
     if "table1" in parts:
         table1(TABLE1_ROWS, _seeds(args.table1_maps), args.table1_seeds, handlings)
@@ -190,7 +196,7 @@ def main(argv=None) -> int:
 
 def _seeds(text: str) -> list[int]:
     out = []
-    for part in text.split(","):
+    for part in filter(None, text.split(",")):
         a, _, b = part.partition("-")
         out += range(int(a), int(b or a) + 1)
     return out
