@@ -1,0 +1,211 @@
+"""``docs/results/penalty.md`` from the JSON lines of ``bench_penalty.py``.
+
+The protocol section at the top of the existing file (everything before
+``## Results``) is kept as written before the runs, and so is the
+``## Findings`` section at its end (written after reading the results); the
+results between them are regenerated.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+#: Ahmed & Deb, Table 1 success (%) for the rows swept.
+PAPER_SUCCESS = {(32, 0.3): 97, (32, 0.6): 74, (32, 0.8): 52}
+GOAL_HV = 0.9
+BUNDLED = "default-32x32-173"
+
+
+def _load(paths):
+    rows = []
+    for p in paths:
+        for line in Path(p).read_text().splitlines():
+            if line.strip():
+                rows.append(json.loads(line))
+    return rows
+
+
+def _order(handlings):
+    def key(h):
+        return (1, 0.0) if h == "adaptive" else (0, -float(h.split()[-1]))
+
+    return sorted(set(handlings), key=key)
+
+
+def _dist(values) -> str:
+    v = np.asarray(values, float)
+    return f"{np.median(v):.3f} [{v.min():.3f}, {v.max():.3f}]"
+
+
+def fig3_summary(rows):
+    """``{(handling, encoding): {map: [hv, ...]}}``."""
+    out = {}
+    for r in rows:
+        out.setdefault((r["handling"], r["encoding"]), {}).setdefault(r["map"], []).append(r["hv_ratio"])
+    return out
+
+
+def table1_summary(rows):
+    """``{(handling, grid, p0): {map_seed: [success, ...]}}``."""
+    out = {}
+    for r in rows:
+        out.setdefault((r["handling"], r["grid"], r["p0"]), {}).setdefault(r["map_seed"], []).append(
+            bool(r["success"])
+        )
+    return out
+
+
+def _fig3_section(rows) -> list[str]:
+    if not rows:
+        return []
+    maps = list(dict.fromkeys(r["map"] for r in rows))
+    encs = list(dict.fromkeys(r["encoding"] for r in rows))
+    handlings = _order(r["handling"] for r in rows)
+    summ = fig3_summary(rows)
+    n_seeds = sorted({len(v) for d in summ.values() for v in d.values()})
+    head = "| handling | encoding | " + " | ".join(maps) + " | all maps |"
+    lines = [
+        "### Fig. 3 set-up: unseeded hypervolume ratio per run",
+        "",
+        f"Median [min, max] over GA seeds ({'/'.join(map(str, n_seeds))} runs per cell) of "
+        "each run's HV ratio against its map's exact monotone front; `all maps`: over every run "
+        "of the row.",
+        "",
+        head,
+        "|---|---|" + "---|" * (len(maps) + 1),
+    ]
+    for h in handlings:
+        for e in encs:
+            d = summ.get((h, e), {})
+            if not d:
+                continue
+            cells = [_dist(d[m]) if m in d else "-" for m in maps]
+            allv = [x for m in maps for x in d.get(m, [])]
+            lines.append(f"| {h} | {e} | " + " | ".join(cells) + f" | {_dist(allv)} |")
+    lines.append("")
+    # where the adaptive penalty settled
+    ad = [r for r in rows if r["handling"] == "adaptive"]
+    if ad:
+        lines += [
+            "Where the adaptive penalty ended (last generation, median [min, max] over runs): "
+            + "; ".join(
+                f"{e}: penalty {_dist([r['final_penalty'] for r in ad if r['encoding'] == e])}, "
+                f"feasible share {_dist([r['feasible_share'] for r in ad if r['encoding'] == e])}"
+                for e in encs
+            )
+            + ". With a fixed penalty the last population was feasible in every run at penalties "
+            + ", ".join(
+                h.split()[-1]
+                for h in handlings
+                if h != "adaptive" and all(r["feasible_share"] == 1.0 for r in rows if r["handling"] == h)
+            )
+            + ".",
+            "",
+        ]
+    return lines
+
+
+def _table1_section(rows) -> list[str]:
+    if not rows:
+        return []
+    summ = table1_summary(rows)
+    handlings = _order(r["handling"] for r in rows)
+    grid_rows = sorted({(r["grid"], r["p0"]) for r in rows})
+    map_seeds = sorted({r["map_seed"] for r in rows})
+    obstacles = {}
+    for r in rows:
+        obstacles[(r["grid"], r["p0"], r["map_seed"])] = r["obstacles"]
+    n_runs = sorted({len(v) for d in summ.values() for v in d.values()})
+    lines = [
+        "### Table 1 set-up: success per map",
+        "",
+        f"Success % of {'/'.join(map(str, n_runs))} GA runs per map (integer encoding, pop 200, "
+        "at most 500 generations, stop at the first feasible path, unseeded) on dense maps "
+        f"{', '.join(map(str, map_seeds))}; median [min, max] over the maps, and all runs pooled. "
+        "Obstacles per map: "
+        + "; ".join(
+            f"{g}x{g} p0 {p:g}: " + ", ".join(str(obstacles.get((g, p, m), "-")) for m in map_seeds)
+            for g, p in grid_rows
+        )
+        + ".",
+        "",
+        "| handling | row | paper % | per map | median [min, max] over maps | pooled % |",
+        "|---|---|---|---|---|---|",
+    ]
+    for h in handlings:
+        for g, p in grid_rows:
+            d = summ.get((h, g, p))
+            if not d:
+                continue
+            per_map = [100.0 * np.mean(d[m]) for m in map_seeds if m in d]
+            pooled = 100.0 * np.mean([x for m in map_seeds for x in d.get(m, [])])
+            lines.append(
+                f"| {h} | {g}x{g} p0 {p:g} | {PAPER_SUCCESS.get((g, p), '-')} | "
+                + " ".join(f"{v:.0f}" for v in per_map)
+                + f" | {np.median(per_map):.0f} [{min(per_map):.0f}, {max(per_map):.0f}] | {pooled:.0f} |"
+            )
+    lines.append("")
+    return lines
+
+
+def _goal_section(fig3, table1) -> list[str]:
+    if not fig3:
+        return []
+    summ = fig3_summary(fig3)
+    lines = ["### The goal", ""]
+    bundled = {
+        (h, e): d[BUNDLED] for (h, e), d in summ.items() if BUNDLED in d
+    }
+    encs = list(dict.fromkeys(r["encoding"] for r in fig3))
+    if ("adaptive", encs[0]) in bundled:
+        meds = {e: float(np.median(bundled[("adaptive", e)])) for e in encs if ("adaptive", e) in bundled}
+        met = [e for e, m in meds.items() if m >= GOAL_HV]
+        lines.append(
+            f"Unseeded median HV ratio >= {GOAL_HV} on the bundled map (the Fig. 3 set-up) with the "
+            "adaptive penalty: "
+            + ", ".join(f"{e} {m:.3f}" for e, m in meds.items())
+            + (
+                f" -- **met for {', '.join(met)}**" if met else " -- **not met**"
+            )
+            + (f", **not met for {', '.join(e for e in meds if e not in met)}**." if met and len(met) < len(meds) else ".")
+        )
+    if table1:
+        t = table1_summary(table1)
+        worse = []
+        for (h, g, p), d in t.items():
+            if h != "adaptive":
+                continue
+            ref = t.get(("penalty 1000", g, p))
+            if ref is None:
+                continue
+            a = [x for v in d.values() for x in v]
+            b = [x for v in ref.values() for x in v]
+            if a != b:
+                worse.append((g, p))
+        lines.append(
+            "Table 1 success with the adaptive penalty: "
+            + (
+                "the same runs as penalty 1000 in every row and map (identical success run by run: "
+                "the penalty stays at 1000 while no path is feasible, and the run stops at the first "
+                "feasible path)."
+                if not worse
+                else "differs from penalty 1000 in " + ", ".join(f"{g}x{g} p0 {p:g}" for g, p in worse) + "."
+            )
+        )
+    lines.append("")
+    return lines
+
+
+def write_report(jsonl: str, out: str) -> None:
+    rows = _load(jsonl.split(","))
+    fig3 = [r for r in rows if r.get("part") == "fig3"]
+    table1 = [r for r in rows if r.get("part") == "table1"]
+    out = Path(out)
+    old = out.read_text() if out.exists() else "# Penalty sweep\n"
+    head = old.split("\n## Results")[0].rstrip("\n")
+    tail = ("\n## Findings" + old.split("\n## Findings", 1)[1]).rstrip("\n") if "\n## Findings" in old else ""
+    body = ["## Results", ""] + _fig3_section(fig3) + _table1_section(table1) + _goal_section(fig3, table1)
+    out.write_text(head + "\n\n" + "\n".join(body).rstrip("\n") + "\n" + tail + "\n")
