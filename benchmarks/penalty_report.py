@@ -156,9 +156,7 @@ def _goal_section(fig3, table1) -> list[str]:
         return []
     summ = fig3_summary(fig3)
     lines = ["### The goal", ""]
-    bundled = {
-        (h, e): d[BUNDLED] for (h, e), d in summ.items() if BUNDLED in d
-    }
+    bundled = {(h, e): d[BUNDLED] for (h, e), d in summ.items() if BUNDLED in d}
     encs = list(dict.fromkeys(r["encoding"] for r in fig3))
     if ("adaptive", encs[0]) in bundled:
         meds = {e: float(np.median(bundled[("adaptive", e)])) for e in encs if ("adaptive", e) in bundled}
@@ -167,10 +165,12 @@ def _goal_section(fig3, table1) -> list[str]:
             f"Unseeded median HV ratio >= {GOAL_HV} on the bundled map (the Fig. 3 set-up) with the "
             "adaptive penalty: "
             + ", ".join(f"{e} {m:.3f}" for e, m in meds.items())
+            + (f" -- **met for {', '.join(met)}**" if met else " -- **not met**")
             + (
-                f" -- **met for {', '.join(met)}**" if met else " -- **not met**"
+                f", **not met for {', '.join(e for e in meds if e not in met)}**."
+                if met and len(met) < len(meds)
+                else "."
             )
-            + (f", **not met for {', '.join(e for e in meds if e not in met)}**." if met and len(met) < len(meds) else ".")
         )
     if table1:
         t = table1_summary(table1)

@@ -39,8 +39,17 @@ def test_update_stays_at_start_without_feasible_rows_and_stays_in_bounds():
 
 @pytest.mark.parametrize(
     "kwargs",
-    [dict(start=0), dict(start=-1), dict(factor=1.0), dict(target=0), dict(target=1.5),
-     dict(minimum=0), dict(minimum=2000.0), dict(start="x"), dict(start=float("inf"))],
+    [
+        dict(start=0),
+        dict(start=-1),
+        dict(factor=1.0),
+        dict(target=0),
+        dict(target=1.5),
+        dict(minimum=0),
+        dict(minimum=2000.0),
+        dict(start="x"),
+        dict(start=float("inf")),
+    ],
 )
 def test_bad_settings_raise(kwargs):
     with pytest.raises(ConfigError, match="AdaptivePenalty"):
@@ -68,8 +77,9 @@ def test_adaptive_is_the_fixed_start_penalty_until_the_first_feasible_path():
 
 def test_adaptive_runs_are_deterministic_and_rank_on_the_penalised_objectives():
     ws = random_workspace((16, 16), 50, seed=4)
-    runs = [solve(ws, pop_size=40, n_gen=40, seed=7, seed_from="none", constraints="adaptive")
-            for _ in range(2)]
+    runs = [
+        solve(ws, pop_size=40, n_gen=40, seed=7, seed_from="none", constraints="adaptive") for _ in range(2)
+    ]
     A0, A1 = (r.pymoo_result.algorithm for r in runs)
     assert np.array_equal(A0.arrays.X, A1.arrays.X)
     assert A0.constraint_handling.history == A1.constraint_handling.history

@@ -103,9 +103,7 @@ class AdaptivePenalty:
             raise ConfigError(f"AdaptivePenalty: target must be in (0, 1], got {target!r}")
         self.minimum = _positive(minimum, "minimum")
         if self.minimum > self.start:
-            raise ConfigError(
-                f"AdaptivePenalty: minimum ({minimum!r}) must not exceed start ({start!r})"
-            )
+            raise ConfigError(f"AdaptivePenalty: minimum ({minimum!r}) must not exceed start ({start!r})")
         self.reset()
 
     def reset(self) -> None:

@@ -132,7 +132,11 @@ def run(
 def _handling_kwargs(penalty, binary_rate) -> dict:
     """solve's keywords for a penalty (a number or ``"adaptive"``) and a
     binary bit-flip rate (None for other encodings)."""
-    kw = {"constraints": "adaptive", "penalty": 1000.0} if penalty == "adaptive" else {"penalty": float(penalty)}
+    kw = (
+        {"constraints": "adaptive", "penalty": 1000.0}
+        if penalty == "adaptive"
+        else {"penalty": float(penalty)}
+    )
     if binary_rate is not None and binary_rate != "bits":
         kw["pm_prob_var"] = binary_rate
     return kw

@@ -2,13 +2,13 @@
 
 from __future__ import annotations
 
+from gapath.errors import ConfigError
 from gapath.experiments.encodings import (
     PROTOCOLS,
     QUICK,
     run,
     write_outputs,
 )
-from gapath.errors import ConfigError
 from gapath.results import dumps
 
 
