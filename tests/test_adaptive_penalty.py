@@ -16,7 +16,7 @@ def test_penalise_keeps_feasible_rows_and_adds_the_penalty_to_the_others():
     rng = np.random.default_rng(0)
     F = rng.random((50, 3)) * 40
     cv = rng.integers(0, 4, 50).astype(float)
-    h = AdaptivePenalty(start=7.5)
+    h = AdaptivePenalty(maximum=7.5)
     P = h.penalise(F, cv)
     feasible = cv == 0
     assert np.array_equal(P[feasible], F[feasible])  # bit for bit
@@ -24,8 +24,8 @@ def test_penalise_keeps_feasible_rows_and_adds_the_penalty_to_the_others():
     assert (P[~feasible] > F[~feasible]).all()
 
 
-def test_update_stays_at_start_without_feasible_rows_and_stays_in_bounds():
-    h = AdaptivePenalty(start=1000.0, target=0.3, factor=2.0, minimum=0.01)
+def test_update_stays_at_the_maximum_without_feasible_rows_and_stays_in_bounds():
+    h = AdaptivePenalty(maximum=1000.0, target=0.3, factor=2.0, minimum=0.01)
     assert [h.update(0.0) for _ in range(5)] == [1000.0] * 5
     values = [h.update(1.0) for _ in range(30)]
     assert values[0] == 500.0 and all(a >= b for a, b in zip(values, values[1:]))
@@ -40,15 +40,18 @@ def test_update_stays_at_start_without_feasible_rows_and_stays_in_bounds():
 @pytest.mark.parametrize(
     "kwargs",
     [
-        dict(start=0),
-        dict(start=-1),
+        dict(maximum=0),
+        dict(maximum=-1),
         dict(factor=1.0),
-        dict(target=0),
+        dict(target=-0.1),
+        dict(initial=0.001),
+        dict(initial=2000.0),
+        dict(target="x"),
         dict(target=1.5),
         dict(minimum=0),
         dict(minimum=2000.0),
-        dict(start="x"),
-        dict(start=float("inf")),
+        dict(maximum="x"),
+        dict(maximum=float("inf")),
     ],
 )
 def test_bad_settings_raise(kwargs):
@@ -62,7 +65,7 @@ def _first_feasible_run(ws, seed, **kw):
     return cb.generation, r
 
 
-def test_adaptive_is_the_fixed_start_penalty_until_the_first_feasible_path():
+def test_adaptive_is_the_fixed_maximum_penalty_until_the_first_feasible_path():
     ws = dense_workspace(16, 0.6, 2)
     for seed in (1, 2, 3):
         g_fixed, fixed = _first_feasible_run(ws, seed, penalty=1000.0)
@@ -104,3 +107,29 @@ def test_adaptive_needs_the_fast_engine():
     ws = random_workspace((8, 8), 5, seed=1)
     with pytest.raises(ConfigError, match="engine='fast'"):
         solve(ws, pop_size=10, n_gen=2, constraints="adaptive", engine="pymoo")
+
+
+def test_ramp_grows_only_without_feasible_rows():
+    h = AdaptivePenalty(maximum=1000.0, target=0.0, minimum=0.01, initial=0.3)
+    up = [h.update(0.0) for _ in range(15)]
+    assert up[:3] == [0.6, 1.2, 2.4] and up[-1] == 1000.0
+    down = [h.update(0.002) for _ in range(20)]  # one feasible survivor is enough
+    assert down[0] == 500.0 and down == sorted(down, reverse=True) and down[-1] == 0.01
+
+
+def test_solve_takes_the_adaptive_keywords():
+    ws = dense_workspace(16, 0.9, 1)  # nothing feasible for a while
+    r = solve(
+        ws,
+        pop_size=30,
+        n_gen=6,
+        seed=1,
+        seed_from="none",
+        constraints="adaptive",
+        penalty=500.0,
+        adaptive_penalty={"initial": 1.0, "target": 0.0},
+    )
+    h = r.pymoo_result.algorithm.constraint_handling
+    assert r.settings["adaptive_penalty"] == h.settings()
+    assert h.maximum == 500.0 and h.history[0] == 1.0
+    assert h.history == [min(500.0, 2.0**k) for k in range(len(h.history))]

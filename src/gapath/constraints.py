@@ -11,14 +11,16 @@ population never reaches a feasible path at all.
 :class:`AdaptivePenalty` is a penalty that adapts to the share of feasible
 individuals in the population, in pymoo's constraint-handling vocabulary
 (the problem returns ``G = interfering``; the algorithm ranks on
-``F + penalty * CV``). The penalty starts at ``start``; after each survival
-it is multiplied by ``factor`` when fewer than ``target`` of the survivors
-are feasible, and divided by it otherwise, within ``[minimum, start]``.
-While no individual is feasible it therefore stays at ``start``, so a run
-that stops at its first feasible path (Ahmed & Deb's Table 1) is the same
-run as with the fixed penalty ``start``, bit for bit; once feasible paths
-dominate the population the penalty falls until about ``target`` of it is
-feasible. No random numbers are drawn.
+``F + penalty * CV``). After each survival the penalty is multiplied by
+``factor`` when no survivor or fewer than ``target`` of them are feasible,
+and divided by it otherwise, within ``[minimum, maximum]``. With the
+default ``initial = maximum`` it stays at ``maximum`` while no individual
+is feasible, so a run that stops at its first feasible path (Ahmed & Deb's
+Table 1) is the same run as with the fixed penalty ``maximum``, bit for bit;
+once feasible paths dominate the population the penalty falls until about
+``target`` of it is feasible. With a low ``initial`` and ``target = 0`` the
+penalty starts low, doubles in every generation without a feasible path and
+halves in every other one. No random numbers are drawn.
 
 :class:`gapath.algorithms.FastNSGA2` takes it as ``constraint_handling=``;
 :func:`gapath.solver.solve` builds it for ``constraints="adaptive"``.
@@ -33,7 +35,13 @@ import numpy as np
 
 from gapath.errors import ConfigError
 
-__all__ = ["AdaptivePenalty"]
+__all__ = ["HANDLINGS", "AdaptivePenalty"]
+
+#: Named adaptive handlings: the :class:`AdaptivePenalty` keywords (besides
+#: ``maximum``) of each. ``adaptive``: from the maximum, aiming at 30 %
+#: feasible survivors; ``adaptive-ramp``: from 0.3, doubled only in
+#: generations without a feasible survivor, halved in the others.
+HANDLINGS = {"adaptive": {}, "adaptive-ramp": {"initial": 0.3, "target": 0.0}}
 
 
 @numba.njit(cache=True)
@@ -63,13 +71,20 @@ class AdaptivePenalty:
     """A penalty per unit of constraint violation that adapts to the share
     of feasible individuals (``CV <= 0``) among the survivors.
 
+    After each survival the penalty is multiplied by ``factor`` when no
+    survivor is feasible or fewer than ``target`` of them are, and divided
+    by it otherwise, within ``[minimum, maximum]``.
+
     Parameters
     ----------
-    start : initial and largest penalty (default 1000, gapath's fixed
-        penalty).
-    target : share of feasible survivors aimed at, in (0, 1] (default 0.3).
+    maximum : largest penalty (default 1000, gapath's fixed penalty).
+    target : share of feasible survivors aimed at, in [0, 1] (default 0.3);
+        0: the penalty grows only while no survivor is feasible.
     factor : multiplier per generation, > 1 (default 2).
-    minimum : smallest penalty, in (0, start] (default 0.01).
+    minimum : smallest penalty, in (0, maximum] (default 0.01).
+    initial : the penalty of the first survival, in [minimum, maximum]
+        (default ``maximum``: the run equals the fixed-penalty run until a
+        path is feasible).
 
     Attributes
     ----------
@@ -79,36 +94,49 @@ class AdaptivePenalty:
     Raises
     ------
     ConfigError
-        On a non-positive ``start``, ``factor <= 1``, ``target`` outside
-        (0, 1] or ``minimum`` outside (0, start].
+        On a non-positive ``maximum``, ``factor <= 1``, ``target`` outside
+        [0, 1], ``minimum`` outside (0, maximum] or ``initial`` outside
+        [minimum, maximum].
 
     Examples
     --------
     >>> import numpy as np
-    >>> h = AdaptivePenalty(start=8.0, target=0.5, factor=2.0, minimum=1.0)
+    >>> h = AdaptivePenalty(maximum=8.0, target=0.5, factor=2.0, minimum=1.0)
     >>> F = np.array([[1.0, 2.0], [3.0, 4.0]])
     >>> h.penalise(F, np.array([0.0, 1.0])).tolist()
     [[1.0, 2.0], [11.0, 12.0]]
     >>> [h.update(s) for s in (0.0, 1.0, 1.0, 1.0, 1.0, 0.2)]
     [8.0, 4.0, 2.0, 1.0, 1.0, 2.0]
+    >>> ramp = AdaptivePenalty(maximum=8.0, target=0.0, minimum=1.0, initial=1.0)
+    >>> [ramp.update(s) for s in (0.0, 0.0, 0.0, 0.0, 0.01, 0.01)]
+    [2.0, 4.0, 8.0, 8.0, 4.0, 2.0]
     """
 
-    def __init__(self, start=1000.0, target=0.3, factor=2.0, minimum=0.01):
-        self.start = _positive(start, "start")
+    def __init__(self, maximum=1000.0, target=0.3, factor=2.0, minimum=0.01, initial=None):
+        self.maximum = _positive(maximum, "maximum")
         self.factor = _positive(factor, "factor")
         if self.factor <= 1:
             raise ConfigError(f"AdaptivePenalty: factor must be > 1, got {factor!r}")
-        self.target = _positive(target, "target")
-        if self.target > 1:
-            raise ConfigError(f"AdaptivePenalty: target must be in (0, 1], got {target!r}")
+        try:
+            self.target = float(target)
+        except (TypeError, ValueError):
+            self.target = math.nan
+        if not 0.0 <= self.target <= 1.0:
+            raise ConfigError(f"AdaptivePenalty: target must be in [0, 1], got {target!r}")
         self.minimum = _positive(minimum, "minimum")
-        if self.minimum > self.start:
-            raise ConfigError(f"AdaptivePenalty: minimum ({minimum!r}) must not exceed start ({start!r})")
+        if self.minimum > self.maximum:
+            raise ConfigError(f"AdaptivePenalty: minimum ({minimum!r}) must not exceed maximum ({maximum!r})")
+        self.initial = self.maximum if initial is None else _positive(initial, "initial")
+        if not self.minimum <= self.initial <= self.maximum:
+            raise ConfigError(
+                f"AdaptivePenalty: initial ({initial!r}) must be in [minimum, maximum] = "
+                f"[{self.minimum:g}, {self.maximum:g}]"
+            )
         self.reset()
 
     def reset(self) -> None:
-        """Back to ``start`` with an empty history (at the start of a run)."""
-        self.value = self.start
+        """Back to ``initial`` with an empty history (at the start of a run)."""
+        self.value = self.initial
         self.history = []
 
     def penalise(self, F, violation) -> np.ndarray:
@@ -139,18 +167,25 @@ class AdaptivePenalty:
         float: the penalty for the next survival.
         """
         self.history.append(self.value)
-        if float(feasible_share) < self.target:
-            self.value = min(self.start, self.value * self.factor)
+        share = float(feasible_share)
+        if share <= 0.0 or share < self.target:
+            self.value = min(self.maximum, self.value * self.factor)
         else:
             self.value = max(self.minimum, self.value / self.factor)
         return self.value
 
     def settings(self) -> dict:
         """The parameters, JSON-ready."""
-        return dict(start=self.start, target=self.target, factor=self.factor, minimum=self.minimum)
+        return dict(
+            maximum=self.maximum,
+            target=self.target,
+            factor=self.factor,
+            minimum=self.minimum,
+            initial=self.initial,
+        )
 
     def __repr__(self) -> str:
         return (
-            f"AdaptivePenalty(start={self.start:g}, target={self.target:g}, "
-            f"factor={self.factor:g}, minimum={self.minimum:g})"
+            f"AdaptivePenalty(maximum={self.maximum:g}, target={self.target:g}, "
+            f"factor={self.factor:g}, minimum={self.minimum:g}, initial={self.initial:g})"
         )

@@ -96,6 +96,7 @@ def solve(
     progress=False,
     callback=None,
     pm_prob_var=None,
+    adaptive_penalty=None,
 ) -> SolveResult:
     """Run Ahmed & Deb's NSGA-II on ``workspace`` and return its front.
 
@@ -113,6 +114,9 @@ def solve(
         :class:`gapath.constraints.AdaptivePenalty` that starts at
         ``penalty`` and adapts to the share of feasible paths (see
         :mod:`gapath.constraints`; not with ``engine="pymoo"``).
+    adaptive_penalty : with ``constraints="adaptive"``, the keyword
+        arguments of :class:`gapath.constraints.AdaptivePenalty` (a dict;
+        ``maximum`` defaults to ``penalty``).
     paths : ``"monotone"`` (default: Ahmed & Deb's column-monotone paths) or
         ``"free"`` (any simple 8-connected path); seeds from
         :class:`gapath.operators.sampling.free_sampling.FreeSampling` for
@@ -167,7 +171,7 @@ def solve(
                 "constraints='adaptive' needs engine='fast' (the stock pymoo engine has no "
                 "adaptive penalty); use constraints='penalty' with engine='pymoo'"
             )
-        handling = AdaptivePenalty(start=penalty)
+        handling = AdaptivePenalty(**{"maximum": penalty, **dict(adaptive_penalty or {})})
     problem = path_problem(
         workspace,
         objectives,

@@ -57,8 +57,10 @@ def run(
     encodings, protocols : which encodings and protocols (:data:`PROTOCOLS`).
     progress : called with each row when it is complete.
     penalties : the obstacle handlings, each a penalty per interfering cell
-        (a number) or ``"adaptive"`` (:class:`gapath.constraints.AdaptivePenalty`
-        from 1000); every protocol and encoding runs under each.
+        (a number) or a name of :data:`gapath.constraints.HANDLINGS`
+        (``"adaptive"``, ``"adaptive-ramp"``: an
+        :class:`gapath.constraints.AdaptivePenalty` up to 1000); every
+        protocol and encoding runs under each.
     binary_rates : the binary encoding's initial bit-flip rates, each
         ``"bits"`` (1 / number of bits) or ``"grid"`` (1 / n, Ahmed & Deb's);
         the binary encoding runs once per rate.
@@ -132,9 +134,11 @@ def run(
 def _handling_kwargs(penalty, binary_rate) -> dict:
     """solve's keywords for a penalty (a number or ``"adaptive"``) and a
     binary bit-flip rate (None for other encodings)."""
+    from gapath.constraints import HANDLINGS
+
     kw = (
-        {"constraints": "adaptive", "penalty": 1000.0}
-        if penalty == "adaptive"
+        {"constraints": "adaptive", "penalty": 1000.0, "adaptive_penalty": HANDLINGS[penalty]}
+        if penalty in HANDLINGS
         else {"penalty": float(penalty)}
     )
     if binary_rate is not None and binary_rate != "bits":
@@ -160,7 +164,7 @@ def _label(row_or_key) -> str:
 
 
 def _handling(pen) -> str:
-    return "adaptive" if pen == "adaptive" else f"penalty {float(pen):g}"
+    return pen if isinstance(pen, str) else f"penalty {float(pen):g}"
 
 
 def pairwise_tests(per_run: dict) -> list[dict]:

@@ -13,15 +13,19 @@ from gapath.results import dumps
 
 
 def _penalty(text: str):
+    from gapath.constraints import HANDLINGS
+
     text = text.strip()
-    if text == "adaptive":
+    if text in HANDLINGS:
         return text
     try:
         value = float(text)
     except ValueError:
         value = -1.0
     if not value >= 0 or value == float("inf"):
-        raise ConfigError(f"--penalties: expected numbers >= 0 or 'adaptive', got {text!r}")
+        raise ConfigError(
+            f"--penalties: expected numbers >= 0 or one of {', '.join(HANDLINGS)}, got {text!r}"
+        )
     return value
 
 
