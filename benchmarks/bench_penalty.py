@@ -124,7 +124,6 @@ def fig3(maps, seeds: int, handlings=HANDLINGS, encodings=FIG3_ENCODINGS, emit=p
 
 def table1(rows, map_seeds, seeds: int, handlings=HANDLINGS, emit=print):
     from gapath.experiments.dense import table1_spec
-    from gapath.experiments.runner import run_one
     from gapath.experiments.spec import ExperimentSpec
 
     for grid, p0 in rows:
@@ -192,6 +191,9 @@ def main(argv=None) -> int:
     )
     ap.add_argument("--table1-maps", default="1-5", help="dense map seeds")
     ap.add_argument("--table1-seeds", type=int, default=10, help="GA seeds 1..N per map")
+    ap.add_argument(
+        "--table1-rows", default=",".join(f"{g}:{p:g}" for g, p in TABLE1_ROWS), help="GRID:P0,..."
+    )
     ap.add_argument("--handlings", default=",".join(_handling_label(h).split()[-1] for h in HANDLINGS))
     ap.add_argument("--encodings", default=",".join(FIG3_ENCODINGS))
     ap.add_argument("--report", help="JSON lines to turn into penalty.md (no runs)")
@@ -217,7 +219,8 @@ def main(argv=None) -> int:
             first_seed=args.fig3_first_seed,
         )
     if "table1" in parts:
-        table1(TABLE1_ROWS, _seeds(args.table1_maps), args.table1_seeds, handlings)
+        rows = [(int(g), float(p)) for g, p in (x.split(":") for x in args.table1_rows.split(","))]
+        table1(rows, _seeds(args.table1_maps), args.table1_seeds, handlings)
     print(json.dumps({"part": "wall", "seconds": round(time.perf_counter() - t0, 1)}))
     return 0
 
