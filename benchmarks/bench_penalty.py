@@ -89,7 +89,8 @@ def fig3(maps, seeds: int, handlings=HANDLINGS, encodings=FIG3_ENCODINGS, emit=p
                     dict(
                         seed=r.settings["seed"],
                         seconds=round(r.seconds, 3),
-                        feasible_share=round(float(np.mean(A.arrays.CV <= 0)) if len(A.arrays) else 0.0, 4),
+                        # interfering == 0: CV is 0 for every row in penalty mode
+                        feasible_share=round(float(np.mean(A.arrays.data["interfering"] == 0)), 4),
                         final_penalty=None if ch is None else ch.value,
                         front_size=len(r.front),
                     )
@@ -197,12 +198,13 @@ def main(argv=None) -> int:
     ap.add_argument("--handlings", default=",".join(_handling_label(h).split()[-1] for h in HANDLINGS))
     ap.add_argument("--encodings", default=",".join(FIG3_ENCODINGS))
     ap.add_argument("--report", help="JSON lines to turn into penalty.md (no runs)")
+    ap.add_argument("--fresh", help="JSON lines of a check on fresh GA seeds (with --report)")
     ap.add_argument("--out", default="docs/results/penalty.md")
     args = ap.parse_args(argv)
     if args.report:
         from penalty_report import write_report
 
-        write_report(args.report, args.out)
+        write_report(args.report, args.out, args.fresh)
         return 0
     handlings = tuple(h if h.startswith("adaptive") else float(h) for h in args.handlings.split(","))
     parts = args.parts.split(",")

@@ -40,8 +40,14 @@ __all__ = ["HANDLINGS", "AdaptivePenalty"]
 #: Named adaptive handlings: the :class:`AdaptivePenalty` keywords (besides
 #: ``maximum``) of each. ``adaptive``: from the maximum, aiming at 30 %
 #: feasible survivors; ``adaptive-ramp``: from 0.3, doubled only in
-#: generations without a feasible survivor, halved in the others.
-HANDLINGS = {"adaptive": {}, "adaptive-ramp": {"initial": 0.3, "target": 0.0}}
+#: generations without a feasible survivor, halved in the others;
+#: ``adaptive-slow``: the same ramp by a factor 1.1 per generation (1000
+#: after 85 generations without a feasible path).
+HANDLINGS = {
+    "adaptive": {},
+    "adaptive-ramp": {"initial": 0.3, "target": 0.0},
+    "adaptive-slow": {"initial": 0.3, "target": 0.0, "factor": 1.1},
+}
 
 
 @numba.njit(cache=True)

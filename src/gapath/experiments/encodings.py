@@ -179,15 +179,17 @@ def pairwise_tests(per_run: dict) -> list[dict]:
     Returns
     -------
     list of dicts: ``protocol``, ``penalty``, ``a``, ``b`` (labels),
-    ``median_a``, ``median_b``, ``n_a``, ``n_b``, ``U`` (of ``a``) and
-    ``p`` (two-sided; 1.0 when the two samples are all one value).
+    ``median_a``, ``median_b``, ``n_a``, ``n_b``, ``U`` (of ``a``), ``p``
+    (two-sided; 1.0 when the two samples are all one value) and ``p_holm``
+    (Holm's step-down adjustment over the pairs of the same protocol and
+    penalty).
 
     Examples
     --------
     >>> t = pairwise_tests({("seeds", 1000, "integer", None): [0.9, 0.8, 0.85],
     ...                     ("seeds", 1000, "mixed", None): [0.5, 0.55, 0.6]})
-    >>> t[0]["a"], t[0]["b"], t[0]["U"], round(t[0]["p"], 3)
-    ('integer', 'mixed', 9.0, 0.1)
+    >>> t[0]["a"], t[0]["b"], t[0]["U"], round(t[0]["p"], 3), round(t[0]["p_holm"], 3)
+    ('integer', 'mixed', 9.0, 0.1, 0.1)
     """
     from scipy.stats import mannwhitneyu
 
@@ -196,6 +198,7 @@ def pairwise_tests(per_run: dict) -> list[dict]:
     for key, hv in per_run.items():
         groups.setdefault(key[:2], []).append((key, np.asarray(hv, float)))
     for (protocol, pen), members in groups.items():
+        first = len(out)
         for i, (ka, a) in enumerate(members):
             for kb, b in members[i + 1 :]:
                 if np.ptp(np.concatenate([a, b])) == 0:
@@ -217,7 +220,17 @@ def pairwise_tests(per_run: dict) -> list[dict]:
                         p=p,
                     )
                 )
+        _holm(out[first:])
     return out
+
+
+def _holm(tests) -> None:
+    """Holm's step-down adjusted p-values (``p_holm``) of one family."""
+    order = sorted(range(len(tests)), key=lambda i: tests[i]["p"])
+    running = 0.0
+    for rank, i in enumerate(order):
+        running = max(running, min(1.0, (len(tests) - rank) * tests[i]["p"]))
+        tests[i]["p_holm"] = running
 
 
 def _markdown(result) -> str:
@@ -242,6 +255,15 @@ def _markdown(result) -> str:
         "adapted to the share of feasible paths; see `penalty.md`). Binary encoding: initial "
         "bit-flip rate 1/bits (1/217 here, gapath's default) or 1/n (1/32, Ahmed & Deb's "
         '"mutation rate 1/n", n the grid size); the rate decays to a fifth over the run.',
+        *(
+            []
+            if any(r["protocol"] == "seeded" for r in rows)
+            else [
+                "",
+                "Only the all-random protocol is run here; `--protocols seeded` adds gapath's "
+                "seeded one (its last figures, at penalty 1000: BENCHMARKS.md, Encodings).",
+            ]
+        ),
         "",
         "| protocol | handling | encoding | merged HV ratio | exact points found | merged size | "
         "per-run HV median [q1, q3] | per-run min..max | seconds |",
@@ -264,28 +286,40 @@ def _markdown(result) -> str:
         "## Per-run differences between encodings",
         "",
         f"Two-sided Mann-Whitney U tests on the per-run hypervolume ratios ({rows[0]['runs']} "
-        "runs each; p = 1 when both samples are one value). A difference is called "
-        "significant below p = 0.05 (three to six pairs per handling: read single p-values "
-        "near 0.05 with care).",
+        "runs each; p = 1 when both samples are one value), with Holm's adjustment over the "
+        "pairs of each protocol and handling. A difference is called significant when the "
+        "adjusted p is below 0.05.",
         "",
-        "| protocol | handling | a | b | median a | median b | U | p |",
-        "|---|---|---|---|---|---|---|---|",
+        "| protocol | handling | a | b | median a | median b | U | p | p (Holm) |",
+        "|---|---|---|---|---|---|---|---|---|",
     ]
     for t in tests:
         lines.append(
             f"| {t['protocol']} | {_handling(t['penalty'])} | {t['a']} | {t['b']} | "
-            f"{t['median_a']:.4f} | {t['median_b']:.4f} | {t['U']:g} | {t['p']:.3g} |"
+            f"{t['median_a']:.4f} | {t['median_b']:.4f} | {t['U']:g} | {t['p']:.3g} | "
+            f"{t['p_holm']:.3g} |"
         )
     lines.append("")
     for protocol, pen in dict.fromkeys((r["protocol"], r.get("penalty", 1000.0)) for r in rows):
         group = [r for r in rows if r["protocol"] == protocol and r.get("penalty", 1000.0) == pen]
         ranked = sorted(group, key=lambda r: -r["run_hv_median"])
         order = " > ".join(f"{_label(r)} ({r['run_hv_median']:.4f})" for r in ranked)
-        sig = [t for t in tests if t["protocol"] == protocol and t["penalty"] == pen and t["p"] < 0.05]
+        sig = [t for t in tests if t["protocol"] == protocol and t["penalty"] == pen and t["p_holm"] < 0.05]
+        med = {_label(r): r["run_hv_median"] for r in group}
+        paper = [med.get(k) for k in ("integer", "mixed", "binary (1/bits)")]
+        if None not in paper:
+            if max(paper) - min(paper) < 0.005:
+                verdict = "integer, mixed and binary tie (medians within 0.005): not the paper's order"
+            elif paper[0] > paper[1] > paper[2]:
+                verdict = "the paper's order, integer > mixed > binary, appears in the medians"
+            else:
+                verdict = "not the paper's order (integer > mixed > binary)"
+            order += f" -- {verdict}"
         lines.append(
             f"- `{protocol}`, {_handling(pen)}: by per-run median, {order}; "
             + (
-                "significant pairs: " + ", ".join(f"{t['a']} vs {t['b']} (p = {t['p']:.2g})" for t in sig)
+                "significant pairs (Holm): "
+                + ", ".join(f"{t['a']} vs {t['b']} (p = {t['p_holm']:.2g})" for t in sig)
                 if sig
                 else "no pair differs significantly"
             )
