@@ -43,6 +43,7 @@ API_MODULES = [
             "gapath.problems",
             "gapath.operators",
             "gapath.algorithms",
+            "gapath.constraints",
             "gapath.front",
             "gapath.metrics",
         ],
