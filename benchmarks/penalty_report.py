@@ -152,6 +152,18 @@ def _table1_section(rows) -> list[str]:
     return lines
 
 
+def _ranges(seeds) -> str:
+    """``[6, 7, 8, 11, 12]`` -> ``"6-8, 11-12"``."""
+    out, start = [], None
+    for i, s in enumerate(seeds):
+        if start is None:
+            start = s
+        if i + 1 == len(seeds) or seeds[i + 1] != s + 1:
+            out.append(f"{start}-{s}" if s != start else str(s))
+            start = None
+    return ", ".join(out)
+
+
 def _goal_section(fig3, table1, fresh=()) -> list[str]:
     if not fig3:
         return []
@@ -176,11 +188,11 @@ def _goal_section(fig3, table1, fresh=()) -> list[str]:
         )
     if fresh:
         fs = fig3_summary(fresh)
-        seeds = sorted({r["seed"] for r in fresh})
         for h in _order(r["handling"] for r in fresh):
+            seeds = sorted({r["seed"] for r in fresh if r["handling"] == h})
             meds = {e: _dist(fs[(h, e)][BUNDLED]) for e in encs if BUNDLED in fs.get((h, e), {})}
             lines.append(
-                f"- `{h}` on fresh GA seeds {seeds[0]}-{seeds[-1]} (bundled map): median [min, max] "
+                f"- `{h}` on fresh GA seeds {_ranges(seeds)} (bundled map): median [min, max] "
                 + ", ".join(f"{e} {d}" for e, d in meds.items())
                 + "."
             )
