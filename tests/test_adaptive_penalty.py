@@ -103,10 +103,12 @@ def test_adaptive_runs_are_deterministic_and_rank_on_the_penalised_objectives():
     assert (runs[0].front.metrics[:, 3] == 0).all()
 
 
-def test_adaptive_needs_the_fast_engine():
+def test_adaptive_needs_the_fast_engine_and_known_keywords():
     ws = random_workspace((8, 8), 5, seed=1)
     with pytest.raises(ConfigError, match="engine='fast'"):
         solve(ws, pop_size=10, n_gen=2, constraints="adaptive", engine="pymoo")
+    with pytest.raises(ConfigError, match="adaptive_penalty"):
+        solve(ws, pop_size=10, n_gen=2, constraints="adaptive", adaptive_penalty={"start": 3.0})
 
 
 def test_ramp_grows_only_without_feasible_rows():

@@ -171,7 +171,12 @@ def solve(
                 "constraints='adaptive' needs engine='fast' (the stock pymoo engine has no "
                 "adaptive penalty); use constraints='penalty' with engine='pymoo'"
             )
-        handling = AdaptivePenalty(**{"maximum": penalty, **dict(adaptive_penalty or {})})
+        try:
+            handling = AdaptivePenalty(**{"maximum": penalty, **dict(adaptive_penalty or {})})
+        except TypeError as exc:  # an unknown keyword
+            raise ConfigError(
+                f"adaptive_penalty: {exc}; expected keywords among initial, target, factor, minimum, maximum"
+            ) from None
     problem = path_problem(
         workspace,
         objectives,
