@@ -254,8 +254,10 @@ def _markdown(result) -> str:
         "gapath's default), or `adaptive` (`gapath.constraints.AdaptivePenalty`: from 1000, "
         "adapted to the share of feasible paths; see `penalty.md`). Binary encoding: initial "
         "bit-flip rate 1/bits (1/217 here, gapath's default) or 1/n (1/32, Ahmed & Deb's "
-        '"mutation rate 1/n", n the grid size); the rate decays to a fifth over the run. `seconds`: wall time of the row\'s '
-        "runs (a shared machine, often loaded: indicative only).",
+        '"mutation rate 1/n", n the grid size); the rate decays to a fifth over the run; '
+        "the study's default is 1/bits (`--binary-rates bits`), `--binary-rates bits,grid` runs "
+        "both. `seconds`: wall time of the row's runs (a shared machine, often loaded: "
+        "indicative only).",
         *(
             []
             if any(r["protocol"] == "seeded" for r in rows)
