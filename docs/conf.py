@@ -53,6 +53,7 @@ API_MODULES = [
             "gapath.problems",
             "gapath.operators",
             "gapath.algorithms",
+            "gapath.constraints",
             "gapath.front",
             "gapath.metrics",
         ],

@@ -84,6 +84,8 @@ def solve(
     engine="fast",
     progress=False,
     callback=None,
+    pm_prob_var=None,
+    adaptive_penalty=None,
 ) -> SolveResult:
     """Run Ahmed & Deb's NSGA-II on ``workspace`` and return its front.
 
@@ -95,7 +97,15 @@ def solve(
         encoding default ``"integer"``) and
         :class:`gapath.problems.FreePathProblem` (``paths="free"``, encoding
         default ``"field"``); ``constraints`` defaults by objective mode
-        (:func:`objective_mode`).
+        (:func:`objective_mode`). ``constraints="adaptive"``: the problem
+        returns ``interfering`` as its constraint and the fast engine ranks
+        on objectives penalised by a
+        :class:`gapath.constraints.AdaptivePenalty` that starts at
+        ``penalty`` and adapts to the share of feasible paths (see
+        :mod:`gapath.constraints`; not with ``engine="pymoo"``).
+    adaptive_penalty : with ``constraints="adaptive"``, the keyword
+        arguments of :class:`gapath.constraints.AdaptivePenalty` (a dict;
+        ``maximum`` defaults to ``penalty``).
     paths : ``"monotone"`` (default: Ahmed & Deb's column-monotone paths) or
         ``"free"`` (any simple 8-connected path); seeds from
         :class:`gapath.operators.sampling.free_sampling.FreeSampling` for
@@ -115,6 +125,12 @@ def solve(
         (:func:`gapath.algorithms.paper_nsga2`, stock pymoo NSGA2).
     progress : show a live progress bar on stderr.
     callback : an extra pymoo ``Callback`` notified every generation.
+    pm_prob_var : per-gene mutation probability of the encoding's default
+        mutation (default None: the operator's own default). For the binary
+        encoding the initial per-bit rate: a number, ``"bits"`` (1 / number
+        of bits, gapath's default) or ``"grid"`` (1 / n for an n-column
+        grid, Ahmed & Deb's "1/n"); see
+        :class:`gapath.operators.DecayingBitflipMutation`.
 
     Raises
     ------
@@ -135,8 +151,28 @@ def solve(
     constraints, sbx_eta = mode["constraints"], mode["sbx_eta"]
     from gapath.problems.free_path import path_problem
 
+    handling = None
+    if constraints == "adaptive":
+        from gapath.constraints import AdaptivePenalty
+
+        if engine == "pymoo":
+            raise ConfigError(
+                "constraints='adaptive' needs engine='fast' (the stock pymoo engine has no "
+                "adaptive penalty); use constraints='penalty' with engine='pymoo'"
+            )
+        try:
+            handling = AdaptivePenalty(**{"maximum": penalty, **dict(adaptive_penalty or {})})
+        except TypeError as exc:  # an unknown keyword
+            raise ConfigError(
+                f"adaptive_penalty: {exc}; expected keywords among initial, target, factor, minimum, maximum"
+            ) from None
     problem = path_problem(
-        workspace, objectives, paths=paths, encoding=encoding, constraints=constraints, penalty=penalty
+        workspace,
+        objectives,
+        paths=paths,
+        encoding=encoding,
+        constraints="constraint" if handling is not None else constraints,
+        penalty=penalty,
     )
     encoding = problem.encoding.name
     if paths == "free":
@@ -147,7 +183,10 @@ def solve(
         sampling = None if seed_from == "none" else PlannerSampling(seed_from)
     if engine not in ENGINES:
         raise ConfigError(f"unknown engine {engine!r}; expected one of {', '.join(ENGINES)}")
-    algorithm = ENGINES[engine](pop_size, tiebreak=tiebreak, sbx_eta=sbx_eta, sampling=sampling)
+    extra = {} if handling is None else {"constraint_handling": handling}
+    if pm_prob_var is not None:
+        extra["pm_prob_var"] = pm_prob_var
+    algorithm = ENGINES[engine](pop_size, tiebreak=tiebreak, sbx_eta=sbx_eta, sampling=sampling, **extra)
     bar = ProgressBar(n_gen, disable=not progress)
     callbacks = Callbacks(bar, callback)
 
@@ -167,6 +206,10 @@ def solve(
         engine=engine,
         algorithm="NSGA-II (Ahmed & Deb 2013 settings)",
     )
+    if handling is not None:
+        settings["adaptive_penalty"] = handling.settings()
+    if pm_prob_var is not None:
+        settings["pm_prob_var"] = pm_prob_var
     t0 = time.perf_counter()
     interrupted = False
     res = None

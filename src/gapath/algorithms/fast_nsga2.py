@@ -424,6 +424,12 @@ class FastNSGA2(Algorithm):
         DiscreteSBX and DiscretePM) with numba twins that return bit-identical
         children from the same random draws (default True); other operators,
         or False, go through the operator's own ``_do``.
+    constraint_handling : None (default: feasible first, by ``CV``, as
+        pymoo's NSGA-II) or a :class:`gapath.constraints.AdaptivePenalty`:
+        survival and tournament then rank every individual on
+        ``F + penalty * CV`` (no feasibility-first rule) with a penalty that
+        adapts to the share of feasible survivors. Use it with a problem in
+        constraint mode (``G`` = interfering cells).
     **kwargs : passed to :class:`pymoo.core.algorithm.Algorithm`
         (``termination``, ``output``, ``callback``, ``save_history``, ...).
         Unlike pymoo's NSGA2, a ``termination`` given here is kept; default:
@@ -477,6 +483,7 @@ class FastNSGA2(Algorithm):
         eliminate_duplicates: bool = True,
         n_max_iterations: int = 100,
         fast_operators: bool = True,
+        constraint_handling=None,
         **kwargs,
     ):
         # state behind the pymoo views (set before Algorithm.__init__ assigns them)
@@ -510,6 +517,12 @@ class FastNSGA2(Algorithm):
         self.eliminate_duplicates = bool(eliminate_duplicates)
         self.n_max_iterations = int(n_max_iterations)
         self.fast_operators = bool(fast_operators)
+        if constraint_handling is not None and not callable(getattr(constraint_handling, "penalise", None)):
+            raise ConfigError(
+                "constraint_handling must be None or a gapath.constraints.AdaptivePenalty, "
+                f"got {type(constraint_handling).__name__}"
+            )
+        self.constraint_handling = constraint_handling
         self.timings = dict.fromkeys(PHASES, 0.0)
 
     # == the generation loop ==================================================
@@ -579,8 +592,10 @@ class FastNSGA2(Algorithm):
         A = self._arrays
         smooth = A.data.get("smoothness")
         use_smooth = self.tiebreak is not None and smooth is not None
+        # a penalty handling ranks infeasible rows among the feasible ones
+        cv = A.CV if self.constraint_handling is None else np.zeros(len(A))
         return (
-            A.CV.astype(float),
+            cv.astype(float),
             A.rank.astype(float),
             np.asarray(smooth if use_smooth else A.CV, dtype=float),
             A.crowding.astype(float),
@@ -717,6 +732,7 @@ class FastNSGA2(Algorithm):
         the tie-break is on) and crowding, best first, with ``rank`` and
         ``crowding`` set."""
         t0 = self.clock()
+        handling = self.constraint_handling
         if offspring is None:
             F, CV, data = arrays.F, arrays.CV, arrays.data
         else:
@@ -726,6 +742,8 @@ class FastNSGA2(Algorithm):
                 for k, v in arrays.data.items()
                 if k == "smoothness" and k in offspring.data
             }
+        if handling is not None:  # every row ranked on its penalised objectives
+            F, CV = handling.penalise(F, CV), np.zeros(len(F))
         feasible = np.flatnonzero(CV <= 0)
         ranks = pareto_ranks(F[feasible])
         t0 = self._tick("sorting", t0)
@@ -734,6 +752,8 @@ class FastNSGA2(Algorithm):
         order, rank, crowding = order_survivors(F, smooth, CV, feasible, ranks, n_survive)
         survivors = arrays.take(order) if offspring is None else arrays.take_merged(offspring, order)
         survivors.rank, survivors.crowding = rank, crowding
+        if handling is not None and len(survivors):
+            handling.update(float(np.mean(survivors.CV <= 0)))
         self._tick("survival", t0)
         return survivors
 
@@ -895,6 +915,8 @@ class FastNSGA2(Algorithm):
 
     def _setup(self, problem, **kwargs):
         self.timings = dict.fromkeys(PHASES, 0.0)
+        if self.constraint_handling is not None:
+            self.constraint_handling.reset()
         self._fast_sbx = self.fast_operators and sbx_supported(self.crossover)
         self._fast_pm = self.fast_operators and pm_supported(self.mutation, problem)
         self._fast_discrete = self.fast_operators and discrete_supported(
@@ -922,7 +944,11 @@ class FastNSGA2(Algorithm):
         if A is None or len(A) == 0:
             self._opt_idx = None
         elif (A.CV <= 0).any():
-            self._opt_idx = np.flatnonzero(A.rank == 0)
+            if self.constraint_handling is None:
+                self._opt_idx = np.flatnonzero(A.rank == 0)
+            else:  # ranks mix feasible and infeasible rows: the feasible non-dominated
+                feasible = np.flatnonzero(A.CV <= 0)
+                self._opt_idx = feasible[pareto_ranks(A.F[feasible]) == 0]
         else:
             self._opt_idx = np.array([np.argmin(A.CV)])
 

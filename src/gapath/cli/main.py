@@ -89,9 +89,10 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
     )
     p.add_argument(
         "--constraints",
-        choices=("penalty", "constraint"),
+        choices=("penalty", "constraint", "adaptive"),
         default=None,
-        help="obstacle handling (default: penalty; constraint for one objective)",
+        help="obstacle handling (default: penalty; constraint for one objective; adaptive: "
+        "a penalty starting at --penalty that adapts to the share of feasible paths)",
     )
     p.add_argument(
         "--sbx-eta",

@@ -502,7 +502,7 @@ def _setting(name: str, value, where: _Where, key: str):
     if name == "sbx_eta":
         return None if value is None else _float(value, where, key, lo=0.0)
     choices = {
-        "constraints": (None, "penalty", "constraint"),
+        "constraints": (None, "penalty", "constraint", "adaptive"),
         "tiebreak": ("smoothness", None),
         "seed_from": ("weighted", "exact", "none"),
         "paths": ("monotone", "free"),

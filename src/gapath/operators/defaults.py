@@ -41,7 +41,9 @@ def default_operators(
     sbx_eta : SBX distribution index (integer, absolute, mixed).
     pm_eta : polynomial mutation distribution index (integer, absolute, mixed).
     pm_prob_var : per-gene mutation probability; for the binary encoding the
-        initial per-bit probability. ``None`` keeps each operator's default.
+        initial per-bit probability, also ``"bits"`` (1 / number of bits,
+        the default) or ``"grid"`` (1 / n for n columns, Ahmed & Deb's
+        rate). ``None`` keeps each operator's default.
 
     Returns
     -------
@@ -58,6 +60,11 @@ def default_operators(
     >>> type(ops["mutation"]).__name__
     'DecayingBitflipMutation'
     """
+    if isinstance(pm_prob_var, str) and encoding_name != "binary":
+        raise ConfigError(
+            f"pm_prob_var={pm_prob_var!r} (a named bit-flip rate) is for the binary encoding; "
+            f"give the {encoding_name!r} encoding a probability or None"
+        )
     if encoding_name in ("integer", "absolute"):
         return dict(
             sampling=IntegerRandomSampling(),

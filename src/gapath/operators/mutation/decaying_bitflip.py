@@ -8,8 +8,25 @@ import numpy as np
 from pymoo.core.variable import get
 from pymoo.operators.mutation.bitflip import BitflipMutation
 
+from gapath.errors import ConfigError
+
 #: Rate at the final generation, as a share of the initial rate (seeds: 1/5).
 FINAL_SHARE = 0.2
+
+#: Named initial rates: ``"bits"`` 1 / number of bits (gapath's default),
+#: ``"grid"`` 1 / n for an n-column grid (Ahmed & Deb's 1/n).
+RATE_RULES = ("bits", "grid")
+
+
+def _grid_columns(problem) -> int:
+    """The number of columns ``n`` of a path problem's grid (its frame's)."""
+    frame = getattr(problem, "frame", None) or getattr(getattr(problem, "encoding", None), "frame", None)
+    if frame is None:
+        raise ConfigError(
+            "DecayingBitflipMutation(prob_var='grid') needs a gapath path problem (one with a "
+            f"grid frame), got {type(problem).__name__}"
+        )
+    return int(frame.n_cols)
 
 
 def final_generation(termination) -> int | None:
@@ -83,9 +100,19 @@ class DecayingBitflipMutation(BitflipMutation):
 
     Parameters
     ----------
-    prob_var : initial per-bit probability; ``None`` means ``1 / n_var``
-        (one flipped bit per genome on average at generation 1).
+    prob_var : initial per-bit probability: a number, ``None`` or
+        ``"bits"`` (default: ``1 / n_var``, one flipped bit per genome on
+        average at generation 1), or ``"grid"`` (``1 / n`` for a path over
+        ``n`` columns, e.g. 1/32 on a 32x32 grid against 1/217 for its 217
+        bits: Ahmed & Deb's "mutation rate 1/n, n the size of the grid",
+        section 5.2).
     **kwargs : passed to :class:`pymoo.core.mutation.Mutation`.
+
+    Raises
+    ------
+    ConfigError
+        On a ``prob_var`` that is neither a probability in [0, 1] nor one of
+        ``"bits"``, ``"grid"``.
 
     Examples
     --------
@@ -98,10 +125,31 @@ class DecayingBitflipMutation(BitflipMutation):
     """
 
     def __init__(self, prob_var=None, **kwargs):
+        self.rate_rule = None
+        if isinstance(prob_var, str):
+            if prob_var not in RATE_RULES:
+                raise ConfigError(
+                    f"DecayingBitflipMutation: prob_var must be a probability or one of "
+                    f"{', '.join(RATE_RULES)}, got {prob_var!r}"
+                )
+            self.rate_rule, prob_var = prob_var, None
+        elif np.ndim(prob_var) == 0 and isinstance(prob_var, (int, float)) and not 0.0 <= prob_var <= 1.0:
+            raise ConfigError(f"DecayingBitflipMutation: prob_var must be in [0, 1], got {prob_var!r}")
         super().__init__(prob_var=prob_var, **kwargs)
 
     def initial_rate(self, problem) -> float:
-        """The per-bit probability at generation 1."""
+        """The per-bit probability at generation 1.
+
+        Examples
+        --------
+        >>> from gapath import default_workspace
+        >>> from gapath.problems import GridPathProblem
+        >>> p = GridPathProblem(default_workspace(), encoding="binary")
+        >>> [round(1 / DecayingBitflipMutation(r).initial_rate(p)) for r in ("bits", "grid")]
+        [217, 32]
+        """
+        if self.rate_rule == "grid":
+            return 1.0 / _grid_columns(problem)
         if self.prob_var is None:
             return 1.0 / problem.n_var
         return float(get(self.prob_var))
