@@ -52,6 +52,7 @@ LAYERS: dict[str, int] = {
     "gapath.operators": 2,
     "gapath.problems": 2,
     "gapath.algorithms": 2,
+    "gapath.constraints": 2,
     # running
     "gapath.solver": 3,
     "gapath.callbacks": 3,
