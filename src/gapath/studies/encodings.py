@@ -52,13 +52,13 @@ def run(
     Parameters
     ----------
     workspace : default the bundled scenario.
-    runs, pop_size, n_gen, seed : runs per encoding (seeds ``seed ..
-        seed+runs-1``), population, generations.
+    runs, pop_size, n_gen, seed : runs per encoding (seeds ``seed`` to
+        ``seed + runs - 1``), population, generations.
     encodings, protocols : which encodings and protocols (:data:`PROTOCOLS`).
     progress : called with each row when it is complete.
     penalties : the obstacle handlings, each a penalty per interfering cell
-        (a number) or a name of :data:`gapath.constraints.HANDLINGS`
-        (``"adaptive"``, ``"adaptive-ramp"``: an
+        (a number) or a name of :data:`gapath.constraints.HANDLINGS` such as
+        ``"adaptive"`` or ``"adaptive-ramp"`` (an
         :class:`gapath.constraints.AdaptivePenalty` up to 1000); every
         protocol and encoding runs under each.
     binary_rates : the binary encoding's initial bit-flip rates, each
