@@ -21,7 +21,7 @@ from gapath.front import path_front
 from gapath.generators import random_workspace
 from gapath.metrics import hv_ratio
 from gapath.operators import PlannerSampling
-from gapath.operators._columns import column
+from gapath.operators.columns import column
 from gapath.planners.exact import monotone_front
 from gapath.problems import GridPathProblem
 from gapath.solver import solve

@@ -22,7 +22,7 @@ from pymoo.core.callback import Callback
 from tqdm import tqdm  # the text bar (tqdm.auto warns in kernels without ipywidgets)
 
 from gapath.algorithms.fast_nsga2 import PathArrays
-from gapath.operators._columns import column
+from gapath.operators.columns import column
 
 __all__ = ["Callbacks", "PopulationArrays", "ProgressBar", "population_arrays", "population_status"]
 

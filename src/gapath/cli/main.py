@@ -32,12 +32,6 @@ from gapath.errors import (
 )
 
 
-def _cell(text: str) -> tuple[int, int]:
-    from gapath.cli._args import cell
-
-    return cell(text)
-
-
 def _load(map_arg, start=None, goal=None, corner_cutting=None):
     """The workspace of the map arguments: ``_load(args)`` with a parsed
     namespace (MAP, --start/--goal, --start-xy/--goal-xy, --scen, corner

@@ -127,7 +127,7 @@ def parse_layers(text, args=None) -> list[str]:
     return layers
 
 
-def _warm_up(planner, objectives, layers, args, corner_cutting) -> float:
+def warm_up(planner, objectives, layers, args, corner_cutting) -> float:
     """Run ``planner`` once on a tiny map so that numba compiles (or loads
     from its cache) the kernels before the timed run; returns the seconds."""
     from gapath.costmap import build_costmap
@@ -145,7 +145,7 @@ def _warm_up(planner, objectives, layers, args, corner_cutting) -> float:
     return time.perf_counter() - t0
 
 
-def _warm_up_kinematic(planner) -> float:
+def warm_up_kinematic(planner) -> float:
     from gapath.errors import GapathError
     from gapath.planners import plan
     from gapath.workspace import Workspace
@@ -163,7 +163,7 @@ def _plan_kinematic(args, choice) -> int:
     from gapath.cli.simulate import plan_with, write_plan
 
     ws = choice.workspace
-    compile_s = _warm_up_kinematic(args.planner)
+    compile_s = warm_up_kinematic(args.planner)
     outcome = plan_with(args.planner, ws, args)
     write_plan(outcome, ws, args.out, plots=not args.no_plots)
     length = float(outcome.objectives["length"])
@@ -206,7 +206,7 @@ def run(args) -> int:
         solar_rate=args.solar_rate,
     )
     objectives = ("length",) + tuple(layers)
-    compile_s = _warm_up(args.planner, objectives, layers, args, ws.corner_cutting)
+    compile_s = warm_up(args.planner, objectives, layers, args, ws.corner_cutting)
     res = plan(ws, args.planner, costmap=cm, objectives=objectives, priority=args.priority)
     seconds = res.seconds
     front = PathFront.from_paths(ws, [res.cells], tuple(res.objectives), res.F[None, :])

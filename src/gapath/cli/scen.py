@@ -107,7 +107,7 @@ def check_scenarios(scenarios, planner="astar", map_path=None, on_line=None):
 
 
 def run(args) -> int:
-    from gapath.cli.plan import _warm_up
+    from gapath.cli.plan import warm_up
     from gapath.errors import ConfigError, positive_int
     from gapath.loaders import load_scenarios
 
@@ -119,7 +119,7 @@ def run(args) -> int:
     scenarios = scenarios[: args.limit]
     import argparse
 
-    compile_s = _warm_up(
+    compile_s = warm_up(
         args.planner,
         ("length",),
         [],

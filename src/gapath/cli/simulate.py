@@ -47,9 +47,9 @@ SIMULATE_PLANNERS = SIMULATED_PLANNERS
 
 
 def _cell_arg(text):
-    from gapath.cli.main import _cell
+    from gapath.cli._args import cell
 
-    return _cell(text)
+    return cell(text)
 
 
 def _add(parser, *flags, **kwargs) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from pymoo.core.duplicate import DuplicateElimination
 
-from gapath.operators._columns import ColumnCache, column
+from gapath.operators.columns import ColumnCache, column
 
 
 def _row_keys(A: np.ndarray) -> np.ndarray:

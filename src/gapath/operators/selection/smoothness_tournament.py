@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from pymoo.operators.selection.tournament import TournamentSelection
 
-from gapath.operators._columns import ColumnCache, column
+from gapath.operators.columns import ColumnCache, column
 
 
 def tournament_keys(pop, tiebreak=True) -> list[tuple[np.ndarray, int]]:

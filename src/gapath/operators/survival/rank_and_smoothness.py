@@ -8,7 +8,7 @@ from pymoo.operators.survival.rank_and_crowding.metrics import calc_crowding_dis
 from pymoo.util.nds.non_dominated_sorting import NonDominatedSorting
 
 from gapath.errors import ConfigError
-from gapath.operators._columns import column, set_columns
+from gapath.operators.columns import column, set_columns
 
 
 def survival_order(F, smoothness=None, CV=None, n_survive=None):

@@ -1,4 +1,5 @@
-"""Fast column access to pymoo populations.
+"""Fast column access to pymoo populations (used by the operators and by
+:mod:`gapath.callbacks`).
 
 ``Population.get`` goes through ``Individual.get`` (several ``hasattr`` calls
 per individual and key); the operators here read and write whole columns
