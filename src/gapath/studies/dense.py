@@ -65,7 +65,16 @@ from pathlib import Path
 
 import numpy as np
 
+from gapath.errors import ConfigError
+from gapath.experiments.report import configuration_rows, format_number, markdown_table
+from gapath.experiments.runner import run_experiment
 from gapath.experiments.spec import ExperimentSpec
+from gapath.experiments.store import ResultStore
+from gapath.generators import dense_workspace, random_monotone_path
+from gapath.planners import astar
+from gapath.planners.weighted_sum import weighted_sum_path
+from gapath.results import atomic_write
+from gapath.workspace import Workspace
 
 __all__ = [
     "GENERATORS",
@@ -173,7 +182,6 @@ def p0_for_obstacles(n: int, target: int, samples: int = 2000, decimals: int = 3
     >>> p0_for_obstacles(64, 791, samples=200)
     0.2
     """
-    from gapath.generators import random_monotone_path
 
     cells = [
         len(random_monotone_path((n, n), (n - 1, 0), (0, n - 1), np.random.default_rng(s)))
@@ -310,7 +318,6 @@ def walk_table1_spec(
     >>> [(r["map"]["file"]["name"], r["seed"]) for r in spec.runs()]
     [('walk-8x8-p0.5-s1.txt', 1), ('walk-8x8-p0.5-s1.txt', 2)]
     """
-    from gapath.results import atomic_write
 
     mseed = _map_seed(map_seed)
     if mseed == "run":
@@ -358,7 +365,6 @@ def _dense_args(map_spec) -> dict | None:
 def map_seed_of(store_dir):
     """The map seed of a dense store's rows (an int, or ``"run"`` when every
     run has its own map; None for a store of mixed or non-dense maps)."""
-    from gapath.experiments.store import ResultStore
 
     seeds = {(_dense_args(m) or {}).get("seed") for m in ResultStore(store_dir).spec().to_dict()["maps"]}
     return seeds.pop() if len(seeds) == 1 else None
@@ -424,7 +430,6 @@ def goal_walk_path(shape, start, goal, rng: np.random.Generator, bias: float = W
     >>> p[0].tolist(), p[-1].tolist(), bool((np.abs(np.diff(p, axis=0)).max(axis=1) == 1).all())
     ([7, 0], [0, 7], True)
     """
-    from gapath.errors import ConfigError
 
     h, w = (int(v) for v in shape)
     (sr, sc), (gr, gc) = (int(v) for v in start), (int(v) for v in goal)
@@ -469,8 +474,6 @@ def walk_workspace(n, p0: float, seed: int = 0, *, start=None, goal=None, bias: 
     ...                                                      np.random.default_rng(3)))
     ((8, 8), True)
     """
-    from gapath.errors import ConfigError
-    from gapath.workspace import Workspace
 
     h, w = (int(n), int(n)) if np.isscalar(n) else (int(n[0]), int(n[1]))
     if h < 1 or w < 2:
@@ -495,8 +498,6 @@ def generated_workspace(generator: str, n, p0: float, seed: int):
     ConfigError
         On an unknown generator.
     """
-    from gapath.errors import ConfigError
-    from gapath.generators import dense_workspace
 
     if generator == "columns":
         return dense_workspace(n, p0, seed)
@@ -523,8 +524,6 @@ def _rows(store_dir) -> list[dict]:
     invocations: the runs of a row are the same computations whatever the
     seed list, so a store filled by ``--runs 10`` then ``--runs 100`` is one
     table)."""
-    from gapath.experiments.report import configuration_rows
-    from gapath.experiments.store import ResultStore
 
     store = ResultStore(store_dir)
     spec = _widened_spec(store)
@@ -557,7 +556,6 @@ def _rows(store_dir) -> list[dict]:
 def unsuccessful_runs(store_dir) -> dict:
     """``{(grid, p0): [seeds]}``: the stored runs of a dense store that found
     no feasible path (over every stored seed, like the table's rows)."""
-    from gapath.experiments.store import ResultStore
 
     store = ResultStore(store_dir)
     out = {}
@@ -569,7 +567,6 @@ def unsuccessful_runs(store_dir) -> dict:
 
 
 def _timing(store_dir) -> dict:
-    from gapath.experiments.store import ResultStore
 
     store = ResultStore(store_dir)
     secs = [r.get("runtime", {}).get("seconds") or 0.0 for r in store.results(_widened_spec(store).runs())]
@@ -577,7 +574,6 @@ def _timing(store_dir) -> dict:
 
 
 def _f(v, digits=4):
-    from gapath.experiments.report import format_number
 
     return format_number(v, digits)
 
@@ -629,7 +625,6 @@ def _miss_lines(misses: dict) -> list[str]:
 
 
 def _exists(store_dir) -> bool:
-    from gapath.experiments.store import ResultStore
 
     return store_dir is not None and ResultStore(store_dir).exists()
 
@@ -836,7 +831,6 @@ def walk_lines(walk: dict, t1: list[dict], *, command: str) -> list[str]:
     >>> "| 8x8 | 0.5 | 100 | 90 (25, 3) | 0 of 1 |" in "\\n".join(walk_lines(rows, [], command="c"))
     True
     """
-    from gapath.experiments.report import markdown_table
 
     if not walk:
         return []
@@ -935,9 +929,7 @@ def _write_report(
     **_,
 ) -> dict:
     """The files of :func:`dense_report` from its parts' rows."""
-    from gapath.experiments.report import markdown_table
     from gapath.plotting import png_bytes
-    from gapath.results import atomic_write
 
     # CSV: every part, full precision
     cols = [
@@ -1334,7 +1326,6 @@ def _write_report(
 
 def _saved_spec(store_dir) -> dict:
     """The saved spec of a store, as a dict, with every stored seed."""
-    from gapath.experiments.store import ResultStore
 
     return _widened_spec(ResultStore(store_dir)).to_dict()
 
@@ -1477,7 +1468,6 @@ def read_dense_csv(path) -> list[dict]:
     ConfigError
         If the file is missing or has no ``part`` column.
     """
-    from gapath.errors import ConfigError
 
     path = Path(path)
     try:
@@ -1615,7 +1605,6 @@ def headline_lines(parts: list[dict], *, commands: dict, runs: dict) -> list[str
     >>> "| 32x32 | 0.5 | 36 | 89 [80, 98], 89 | 98 | ABOVE by 53 |" in text
     True
     """
-    from gapath.experiments.report import markdown_table
 
     dist = distribution_rows(parts)
     if not dist:
@@ -1787,8 +1776,6 @@ def map_stats(generator: str, grids=(8, 16, 32), p0s=P0S, seeds=(MAP_SEED,)) -> 
     >>> r["free"] + r["obstacles"] == 64, r["shortest_monotone"] >= r["shortest_free"] >= 7 * 2**0.5
     (True, True)
     """
-    from gapath.planners import astar
-    from gapath.planners.weighted_sum import weighted_sum_path
 
     out = []
     for n in grids:
@@ -1835,7 +1822,6 @@ def map_stats_lines(stats: list[dict], *, command: str) -> list[str]:
     >>> "| 8x8 | 1 | 54 | 11.07 |" in text
     True
     """
-    from gapath.experiments.report import markdown_table
 
     if not stats:
         return []
@@ -1983,9 +1969,6 @@ def run(
     """
     import time
 
-    from gapath.errors import ConfigError
-    from gapath.experiments.runner import run_experiment
-
     if generator not in GENERATORS:
         raise ConfigError(f"generator: expected one of {', '.join(GENERATORS)}, got {generator!r}")
     grids = tuple(grids) if grids else (QUICK["grids"] if quick else (8, 16, 32))
@@ -2108,9 +2091,6 @@ def _run_walk(out, grids, p0s, runs, n_gen, map_seeds, sfx, *, engine, results, 
     """``run(generator="walk")``: the Table 1 rows on walk maps, one store per
     map seed, then the report with both generators."""
     import time
-
-    from gapath.errors import ConfigError
-    from gapath.experiments.runner import run_experiment
 
     cols = sorted(
         (int(m[1]), p) for p in out.glob("table1-map*") if (m := re.fullmatch(r"table1-map(\d+)", p.name))

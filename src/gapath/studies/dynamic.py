@@ -41,8 +41,12 @@ from pathlib import Path
 
 import numpy as np
 
+from gapath.dynamic import Robot, SimSettings, make_planner, simulate
+from gapath.dynamic.scenarios import make_scenario
+from gapath.dynamic.sweep import sweep
 from gapath.errors import positive_int
-from gapath.results import dumps
+from gapath.planners.astar import astar
+from gapath.results import atomic_write, dumps
 
 __all__ = [
     "DynamicStudy",
@@ -237,9 +241,6 @@ def run(
     ConfigError
         On ``n_runs < 1`` or unknown scenario or planner names.
     """
-    from gapath.dynamic import Robot, SimSettings, make_planner, simulate
-    from gapath.dynamic.scenarios import make_scenario
-    from gapath.planners.astar import astar
 
     n = positive_int(n_runs, "n_runs")
     for p in planners:
@@ -525,7 +526,6 @@ def run_sweep(settings=None, **kwargs):
     (same parameters; obstacle count, speed relative to the robot, sensor
     range and field of view varied one at a time around a hard base, over
     scenario seeds, for hybrid A*, RRT*, grid A* and D* Lite)."""
-    from gapath.dynamic.sweep import sweep
 
     return sweep(settings, **kwargs)
 
@@ -537,7 +537,6 @@ def write_outputs(
     ``<stem>_<scenario>.gif`` per scenario and ``<stem>_paths.png`` into
     ``out_dir`` (with ``fov_rows`` from :func:`run_fov`, a field-of-view
     section and its rows in the csv and jsonl); returns the paths written."""
-    from gapath.results import atomic_write
 
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -592,7 +591,6 @@ def _paths_png(study, path) -> Path:
     import matplotlib.pyplot as plt
 
     from gapath.dynamic.plots import plot_paths
-    from gapath.results import atomic_write
 
     k = len(study.examples)
     fig, axes = plt.subplots(1, k, figsize=(7.2 * k, 5.2))
@@ -630,8 +628,6 @@ def run_fov(
     """The study's table rows for one planner with sensors of several fields
     of view (half-angles in degrees); each row gets a ``fov_deg`` column."""
     from dataclasses import replace
-
-    from gapath.dynamic import Robot
 
     base = Robot() if robot is None else robot
     rows = []

@@ -22,7 +22,9 @@ from pathlib import Path
 
 import numpy as np
 
+from gapath.constraints import HANDLINGS
 from gapath.experiments.multirun import multirun
+from gapath.generators import default_workspace
 from gapath.metrics import coverage, hv_ratio
 from gapath.planners.exact import monotone_front
 from gapath.results import atomic_write, dumps
@@ -76,7 +78,6 @@ def run(
     matrices, by ``(protocol, encoding)`` for the first penalty and rate)
     and ``exact`` (the reference front).
     """
-    from gapath.generators import default_workspace
 
     ws = default_workspace() if workspace is None else workspace
     exact = monotone_front(ws, ("length", "vulnerability"))
@@ -134,7 +135,6 @@ def run(
 def _handling_kwargs(penalty, binary_rate) -> dict:
     """solve's keywords for a penalty (a number or ``"adaptive"``) and a
     binary bit-flip rate (None for other encodings)."""
-    from gapath.constraints import HANDLINGS
 
     kw = (
         {"constraints": "adaptive", "penalty": 1000.0, "adaptive_penalty": HANDLINGS[penalty]}

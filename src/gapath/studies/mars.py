@@ -54,7 +54,18 @@ from pathlib import Path
 
 import numpy as np
 
+from gapath.algorithms import paper_nsga2
+from gapath.costmap import Costmap, elevation_from_dem, fractal_terrain, load_dem
 from gapath.errors import ConfigError, NoPathError, positive_int
+from gapath.front import path_front
+from gapath.metrics import close
+from gapath.operators import PlannerSampling
+from gapath.operators.sampling.planner_sampling import SEED_SOURCES
+from gapath.planners import plan
+from gapath.planners.astar import astar
+from gapath.problems import GridPathProblem
+from gapath.results import atomic_write
+from gapath.workspace import Workspace
 
 __all__ = [
     "mars_workspace",
@@ -131,7 +142,6 @@ def _default_dem() -> np.ndarray | None:
     p = find_mars_dtm()
     if p is None:
         return None
-    from gapath.costmap import load_dem
 
     return load_dem(p)
 
@@ -159,8 +169,6 @@ def mars_workspace(seed: int, size: int = 100, coverage: float = 0.23):
     >>> ws.shape, ws.start, ws.goal, ws.n_obstacles >= 0.23 * 400
     ((20, 20), (19, 0), (0, 19), True)
     """
-    from gapath.planners.astar import astar
-    from gapath.workspace import Workspace
 
     size = int(size)
     if size < 4:
@@ -203,7 +211,6 @@ def mars_costmap(workspace, seed: int, *, dem=None, solar_rate: float = 1.0):
     :class:`gapath.costmap.Costmap` (its ``terrain`` attribute says where the
     elevation came from).
     """
-    from gapath.costmap import Costmap, elevation_from_dem, fractal_terrain
 
     rng = np.random.default_rng([int(seed), 7919])
     h, w = workspace.shape
@@ -232,7 +239,6 @@ def mars_costmap(workspace, seed: int, *, dem=None, solar_rate: float = 1.0):
 
 def _dominates(a, b, tol: float = 1e-9) -> bool:
     """``a`` dominates ``b`` beyond SPEC's tolerance."""
-    from gapath.metrics import close
 
     a, b = np.asarray(a, float), np.asarray(b, float)
     eq = close(a, b, tol)
@@ -309,7 +315,6 @@ def window_overlap(dem_shape, window_shape, offsets) -> dict:
     >>> ov["pairwise_jaccard"]["mean"], round(ov["pairwise_same_cell"], 2)
     (1.0, 0.4)
     """
-    from gapath.costmap import elevation_from_dem
 
     hd, wd = (int(v) for v in dem_shape)
     offsets = np.asarray(offsets, np.int64).reshape(-1, 2)
@@ -404,12 +409,6 @@ def run_workspace(
     """
     from pymoo.optimize import minimize
 
-    from gapath.algorithms import paper_nsga2
-    from gapath.front import path_front
-    from gapath.operators import PlannerSampling
-    from gapath.planners import plan
-    from gapath.problems import GridPathProblem
-
     ws, cm = study_workspace(index, seed=seed, size=size, dem=dem, solar_rate=solar_rate)
     rec = {
         "index": int(index),
@@ -472,10 +471,6 @@ def _warm_up() -> None:
     """Compile (or load from numba's cache) every kernel of the study once,
     so that no planner's first timing includes compilation."""
     from pymoo.optimize import minimize
-
-    from gapath.algorithms import paper_nsga2
-    from gapath.planners import plan
-    from gapath.problems import GridPathProblem
 
     ws = mars_workspace(0, size=12)
     cm = mars_costmap(ws, 0, dem="fractal")
@@ -613,7 +608,6 @@ def mars_study(
         If ``n_workspaces`` is not positive, ``ga_seed_from`` unknown or a
         solar rate not finite.
     """
-    from gapath.operators.sampling.planner_sampling import SEED_SOURCES
 
     n_workspaces = positive_int(n_workspaces, "n_workspaces")
     if ga_seed_from not in SEED_SOURCES:
@@ -1233,7 +1227,6 @@ def write_results(study: MarsStudy, out_dir) -> list[Path]:
     """Write ``mars.md`` (the tables beside the paper's Table I, and the
     statistics) and ``mars.csv`` (the table rows, both solar rates, column
     ``solar_rate``) into ``out_dir``."""
-    from gapath.results import atomic_write
 
     out = Path(out_dir)
     stats = study_stats(study.records)
