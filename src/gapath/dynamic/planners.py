@@ -8,9 +8,13 @@ import numpy as np
 
 from gapath.dynamic.world import Robot
 from gapath.errors import ConfigError, NoPathError
+from gapath.planners.astar import astar
+from gapath.planners.dstar_lite import DStarLite
 from gapath.planners.geometry import center_blocked
 from gapath.planners.hybrid_astar import HybridAStar, pose_cell
 from gapath.planners.registry import SIMULATED_PLANNERS
+from gapath.planners.rrt import rrt
+from gapath.workspace import Workspace
 
 
 def _poses_from_points(points: np.ndarray) -> np.ndarray:
@@ -106,7 +110,6 @@ class RRTPlanner(Planner):
         self.rng = np.random.default_rng([int(seed), 1 + int(self.star)])
 
     def plan(self, start, goal, *, blocked=None, cost=None, max_length=None):
-        from gapath.planners.rrt import rrt
 
         ws = SimpleNamespace(occ=self.known, cell_size=self.cell_size)
         res = rrt(
@@ -162,8 +165,6 @@ class AStarPlanner(_GridPlanner):
     name = "astar"
 
     def plan(self, start, goal, *, blocked=None, cost=None, max_length=None):
-        from gapath.planners.astar import astar
-        from gapath.workspace import Workspace
 
         occ = self._grid(blocked)
         s, g = self._cells(start, goal)
@@ -187,8 +188,6 @@ class DStarLitePlanner(_GridPlanner):
         self.dstar = None
 
     def plan(self, start, goal, *, blocked=None, cost=None, max_length=None):
-        from gapath.planners.dstar_lite import DStarLite
-        from gapath.workspace import Workspace
 
         occ = self._grid(blocked).copy()
         s, g = self._cells(start, goal)

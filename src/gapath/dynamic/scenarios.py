@@ -39,7 +39,11 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from gapath.dynamic import MovingObstacle, StationaryObstacle, simulate, start_pose
 from gapath.errors import ConfigError, NoPathError
+from gapath.loaders import load_map
+from gapath.planners.astar import astar
+from gapath.planners.geometry import disc_free
 from gapath.workspace import Workspace
 
 __all__ = [
@@ -64,7 +68,6 @@ def straight_line_distance(workspace) -> float:
 
 
 def _grid_ratio(occ, start, goal) -> float:
-    from gapath.planners.astar import astar
 
     ws = Workspace(occ.copy(), start, goal, corner_cutting=False)
     try:
@@ -306,7 +309,6 @@ def warehouse(
 
 def load_scenario_map(path, start=None, goal=None, **kwargs) -> Workspace:
     """Any map file gapath reads (see :func:`gapath.loaders.load_map`)."""
-    from gapath.loaders import load_map
 
     return load_map(path, start=start, goal=goal, **kwargs)
 
@@ -353,7 +355,6 @@ class Scenario:
 
     def simulate(self, planner="hybrid-astar", robot=None, settings=None, seed=None):
         """Run this scenario (see :func:`gapath.dynamic.simulate`)."""
-        from gapath.dynamic import simulate
 
         return simulate(
             self.workspace,
@@ -368,7 +369,6 @@ class Scenario:
 
 
 def _reference_path(workspace) -> np.ndarray:
-    from gapath.planners.astar import astar
 
     ws = workspace.replace(corner_cutting=False)
     cells = astar(ws).path
@@ -377,7 +377,6 @@ def _reference_path(workspace) -> np.ndarray:
 
 def _free_run(occ, p, direction, radius, max_len, cs, step=0.25):
     """How far a disc can go from ``p`` along ``direction`` (world units)."""
-    from gapath.planners.geometry import disc_free
 
     d = 0.0
     while d + step <= max_len:
@@ -430,8 +429,6 @@ def dynamic_obstacles(
     ConfigError
         On negative counts or speeds, or a map without a path.
     """
-    from gapath.dynamic import MovingObstacle, StationaryObstacle
-    from gapath.planners.geometry import disc_free
 
     for name, v in (("n_stationary", n_stationary), ("n_crossers", n_crossers), ("n_wanderers", n_wanderers)):
         _check_int(v, name, 0)
@@ -546,7 +543,6 @@ def make_scenario(
     ConfigError
         On an unknown kind or bad obstacle settings.
     """
-    from gapath.dynamic import start_pose
 
     if isinstance(kind, Workspace):
         ws = kind

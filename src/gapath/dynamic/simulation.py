@@ -19,14 +19,14 @@ from gapath.dynamic.prediction import (
 from gapath.dynamic.results import SimResult
 from gapath.dynamic.world import MovingObstacle, Robot, SimSettings, StationaryObstacle
 from gapath.errors import ConfigError, GapathError, NoPathError
-from gapath.planners.geometry import disc_free, first_blocked, segment_free
+from gapath.planners.geometry import disc_free, first_blocked, grid_dijkstra, segment_free
 from gapath.planners.hybrid_astar import initial_heading
+from gapath.workspace import potential_field
 
 
 def start_pose(workspace) -> tuple[float, float, float]:
     """World pose at the workspace's start cell, heading along the first
     steps of the grid shortest path to the goal."""
-    from gapath.planners.geometry import grid_dijkstra
 
     cs = workspace.cell_size
     (sr, sc), (gr, gc) = workspace.start, workspace.goal
@@ -305,7 +305,6 @@ class Simulation:
     def _cost_layer(self, sweep=None):
         """DSO + DMO: a Gaussian halo around the detected stationary cells
         and the swept cells of moving obstacles."""
-        from gapath.workspace import potential_field
 
         layer = np.zeros(self.workspace.shape)
         dso = self.known & ~self.static_occ

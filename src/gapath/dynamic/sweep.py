@@ -41,8 +41,12 @@ import statistics
 import time
 from dataclasses import dataclass, field, replace
 
+from gapath.dynamic import Robot, SimSettings, make_planner, simulate
+from gapath.dynamic.scenarios import SCENARIOS as MAPS
+from gapath.dynamic.scenarios import make_scenario
 from gapath.errors import ConfigError
-from gapath.results import dumps
+from gapath.planners.astar import astar
+from gapath.results import atomic_write, dumps
 
 __all__ = [
     "BASE",
@@ -239,7 +243,6 @@ class SweepResult:
 
 
 def _grid_optimum(ws) -> float:
-    from gapath.planners.astar import astar
 
     return float(astar(ws.replace(corner_cutting=False)).length)
 
@@ -292,9 +295,6 @@ def sweep(
     ...  for r in res.table]
     [('astar', 1, 1)]
     """
-    from gapath.dynamic import Robot, SimSettings, make_planner, simulate
-    from gapath.dynamic.scenarios import SCENARIOS as MAPS
-    from gapath.dynamic.scenarios import make_scenario
 
     settings = one_at_a_time() if settings is None else list(settings)
     seeds = [int(s) for s in seeds]
@@ -593,7 +593,6 @@ def sweep_png(result: SweepResult, path, labels: dict | None = None):
     import matplotlib.pyplot as plt
 
     from gapath.dynamic.plots import PLANNER_COLOURS
-    from gapath.results import atomic_write
 
     labels = labels or {}
     scens = result.settings.get("scenarios") or sorted({r["scenario"] for r in result.table})

@@ -13,8 +13,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from gapath import solver  # solver.solve at call time (tests replace it)
 from gapath.errors import ConfigError, positive_int
 from gapath.front import PathFront, select_front
+from gapath.results import versions
 
 if TYPE_CHECKING:
     from gapath.solver import SolveResult
@@ -65,7 +67,6 @@ class MultiRunResult:
         >>> s["seeds"], s["settings"]["runs"], len(s["run_front_sizes"])
         ([1, 2], 2, 2)
         """
-        from gapath.results import versions
 
         runs = len(self.runs) if self.n_runs is None else self.n_runs
         return {
@@ -148,13 +149,12 @@ def multirun(
     >>> m.seeds
     [1, 2]
     """
-    from gapath.solver import solve
 
     runs = positive_int(runs, "runs")
     results, seeds = [], []
     interrupted = False
     for s in range(int(seed), int(seed) + runs):
-        r = solve(workspace, seed=s, **solve_kwargs)
+        r = solver.solve(workspace, seed=s, **solve_kwargs)
         results.append(r)
         seeds.append(s)
         if on_run is not None:

@@ -35,8 +35,11 @@ from pathlib import Path
 
 import numpy as np
 
-from gapath.experiments.spec import config_key, map_label
+from gapath.experiments.multirun import merge_fronts
+from gapath.experiments.runner import front_from_dict
+from gapath.experiments.spec import config_key, map_label, run_key
 from gapath.experiments.store import ResultStore
+from gapath.results import atomic_write, front_csv
 
 __all__ = ["Report", "aggregate", "configuration_rows", "format_number", "report"]
 
@@ -108,9 +111,6 @@ def configuration_rows(spec, results: list[dict], failed_keys=frozenset()) -> tu
     spec's order, the column names, and the merged front of each
     configuration with a seed-independent map.
     """
-    from gapath.experiments.multirun import merge_fronts
-    from gapath.experiments.runner import front_from_dict
-    from gapath.experiments.spec import run_key
 
     norm = spec.to_dict()
     axes = list(norm["grid"])
@@ -378,7 +378,6 @@ def report(store_dir, *, plots: bool = True) -> Report:
     ConfigError
         If the directory holds no experiment.
     """
-    from gapath.results import atomic_write, front_csv
 
     store = ResultStore(store_dir)
     spec = store.spec()

@@ -69,6 +69,8 @@ from pathlib import Path
 import numpy as np
 from pymoo.core.callback import Callback
 
+from gapath import solver  # solver.solve at call time (tests replace it)
+from gapath.callbacks import population_arrays
 from gapath.errors import ConfigError
 from gapath.experiments.dask_config import LOCAL_SCHEDULER  # "local": see make_executor
 from gapath.experiments.spec import (
@@ -82,6 +84,8 @@ from gapath.experiments.spec import (
     run_key,
 )
 from gapath.experiments.store import ResultStore, store_versions
+from gapath.front import PathFront
+from gapath.objectives import LENGTH
 
 __all__ = [
     "ExperimentRun",
@@ -110,7 +114,6 @@ def _feasible_count(algorithm) -> int:
     """Paths without interfering cells in the algorithm's population (read
     with :func:`gapath.callbacks.population_arrays`: from the arrays of
     :class:`gapath.algorithms.FastNSGA2`, no pymoo ``Population`` is built)."""
-    from gapath.callbacks import population_arrays
 
     A = population_arrays(algorithm)
     return 0 if A is None else int(A.feasible.sum())
@@ -168,7 +171,6 @@ def front_to_dict(front) -> dict:
 
 def front_from_dict(d: dict):
     """The :class:`gapath.front.PathFront` of :func:`front_to_dict`."""
-    from gapath.front import PathFront
 
     m = len(d["objectives"])
     k = len(d["F"])
@@ -231,8 +233,6 @@ def run_one(run: dict) -> dict:
     >>> r["status"], r["n_gen"], r["indicators"]["feasible"]
     ('ok', 3, True)
     """
-    from gapath.objectives import LENGTH
-    from gapath.solver import solve
 
     started, t0 = time.time(), time.perf_counter()
     result = {
@@ -249,7 +249,7 @@ def run_one(run: dict) -> dict:
         watch = None
         if options.get("stop_at_first_feasible") or options.get("record_first_feasible"):
             watch = FirstFeasible(stop=bool(options.get("stop_at_first_feasible")))
-        res = solve(
+        res = solver.solve(
             ws,
             encoding=run["encoding"],
             seed=int(run["seed"]),

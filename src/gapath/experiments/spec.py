@@ -88,7 +88,12 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
-from gapath.errors import ConfigError
+from gapath.encodings.free import FREE_ENCODINGS
+from gapath.errors import ConfigError, GapathError
+from gapath.generators import default_workspace, dense_workspace, random_workspace
+from gapath.loaders import load_map
+from gapath.objectives import check_objective_names
+from gapath.solver import objective_mode
 
 __all__ = [
     "ENGINES",
@@ -384,7 +389,6 @@ def _check_map(entry: dict, where: _Where, key: str) -> None:
     obstacle (or any bad generator argument) fails when the spec is read,
     not in every run. A generator with ``seed: run`` is built with seed 0
     (generators keep the start and goal free whatever the seed)."""
-    from gapath.errors import GapathError
 
     try:
         build_workspace(entry, seed=0)
@@ -438,7 +442,6 @@ def build_workspace(spec: dict, seed: int | None = None):
         If a map file changed since the spec was expanded (its sha256
         differs), or on bad generator arguments.
     """
-    from gapath.generators import default_workspace, dense_workspace, random_workspace
 
     ((kind, a),) = spec.items()
     start, goal = a.get("start"), a.get("goal")
@@ -461,7 +464,6 @@ def build_workspace(spec: dict, seed: int | None = None):
         ws = default_workspace()
         changes = {k: tuple(v) for k, v in (("start", start), ("goal", goal)) if v is not None}
         return ws.replace(**changes, **kw) if changes or kw else ws
-    from gapath.loaders import load_map
 
     path = Path(a["path"])
     digest = hashlib.sha256(path.read_bytes()).hexdigest()
@@ -482,7 +484,6 @@ def build_workspace(spec: dict, seed: int | None = None):
 
 def _setting(name: str, value, where: _Where, key: str):
     """One solve setting, validated and in canonical form."""
-    from gapath.objectives import check_objective_names
 
     if name == "objectives":
         names = value.split(",") if isinstance(value, str) else value
@@ -518,7 +519,6 @@ def _check_paths(encodings, settings, axes, where: _Where) -> None:
     """Every encoding of the spec describes every path set it is run on
     (``paths``: ``monotone`` for integer, binary, mixed and absolute,
     ``free`` for field and via)."""
-    from gapath.encodings.free import FREE_ENCODINGS
 
     path_sets = set(axes.get("paths", [settings.get("paths", OPTIONAL_SETTINGS["paths"])]))
     for i, e in enumerate(encodings):
@@ -536,7 +536,6 @@ def _check_paths(encodings, settings, axes, where: _Where) -> None:
 
 def _complete_settings(settings: dict) -> dict:
     """solve's defaults filled in, the objective mode resolved."""
-    from gapath.solver import objective_mode
 
     s = {k: (list(v) if isinstance(v, tuple) else v) for k, v in SETTINGS.items()}
     s.update(settings)

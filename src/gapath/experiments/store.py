@@ -23,7 +23,8 @@ import os
 from pathlib import Path
 
 from gapath.errors import ConfigError
-from gapath.results import atomic_write, dumps
+from gapath.experiments.spec import ExperimentSpec, run_key
+from gapath.results import atomic_write, dumps, versions
 
 __all__ = ["ResultStore", "store_versions"]
 
@@ -39,8 +40,6 @@ def store_versions() -> dict[str, str]:
 @functools.lru_cache(maxsize=1)
 def _versions() -> tuple:
     from importlib import metadata
-
-    from gapath.results import versions
 
     out = versions()
     for pkg in ("dask", "distributed"):
@@ -101,7 +100,6 @@ class ResultStore:
         ConfigError
             If the directory holds no experiment.
         """
-        from gapath.experiments.spec import ExperimentSpec
 
         path = self.root / "experiment.json"
         try:
@@ -158,7 +156,6 @@ class ResultStore:
     def results(self, runs=None) -> list[dict]:
         """The finished results of ``runs`` (default: every run of the saved
         spec), in the spec's run order; unfinished runs are left out."""
-        from gapath.experiments.spec import run_key
 
         runs = self.spec().runs() if runs is None else runs
         done = self.done_keys()
@@ -168,7 +165,6 @@ class ResultStore:
         """Counts ``total``, ``done``, ``failed`` (last attempt failed),
         ``pending`` (neither) and ``extra`` (stored results that are not runs
         of the spec, e.g. after it shrank)."""
-        from gapath.experiments.spec import run_key
 
         runs = self.spec().runs() if runs is None else runs
         keys = {run_key(r) for r in runs}
