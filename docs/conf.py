@@ -37,6 +37,7 @@ API_MODULES = [
             "gapath.generators",
             "gapath.loaders",
             "gapath.grid",
+            "gapath.openlist",
             "gapath.monotone",
             "gapath.objectives",
             "gapath.costmap",

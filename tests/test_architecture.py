@@ -37,6 +37,7 @@ LAYERS: dict[str, int] = {
     # ground floor
     "gapath.errors": 0,
     "gapath.grid": 0,
+    "gapath.openlist": 0,
     "gapath.workspace": 0,
     "gapath.loaders": 0,
     "gapath.generators": 0,

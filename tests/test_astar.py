@@ -28,13 +28,7 @@ from data_files import glob_data
 
 from gapath import ConfigError, NoPathError, Workspace
 from gapath.grid import DC, DR, can_step, move_mask
-from gapath.planners._grid import (
-    HELD,
-    NOT_HELD,
-    open_decrease,
-    open_pop,
-    open_push,
-)
+from gapath.openlist import HELD, NOT_HELD, open_decrease, open_pop, open_push
 from gapath.planners.astar import PlanResult, astar
 
 SQRT2 = math.sqrt(2.0)

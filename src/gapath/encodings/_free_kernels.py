@@ -31,7 +31,7 @@ import numba
 import numpy as np
 
 from gapath.grid import DC, DR, STEP, move_mask, octile
-from gapath.planners._grid import NOT_HELD, open_decrease, open_pop, open_push
+from gapath.openlist import NOT_HELD, open_decrease, open_pop, open_push
 
 _UNSEEN = 0
 _CLOSED = -1

@@ -3,7 +3,7 @@
 The search runs in a numba kernel on the raveled grid, with per-thread
 scratch arrays that are reused between calls (only the cells a search touched
 are reset) and an indexed binary heap that holds back a new entry that would
-be popped next instead of pushing it (:func:`gapath.planners._grid.open_push`;
+be popped next instead of pushing it (:func:`gapath.openlist.open_push`;
 the expansion order is that of a plain heap). Moves follow SPEC: 8-connected,
 straight step 1 and diagonal step sqrt(2) (times ``cell_size``); with
 ``workspace.corner_cutting=False`` a diagonal move needs both orthogonally
@@ -36,14 +36,8 @@ import numpy as np
 
 from gapath.errors import ConfigError, NoPathError
 from gapath.grid import DC, DR, SQRT2, STEP, check_free_cell, move_mask
-from gapath.planners._grid import (
-    HEURISTICS,
-    NOT_HELD,
-    layer_path_cost,
-    open_decrease,
-    open_pop,
-    open_push,
-)
+from gapath.openlist import NOT_HELD, open_decrease, open_pop, open_push
+from gapath.planners._grid import HEURISTICS, layer_path_cost
 from gapath.planners._grid import (
     heuristic as _heuristic,
 )
@@ -98,7 +92,7 @@ def _astar_kernel(
     scratch arrays are reused between calls:
 
     * ``state[v]``: ``_UNSEEN`` (0), ``_CLOSED``, or while ``v`` is open its
-      place in the open list (see :func:`~gapath.planners._grid.open_push`);
+      place in the open list (see :func:`~gapath.openlist.open_push`);
       it is 0 everywhere on entry and reset to 0 for every cell in
       ``touched`` before returning, so ``g`` and ``came`` need no clearing;
     * ``g[v]``: best known cost from the start; ``came[v]``: the move (0..7)
