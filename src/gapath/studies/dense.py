@@ -1347,21 +1347,19 @@ def _plot(rows, per_run=(), others=None, walk=None):
             ms=4 if others else 6,
             label=f"{g}x{g} " + ("columns, map 1" if others else "gapath"),
         )
-        if others:
-            med = [
-                float(
-                    np.median(
-                        [r["success_pct"]]
-                        + [
-                            o["success_pct"]
-                            for rm in others.values()
-                            for o in rm
-                            if o["grid"] == g and o["p0"] == r["p0"]
-                        ]
-                    )
-                )
-                for r in rr
+        # per p0: map 1's success and the other maps' (the median and the band)
+        band = [
+            [r["success_pct"]]
+            + [
+                o["success_pct"]
+                for rows_m in (others or {}).values()
+                for o in rows_m
+                if o["grid"] == g and o["p0"] == r["p0"]
             ]
+            for r in rr
+        ]
+        if others:
+            med = [float(np.median(b)) for b in band]
             a1.plot(
                 p0, med, "-", color=color, lw=2, label=f"{g}x{g} columns, median over {len(others) + 1} maps"
             )
@@ -1373,16 +1371,6 @@ def _plot(rows, per_run=(), others=None, walk=None):
             label=f"{g}x{g} gapath",
         )
         if others:
-            band = [
-                [r["success_pct"]]
-                + [
-                    o["success_pct"]
-                    for rows_m in others.values()
-                    for o in rows_m
-                    if o["grid"] == g and o["p0"] == r["p0"]
-                ]
-                for r in rr
-            ]
             a1.fill_between(
                 p0,
                 [min(b) for b in band],
