@@ -35,6 +35,27 @@ _CELL = 1
 _NEW, _OPEN, _CLOSED = 0, 1, 2
 
 
+@numba.njit(cache=True)
+def _search_arrays(n, m):
+    """The arrays of one search over ``n`` cells and ``m`` objective
+    columns: ``G`` (n + 1, m) and ``N`` (n + 1, 2) cost sums and step
+    counts (row ``n`` a scratch row), ``hlen`` (n,) the length heuristic,
+    the back-pointers (-1), the node states, the open list and its
+    positions (-1), and three (m,) work rows (``lo``, ``hi``, ``sw``)."""
+    return (
+        np.zeros((n + 1, m)),
+        np.zeros((n + 1, 2), np.int64),
+        np.zeros(n),
+        np.full(n, -1, np.int64),
+        np.zeros(n, np.int8),
+        np.empty(n, np.int64),
+        np.full(n, -1, np.int64),
+        np.empty(m),
+        np.empty(m),
+        np.empty(m),
+    )
+
+
 @numba.njit(cache=True, inline="always")
 def _passable(occ, cc, u, d, w):
     ur = u // w
@@ -194,16 +215,7 @@ def renormalised_astar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec):
     h, w = occ.shape
     n = h * w
     m = kind.shape[0]
-    G = np.zeros((n + 1, m))
-    N = np.zeros((n + 1, 2), np.int64)
-    hlen = np.zeros(n)
-    parent = np.full(n, -1, np.int64)
-    state = np.zeros(n, np.int8)
-    olist = np.empty(n, np.int64)
-    opos = np.full(n, -1, np.int64)
-    lo = np.empty(m)
-    hi = np.empty(m)
-    sw = np.empty(m)
+    G, N, hlen, parent, state, olist, opos, lo, hi, sw = _search_arrays(n, m)
     tmp = n
     for i in range(n):
         hlen[i] = _octile(i, t, w)
@@ -291,16 +303,7 @@ def renormalised_dstar(s, t, occ, cc, kind, cells, soltab, khat, wq, sec, max_po
     h, w = occ.shape
     n = h * w
     m = kind.shape[0]
-    G = np.zeros((n + 1, m))
-    N = np.zeros((n + 1, 2), np.int64)
-    hlen = np.zeros(n)
-    back = np.full(n, -1, np.int64)
-    state = np.zeros(n, np.int8)
-    olist = np.empty(n, np.int64)
-    opos = np.full(n, -1, np.int64)
-    lo = np.empty(m)
-    hi = np.empty(m)
-    sw = np.empty(m)
+    G, N, hlen, back, state, olist, opos, lo, hi, sw = _search_arrays(n, m)
     tmp = n
     size = _push(olist, opos, 0, t)
     state[t] = _OPEN
