@@ -118,6 +118,10 @@ def test_solve_three_objectives_and_start_goal(text_map, tmp_path):
         (["solve", "{map}", "--gen", "-3"], "--gen must be an integer >= 1, got -3"),
         (["solve", "{map}", "--encoding", "gray"], "unknown encoding 'gray'"),
         (["solve", "{bad}"], "line 2"),
+        (
+            ["solve", "{map}", "--constraints", "adaptive", "--engine", "pymoo"],
+            "--constraints adaptive needs --engine fast",
+        ),
     ],
 )
 def test_bad_input_exits_2_with_a_clear_message(args, message, text_map, tmp_path, capsys):

@@ -257,6 +257,11 @@ def _run(args, workspace) -> int:
         progress=not args.quiet,
         paths=getattr(args, "paths", "monotone"),
     )
+    if args.constraints == "adaptive" and args.engine == "pymoo":
+        raise ConfigError(
+            "--constraints adaptive needs --engine fast (the stock pymoo engine has no "
+            "adaptive penalty); use --constraints penalty with --engine pymoo"
+        )
     out_dir = Path(args.out)
     if kwargs["paths"] == "free":  # no path at all: exit 1 with the reason, before the GA
         why = no_path_error(workspace, monotone=False)
