@@ -57,6 +57,7 @@ from gapath.errors import ConfigError, LabelBudgetError, NoPathError
 from gapath.grid import SQRT2
 from gapath.monotone import Frame, expand_profiles, split_paths
 from gapath.objectives import OBJECTIVES, QUARTER_PI, objective_index
+from gapath.planners._exact_heuristics import _free_heuristics, _move_masks
 from gapath.planners._exact_kernels import (
     DONE,
     EIGHTHS,
@@ -83,12 +84,10 @@ from gapath.planners._exact_kernels import (
     S_SOLS,
     TURNS,
     VUL,
-    _free_heuristics,
     _free_init,
     _free_run,
     _monotone_columns,
     _monotone_start,
-    _move_masks,
     _tolerant_front,
     _trace,
 )
