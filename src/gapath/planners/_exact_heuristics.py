@@ -1,6 +1,7 @@
-"""Backward heuristics of the free exact search (private; numba kernels).
+"""Backward heuristics and set-up of the free exact search (private; numba kernels).
 
-:func:`_free_heuristics` computes, by label-setting searches from the goal,
+:func:`_free_prepare` is the one kernel call that starts a search (move
+masks, heuristics, the initial search state); :func:`_free_heuristics` computes, by label-setting searches from the goal,
 the exact single-objective costs-to-go that :func:`gapath.planners.exact.free_front`
 uses as its heuristics; :func:`_move_masks` the allowed moves of every cell.
 Each pass uses the queue its costs allow:
@@ -31,7 +32,7 @@ import numpy as np
 
 from gapath.grid import DC, DR, SQRT2
 from gapath.planners._exact_kernels import _BIG_TURNS as BIG_TURNS
-from gapath.planners._exact_kernels import N_SLOTS
+from gapath.planners._exact_kernels import MODE_CELL, N_SLOTS, _free_init
 
 
 @numba.njit(cache=True)
@@ -349,3 +350,23 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns, mask):
     ht = np.empty(n * N_SLOTS, np.int64)
     _turns_to_go(mask, h, w, goal, ht)
     return hs, hd, hv, ht
+
+
+@numba.njit(cache=True)
+def _free_prepare(occ, pot, sr, sc, gr, gc, cell_size, corner_cutting, mode, P, Q):
+    """Everything a new free search needs, in one kernel call (each call and
+    each returned array costs Python time, which dominated small maps): the
+    move masks, the heuristics (the turns only outside ``MODE_CELL``) and the
+    state of :func:`gapath.planners._exact_kernels._free_init`.
+
+    Returns ``(mask, hs, hd, hv, ht, gmin, first, li, lf, sols, hk, hid, st,
+    stf)``; the goal cannot be reached from the start iff
+    ``hv[sr * W + sc] == inf``."""
+    h, w = occ.shape
+    mask = _move_masks(occ, corner_cutting)
+    hs, hd, hv, ht = _free_heuristics(occ, pot, gr, gc, corner_cutting, mode != MODE_CELL, mask)
+    n_states = h * w * (1 if mode == MODE_CELL else N_SLOTS)
+    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
+        pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states
+    )
+    return mask, hs, hd, hv, ht, gmin, first, li, lf, sols, hk, hid, st, stf

@@ -57,7 +57,7 @@ from gapath.errors import ConfigError, LabelBudgetError, NoPathError
 from gapath.grid import SQRT2
 from gapath.monotone import Frame, expand_profiles, split_paths
 from gapath.objectives import OBJECTIVES, QUARTER_PI, objective_index
-from gapath.planners._exact_heuristics import _free_heuristics, _move_masks
+from gapath.planners._exact_heuristics import _free_prepare
 from gapath.planners._exact_kernels import (
     DONE,
     EIGHTHS,
@@ -66,7 +66,6 @@ from gapath.planners._exact_kernels import (
     MODE_CELL,
     MODE_HEADING,
     MODE_THREE,
-    N_SLOTS,
     ND,
     NS,
     OBJ_LEN,
@@ -74,6 +73,7 @@ from gapath.planners._exact_kernels import (
     OBJ_VUL,
     OVER_BUDGET,
     PARENT,
+    PAUSED,
     ROW,
     S_EXPANDED,
     S_GENERATED,
@@ -84,7 +84,6 @@ from gapath.planners._exact_kernels import (
     S_SOLS,
     TURNS,
     VUL,
-    _free_init,
     _free_run,
     _monotone_columns,
     _monotone_start,
@@ -232,18 +231,36 @@ class _DeferredInterrupt:
     SystemError; here it only sets a flag, and :meth:`check` (called after
     each kernel) hands it to the previous handler, normally
     ``KeyboardInterrupt``. Only in the main thread (elsewhere signals are not
-    delivered to Python)."""
+    delivered to Python).
+
+    With ``lazy=True`` the handler is installed only by :meth:`arm` (the
+    caller arms it once a computation takes more than one kernel call:
+    installing and restoring a handler costs several microseconds, more
+    than a whole search on a small map). Before that, a SIGINT takes
+    Python's normal course, and the SystemError it causes inside numba's
+    boxing is replaced, on leaving the block, by the exception the handler
+    raised (normally ``KeyboardInterrupt``)."""
+
+    def __init__(self, lazy: bool = False):
+        self.lazy = lazy
 
     def __enter__(self):
         self.hit = None
         self.installed = False
-        if threading.current_thread() is threading.main_thread():
-            try:
-                self.prev = signal.signal(signal.SIGINT, self._handler)
-                self.installed = True
-            except (ValueError, OSError):
-                pass
+        self.prev = None
+        if not self.lazy:
+            self.arm()
         return self
+
+    def arm(self):
+        """Install the holding handler (once; only in the main thread)."""
+        if self.installed or threading.current_thread() is not threading.main_thread():
+            return
+        try:
+            self.prev = signal.signal(signal.SIGINT, self._handler)
+            self.installed = True
+        except (ValueError, OSError):
+            pass
 
     def _handler(self, signum, frame):
         self.hit = (signum, frame)
@@ -263,6 +280,13 @@ class _DeferredInterrupt:
             signal.signal(signal.SIGINT, self.prev if self.prev is not None else signal.default_int_handler)
         if exc_type is None:
             self.check()
+        elif exc_type is SystemError and exc.__cause__ is not None:
+            # a signal handler raised inside numba's boxing of a kernel's result (the
+            # SystemError "returned a result with an exception set", possibly nested)
+            cause = exc.__cause__
+            while isinstance(cause, SystemError) and cause.__cause__ is not None:
+                cause = cause.__cause__
+            raise cause.with_traceback(None) from None
         return False
 
 
@@ -628,12 +652,13 @@ def free_front(
     cs = float(workspace.cell_size)
     cc = bool(workspace.corner_cutting)
     mode, P, Q = _search_plan(names)
-    with _DeferredInterrupt() as interrupt:
-        # two objectives without smoothness: turns only break ties, and a zero turn
-        # heuristic expands as many labels as the exact one (measured) at none of its cost
-        mask = _move_masks(occ, cc)
-        hs, hd, hv, ht = _free_heuristics(occ, pot, gr, gc, cc, mode != MODE_CELL, mask)
-        interrupt.check()
+    # Ctrl-C is held (a handler installed) only once the search takes more than one
+    # kernel call: a small map is done before that, without the handler's cost
+    with _DeferredInterrupt(lazy=True) as interrupt:
+        # masks, heuristics and the initial state in one kernel call; two objectives
+        # without smoothness: turns only break ties, and a zero turn heuristic expands
+        # as many labels as the exact one (measured) at none of its cost
+        mask, hs, hd, hv, ht, *state = _free_prepare(occ, pot, sr, sc, gr, gc, cs, cc, mode, P, Q)
         t_heur = time.perf_counter() - t0
         if hv[sr * w + sc] == np.inf:
             raise NoPathError(
@@ -641,11 +666,9 @@ def free_front(
                 f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
                 f"corner_cutting={workspace.corner_cutting})"
             )
-        n_states = h * w * (1 if mode == MODE_CELL else N_SLOTS)
         args = (
             occ,
             pot,
-            (sr, sc),
             (gr, gc),
             cs,
             mask,
@@ -653,7 +676,7 @@ def free_front(
             P,
             Q,
             (hs, hd, hv, ht),
-            n_states,
+            state,
             budget,
             progress,
             interrupt,
@@ -692,7 +715,6 @@ def free_front(
 def _search_pass(
     occ,
     pot,
-    start,
     goal,
     cs,
     mask,
@@ -700,7 +722,7 @@ def _search_pass(
     P,
     Q,
     heuristics,
-    n_states,
+    state,
     budget,
     progress,
     interrupt,
@@ -709,14 +731,12 @@ def _search_pass(
     t0,
 ):
     """One run of the free search in slices (progress, Ctrl-C and the budget
-    handled between slices); adds its counts to ``total``. Returns the label
-    tables, the solution labels and the scalar state."""
-    (sr, sc), (gr, gc) = start, goal
-    w = occ.shape[1]
+    handled between slices) from ``state`` (what :func:`_free_init` returns);
+    adds its counts to ``total``. Returns the label tables, the solution
+    labels and the scalar state."""
+    gr, gc = goal
     hs, hd, hv, ht = heuristics
-    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
-        pot, sr, sc, w, cs, mode, P, Q, hs, hd, hv, ht, n_states
-    )
+    gmin, first, li, lf, sols, hk, hid, st, stf = state
     fixed = sum(a.nbytes for a in (hs, hd, hv, ht, gmin, first))
     slices = _Slices(1 << 14, 1 << 10, 1 << 26)
     while True:
@@ -749,6 +769,8 @@ def _search_pass(
             ties,
         )
         interrupt.check()
+        if status == PAUSED:  # a longer search: hold Ctrl-C from now on
+            interrupt.arm()
         now = time.perf_counter()
         slices.update(st[S_POPS] - pops, now - t1)
         stats = {
