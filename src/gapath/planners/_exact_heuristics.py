@@ -10,8 +10,8 @@ Each pass uses the queue its costs allow:
   step wide: every distance in the lowest non-empty bucket is final (a
   predecessor on a shortest path is at least one step, two buckets, lower),
   so a bucket is emptied in any order, without a heap;
-* vulnerability (non-negative real potentials): an indexed binary heap
-  with decrease-key, sifting a hole rather than swapping;
+* vulnerability (non-negative real potentials): a 4-ary heap with stale
+  entries skipped, sifting a hole rather than swapping;
 * turns (eighths, 0 to 4 per step): the state (cell, heading) is split into
   "rotate by one eighth" (cost 1) and "step straight on" (cost 0), so that
   the least total turn is a 0-1 breadth-first search with a double-ended
@@ -167,48 +167,53 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
     cells after each cell up to the goal included (0 at the goal).
 
     Dijkstra on ``D(u) = pot(u) + min_v D(v)``, ``D(goal) = pot(goal)``,
-    ``hv(u) = min_v D(v)`` over the allowed moves ``u -> v``, with an indexed
-    binary heap (``pos[node]``: its index on the heap, -1 if absent)."""
+    ``hv(u) = min_v D(v)`` over the allowed moves ``u -> v``, with a 4-ary
+    heap of (key, cell) entries, sifting a hole; a cell is pushed again when
+    its key falls and the stale entries are skipped when popped (measured
+    faster than an indexed binary heap with decrease-key: no position
+    updates, half the depth)."""
     n = mask.shape[0]
     off = np.empty(8, np.int64)
     for d in range(8):
         off[d] = DR[d] * w + DC[d]
     pf = pot.reshape(n)
     D = np.full(n, np.inf)
-    keys = np.empty(n)
-    ids = np.empty(n, np.int32)
-    pos = np.full(n, -1, np.int32)
+    cap = 8 * n + 1  # one entry per successful relaxation, at most one per arc
+    keys = np.empty(cap)
+    ids = np.empty(cap, np.int32)
     D[goal] = pf[goal]
     hv[goal] = 0.0
     keys[0] = D[goal]
     ids[0] = goal
-    pos[goal] = 0
     size = 1
     while size > 0:
-        # pop the smallest
+        # pop the smallest entry
         u = ids[0]
-        pos[u] = -1
+        du = keys[0]
         size -= 1
         if size > 0:
             key = keys[size]
             x = ids[size]
             i = 0
             while True:
-                ch = 2 * i + 1
+                ch = 4 * i + 1
                 if ch >= size:
                     break
-                if ch + 1 < size and keys[ch + 1] < keys[ch]:
-                    ch += 1
-                if not keys[ch] < key:
+                best = ch
+                bk = keys[ch]
+                for c2 in range(ch + 1, min(ch + 4, size)):
+                    if keys[c2] < bk:
+                        bk = keys[c2]
+                        best = c2
+                if not bk < key:
                     break
-                keys[i] = keys[ch]
-                ids[i] = ids[ch]
-                pos[ids[i]] = i
-                i = ch
+                keys[i] = bk
+                ids[i] = ids[best]
+                i = best
             keys[i] = key
             ids[i] = x
-            pos[x] = i
-        du = D[u]
+        if du > D[u]:  # stale: u was pushed again with a smaller key
+            continue
         mk = mask[u]
         for d in range(8):
             if not (mk >> d) & 1:
@@ -220,22 +225,17 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
             if val < D[v]:
                 D[v] = val
                 hv[v] = du
-                # insert v or lower its key: sift the hole up
-                i = pos[v]
-                if i < 0:
-                    i = size
-                    size += 1
+                i = size  # push: sift the hole up
+                size += 1
                 while i > 0:
-                    p = (i - 1) >> 1
+                    p = (i - 1) >> 2
                     if not val < keys[p]:
                         break
                     keys[i] = keys[p]
                     ids[i] = ids[p]
-                    pos[ids[i]] = i
                     i = p
                 keys[i] = val
                 ids[i] = v
-                pos[v] = i
 
 
 @numba.njit(cache=True)
