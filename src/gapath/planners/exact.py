@@ -490,6 +490,27 @@ def _search_plan(names):
     return MODE_HEADING, (rest[0] if rest else OBJ_LEN), OBJ_SMOOTH
 
 
+_PLANS: dict = {}
+
+
+def _free_plan(objectives):
+    """``(names, mode, P, Q)`` of an objectives argument (checked; memoised
+    for hashable arguments: the checks cost microseconds, a small search
+    not many more)."""
+    try:
+        return _PLANS[objectives]
+    except (KeyError, TypeError):
+        pass
+    names = _check_objectives(objectives)
+    plan = (names, *_search_plan(names))
+    if len(_PLANS) < 64:
+        try:
+            _PLANS[objectives] = plan
+        except TypeError:  # a list
+            pass
+    return plan
+
+
 def free_front(
     workspace,
     objectives=("length", "vulnerability"),
@@ -640,8 +661,8 @@ def free_front(
     >>> front.paths[0].tolist()
     [[1, 0], [0, 1], [1, 2]]
     """
-    names = _check_objectives(objectives)
-    budget = _budget(max_labels)
+    names, mode, P, Q = _free_plan(objectives)
+    budget = MAX_LABELS if max_labels is None else _budget(max_labels)
     if tie_break not in ("smoothest", "none"):
         raise ConfigError(f"tie_break must be 'smoothest' or 'none', got {tie_break!r}")
     t0 = time.perf_counter()
@@ -651,7 +672,6 @@ def free_front(
     h, w = workspace.shape
     cs = float(workspace.cell_size)
     cc = bool(workspace.corner_cutting)
-    mode, P, Q = _search_plan(names)
     # Ctrl-C is held (a handler installed) only once the search takes more than one
     # kernel call: a small map is done before that, without the handler's cost
     with _DeferredInterrupt(lazy=True) as interrupt:
@@ -737,7 +757,7 @@ def _search_pass(
     gr, gc = goal
     hs, hd, hv, ht = heuristics
     gmin, first, li, lf, sols, hk, hid, st, stf = state
-    fixed = sum(a.nbytes for a in (hs, hd, hv, ht, gmin, first))
+    fixed = hs.nbytes + hd.nbytes + hv.nbytes + ht.nbytes + gmin.nbytes + first.nbytes
     slices = _Slices(1 << 14, 1 << 10, 1 << 26)
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
@@ -773,6 +793,8 @@ def _search_pass(
             interrupt.arm()
         now = time.perf_counter()
         slices.update(st[S_POPS] - pops, now - t1)
+        if status == DONE and progress is None:  # (the dict below costs microseconds)
+            break
         stats = {
             "expansions": total["expansions"] + int(st[S_EXPANDED]),
             "generated": total["generated"] + int(st[S_GENERATED]),
