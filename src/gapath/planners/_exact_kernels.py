@@ -363,8 +363,8 @@ def _monotone_columns(
 # The search follows BOA* (Hernandez et al. 2020, 2023) for two objectives and
 # NAMOA*-dr / EMOA* (Pulido et al. 2015; Ren et al. 2022) for three:
 #
-#   1. heuristics: one backward single-objective Dijkstra per objective, from
-#      the goal (_free_heuristics);
+#   1. heuristics: one backward single-objective search per objective, from
+#      the goal (_free_heuristics, in _exact_heuristics.py);
 #   2. an open list of labels ordered lexicographically by their f-vectors
 #      (_heap_push / _heap_pop);
 #   3. a label is dropped, when generated and again when popped, if a label
