@@ -35,6 +35,22 @@ from gapath.planners._exact_kernels import _BIG_TURNS as BIG_TURNS
 from gapath.planners._exact_kernels import MODE_CELL, N_SLOTS, _free_init
 
 
+def _bit_tables():
+    """``MOVES[m, :COUNT[m]]``: the moves (set bits) of mask ``m``, in order,
+    so that the passes loop over the allowed moves only (a test per bit is a
+    branch the processor cannot predict)."""
+    moves = np.zeros((256, 8), np.int64)
+    count = np.zeros(256, np.int64)
+    for m in range(256):
+        bits = [d for d in range(8) if (m >> d) & 1]
+        moves[m, : len(bits)] = bits
+        count[m] = len(bits)
+    return moves, count
+
+
+MOVES, COUNT = _bit_tables()
+
+
 @numba.njit(cache=True)
 def _move_masks(occ, corner_cutting):
     """(H*W,) uint8: bit ``d`` set if move ``d`` (:data:`gapath.grid.DR`,
@@ -128,9 +144,8 @@ def _length_to_go(mask, w, goal, hs, hd):
         mk = mask[u]
         su = hs[u]
         du = hd[u]
-        for d in range(8):
-            if not (mk >> d) & 1:
-                continue
+        for j in range(COUNT[mk]):
+            d = MOVES[mk, j]
             v = u + off[d]
             odd = d & 1
             ns = su + 1 - odd
@@ -215,10 +230,8 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
         if du > D[u]:  # stale: u was pushed again with a smaller key
             continue
         mk = mask[u]
-        for d in range(8):
-            if not (mk >> d) & 1:
-                continue
-            v = u + off[d]
+        for j in range(COUNT[mk]):
+            v = u + off[MOVES[mk, j]]
             if v == goal:
                 continue
             val = pf[v] + du
