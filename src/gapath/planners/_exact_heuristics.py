@@ -58,48 +58,33 @@ def _move_masks(occ, corner_cutting):
     the grid and free and, without corner cutting, a diagonal move has both
     orthogonal neighbours free (:func:`gapath.grid.can_step`). 0 for obstacle
     cells. The moves are symmetric: ``d`` from ``u`` to ``v`` is allowed iff
-    the opposite move from ``v`` to ``u`` is."""
+    the opposite move from ``v`` to ``u`` is.
+
+    Branch-free per cell: the free cells are read from a copy of the grid
+    with a blocked border."""
     h, w = occ.shape
-    m = np.zeros(h * w, np.uint8)
+    free = np.zeros((h + 2, w + 2), np.uint8)
     for r in range(h):
-        up = r > 0
-        down = r < h - 1
         for c in range(w):
-            if occ[r, c]:
-                continue
-            left = c > 0
-            right = c < w - 1
-            e = right and not occ[r, c + 1]
-            n = up and not occ[r - 1, c]
-            wst = left and not occ[r, c - 1]
-            s = down and not occ[r + 1, c]
-            ne = up and right and not occ[r - 1, c + 1]
-            nw = up and left and not occ[r - 1, c - 1]
-            sw = down and left and not occ[r + 1, c - 1]
-            se = down and right and not occ[r + 1, c + 1]
+            free[r + 1, c + 1] = 0 if occ[r, c] else 1
+    m = np.empty(h * w, np.uint8)
+    for r in range(h):
+        for c in range(w):
+            e = free[r + 1, c + 2]
+            n = free[r, c + 1]
+            wst = free[r + 1, c]
+            s = free[r + 2, c + 1]
+            ne = free[r, c + 2]
+            nw = free[r, c]
+            sw = free[r + 2, c]
+            se = free[r + 2, c + 2]
             if not corner_cutting:
-                ne = ne and n and e
-                nw = nw and n and wst
-                sw = sw and s and wst
-                se = se and s and e
-            b = 0
-            if e:
-                b |= 1
-            if ne:
-                b |= 2
-            if n:
-                b |= 4
-            if nw:
-                b |= 8
-            if wst:
-                b |= 16
-            if sw:
-                b |= 32
-            if s:
-                b |= 64
-            if se:
-                b |= 128
-            m[r * w + c] = b
+                ne &= n & e
+                nw &= n & wst
+                sw &= s & wst
+                se &= s & e
+            b = e | (ne << 1) | (n << 2) | (nw << 3) | (wst << 4) | (sw << 5) | (s << 6) | (se << 7)
+            m[r * w + c] = b * free[r + 1, c + 1]
     return m
 
 
