@@ -278,12 +278,10 @@ def _turns_to_go(mask, h, w, goal, ht):
         ts = t[s]
         v = s >> 3
         d = s & 7
-        # step straight on: (u, d) -> (v, d) with u = v - d, if d is allowed at u
-        u = v - off[d]
-        ur = v // w - DR[d]
-        uc = v % w - DC[d]
-        if 0 <= ur < h and 0 <= uc < w and (mask[u] >> d) & 1:
-            p = u * 8 + d
+        # step straight on: (u, d) -> (v, d) with u = v - d, if d is allowed at u,
+        # i.e. (the moves are symmetric) if the opposite move is allowed at v
+        if (mask[v] >> ((d + 4) & 7)) & 1:
+            p = (v - off[d]) * 8 + d
             if ts < t[p]:
                 t[p] = ts
                 lo -= 1
