@@ -281,3 +281,45 @@ def test_sigint_during_a_search_is_a_keyboard_interrupt(kind, tiny_slices):
         SOLVERS[kind](_ws(seed=4), LVS, progress=send_sigint)
     assert len(calls) == 2
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+
+
+def test_sigint_inside_the_first_kernel_is_a_keyboard_interrupt(monkeypatch):
+    """Before the holding handler is installed (a search done in one kernel
+    call never installs it), a SIGINT raised while a kernel runs surfaces in
+    numba's boxing of its result as a SystemError; free_front raises the
+    KeyboardInterrupt instead, and a second call works."""
+    import ctypes
+    import signal
+
+    import numba
+
+    libc = ctypes.CDLL(None)
+    kill, getpid = libc.kill, libc.getpid
+    kill.argtypes, kill.restype = (ctypes.c_int, ctypes.c_int), ctypes.c_int
+    getpid.argtypes, getpid.restype = (), ctypes.c_int
+    sigint = int(signal.SIGINT)
+
+    @numba.njit
+    def raise_sigint_inside(n):  # a Ctrl-C while a kernel runs
+        kill(getpid(), sigint)
+        return np.zeros(n), np.zeros(n)
+
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        raise_sigint_inside(1)  # compile, the signal ignored
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    prepare = exact._free_prepare
+
+    def prepare_then_sigint(*args):
+        raise_sigint_inside(1)
+        return prepare(*args)
+
+    ws = _ws(seed=4, size=12)
+    fresh = free_front(ws, LV)
+    monkeypatch.setattr(exact, "_free_prepare", prepare_then_sigint)
+    with pytest.raises(KeyboardInterrupt):
+        free_front(ws, LV)
+    monkeypatch.setattr(exact, "_free_prepare", prepare)
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    _same(free_front(ws, LV), fresh)

@@ -57,6 +57,7 @@ from gapath.errors import ConfigError, LabelBudgetError, NoPathError
 from gapath.grid import SQRT2
 from gapath.monotone import Frame, expand_profiles, split_paths
 from gapath.objectives import OBJECTIVES, QUARTER_PI, objective_index
+from gapath.planners._exact_heuristics import _free_prepare
 from gapath.planners._exact_kernels import (
     DONE,
     EIGHTHS,
@@ -65,7 +66,6 @@ from gapath.planners._exact_kernels import (
     MODE_CELL,
     MODE_HEADING,
     MODE_THREE,
-    N_SLOTS,
     ND,
     NS,
     OBJ_LEN,
@@ -73,6 +73,7 @@ from gapath.planners._exact_kernels import (
     OBJ_VUL,
     OVER_BUDGET,
     PARENT,
+    PAUSED,
     ROW,
     S_EXPANDED,
     S_GENERATED,
@@ -83,12 +84,9 @@ from gapath.planners._exact_kernels import (
     S_SOLS,
     TURNS,
     VUL,
-    _free_heuristics,
-    _free_init,
     _free_run,
     _monotone_columns,
     _monotone_start,
-    _move_masks,
     _tolerant_front,
     _trace,
 )
@@ -233,18 +231,36 @@ class _DeferredInterrupt:
     SystemError; here it only sets a flag, and :meth:`check` (called after
     each kernel) hands it to the previous handler, normally
     ``KeyboardInterrupt``. Only in the main thread (elsewhere signals are not
-    delivered to Python)."""
+    delivered to Python).
+
+    With ``lazy=True`` the handler is installed only by :meth:`arm` (the
+    caller arms it once a computation takes more than one kernel call:
+    installing and restoring a handler costs several microseconds, more
+    than a whole search on a small map). Before that, a SIGINT takes
+    Python's normal course, and the SystemError it causes inside numba's
+    boxing is replaced, on leaving the block, by the exception the handler
+    raised (normally ``KeyboardInterrupt``)."""
+
+    def __init__(self, lazy: bool = False):
+        self.lazy = lazy
 
     def __enter__(self):
         self.hit = None
         self.installed = False
-        if threading.current_thread() is threading.main_thread():
-            try:
-                self.prev = signal.signal(signal.SIGINT, self._handler)
-                self.installed = True
-            except (ValueError, OSError):
-                pass
+        self.prev = None
+        if not self.lazy:
+            self.arm()
         return self
+
+    def arm(self):
+        """Install the holding handler (once; only in the main thread)."""
+        if self.installed or threading.current_thread() is not threading.main_thread():
+            return
+        try:
+            self.prev = signal.signal(signal.SIGINT, self._handler)
+            self.installed = True
+        except (ValueError, OSError):
+            pass
 
     def _handler(self, signum, frame):
         self.hit = (signum, frame)
@@ -264,6 +280,13 @@ class _DeferredInterrupt:
             signal.signal(signal.SIGINT, self.prev if self.prev is not None else signal.default_int_handler)
         if exc_type is None:
             self.check()
+        elif exc_type is SystemError and exc.__cause__ is not None:
+            # a signal handler raised inside numba's boxing of a kernel's result (the
+            # SystemError "returned a result with an exception set", possibly nested)
+            cause = exc.__cause__
+            while isinstance(cause, SystemError) and cause.__cause__ is not None:
+                cause = cause.__cause__
+            raise cause.with_traceback(None) from None
         return False
 
 
@@ -467,6 +490,27 @@ def _search_plan(names):
     return MODE_HEADING, (rest[0] if rest else OBJ_LEN), OBJ_SMOOTH
 
 
+_PLANS: dict = {}
+
+
+def _free_plan(objectives):
+    """``(names, mode, P, Q)`` of an objectives argument (checked; memoised
+    for hashable arguments: the checks cost microseconds, a small search
+    not many more)."""
+    try:
+        return _PLANS[objectives]
+    except (KeyError, TypeError):
+        pass
+    names = _check_objectives(objectives)
+    plan = (names, *_search_plan(names))
+    if len(_PLANS) < 64:
+        try:
+            _PLANS[objectives] = plan
+        except TypeError:  # a list
+            pass
+    return plan
+
+
 def free_front(
     workspace,
     objectives=("length", "vulnerability"),
@@ -617,8 +661,8 @@ def free_front(
     >>> front.paths[0].tolist()
     [[1, 0], [0, 1], [1, 2]]
     """
-    names = _check_objectives(objectives)
-    budget = _budget(max_labels)
+    names, mode, P, Q = _free_plan(objectives)
+    budget = MAX_LABELS if max_labels is None else _budget(max_labels)
     if tie_break not in ("smoothest", "none"):
         raise ConfigError(f"tie_break must be 'smoothest' or 'none', got {tie_break!r}")
     t0 = time.perf_counter()
@@ -628,13 +672,13 @@ def free_front(
     h, w = workspace.shape
     cs = float(workspace.cell_size)
     cc = bool(workspace.corner_cutting)
-    mode, P, Q = _search_plan(names)
-    with _DeferredInterrupt() as interrupt:
-        # two objectives without smoothness: turns only break ties, and a zero turn
-        # heuristic expands as many labels as the exact one (measured) at none of its cost
-        mask = _move_masks(occ, cc)
-        hs, hd, hv, ht = _free_heuristics(occ, pot, gr, gc, cc, mode != MODE_CELL, mask)
-        interrupt.check()
+    # Ctrl-C is held (a handler installed) only once the search takes more than one
+    # kernel call: a small map is done before that, without the handler's cost
+    with _DeferredInterrupt(lazy=True) as interrupt:
+        # masks, heuristics and the initial state in one kernel call; two objectives
+        # without smoothness: turns only break ties, and a zero turn heuristic expands
+        # as many labels as the exact one (measured) at none of its cost
+        mask, hs, hd, hv, ht, *state = _free_prepare(occ, pot, sr, sc, gr, gc, cs, cc, mode, P, Q)
         t_heur = time.perf_counter() - t0
         if hv[sr * w + sc] == np.inf:
             raise NoPathError(
@@ -642,11 +686,9 @@ def free_front(
                 f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
                 f"corner_cutting={workspace.corner_cutting})"
             )
-        n_states = h * w * (1 if mode == MODE_CELL else N_SLOTS)
         args = (
             occ,
             pot,
-            (sr, sc),
             (gr, gc),
             cs,
             mask,
@@ -654,7 +696,7 @@ def free_front(
             P,
             Q,
             (hs, hd, hv, ht),
-            n_states,
+            state,
             budget,
             progress,
             interrupt,
@@ -693,7 +735,6 @@ def free_front(
 def _search_pass(
     occ,
     pot,
-    start,
     goal,
     cs,
     mask,
@@ -701,7 +742,7 @@ def _search_pass(
     P,
     Q,
     heuristics,
-    n_states,
+    state,
     budget,
     progress,
     interrupt,
@@ -710,15 +751,13 @@ def _search_pass(
     t0,
 ):
     """One run of the free search in slices (progress, Ctrl-C and the budget
-    handled between slices); adds its counts to ``total``. Returns the label
-    tables, the solution labels and the scalar state."""
-    (sr, sc), (gr, gc) = start, goal
-    w = occ.shape[1]
+    handled between slices) from ``state`` (what :func:`_free_init` returns);
+    adds its counts to ``total``. Returns the label tables, the solution
+    labels and the scalar state."""
+    gr, gc = goal
     hs, hd, hv, ht = heuristics
-    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
-        pot, sr, sc, w, cs, mode, P, Q, hs, hd, hv, ht, n_states
-    )
-    fixed = sum(a.nbytes for a in (hs, hd, hv, ht, gmin, first))
+    gmin, first, li, lf, sols, hk, hid, st, stf = state
+    fixed = hs.nbytes + hd.nbytes + hv.nbytes + ht.nbytes + gmin.nbytes + first.nbytes
     slices = _Slices(1 << 14, 1 << 10, 1 << 26)
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
@@ -750,8 +789,12 @@ def _search_pass(
             ties,
         )
         interrupt.check()
+        if status == PAUSED:  # a longer search: hold Ctrl-C from now on
+            interrupt.arm()
         now = time.perf_counter()
         slices.update(st[S_POPS] - pops, now - t1)
+        if status == DONE and progress is None:  # (the dict below costs microseconds)
+            break
         stats = {
             "expansions": total["expansions"] + int(st[S_EXPANDED]),
             "generated": total["generated"] + int(st[S_GENERATED]),
