@@ -21,6 +21,8 @@ FIG3 = (
     "repair_fig3_bundled.jsonl",
     "repair_fig3_bundled_baseline.jsonl",
     "repair_fig3_bundled_reach.jsonl",
+    "repair_fig3_bundled_baseline_mixed.jsonl",
+    "repair_fig3_bundled_baseline_binary.jsonl",
     "repair_fig3_nocorridor.jsonl",
 )
 TABLE1 = "repair_table1.jsonl"
