@@ -72,7 +72,9 @@ def fig3_lines(rows) -> list[str]:
         for m in maps:
             rs = d.get(m)
             out.append(
-                "-" if not rs else f"{_dist([r['hv_ratio'] for r in rs])} (seeds {_seed_text(r['seed'] for r in rs)})"
+                "-"
+                if not rs
+                else f"{_dist([r['hv_ratio'] for r in rs])} (seeds {_seed_text(r['seed'] for r in rs)})"
             )
         lines.append(f"| {label} | {enc} | " + " | ".join(out) + " |")
     lines.append("")
@@ -91,7 +93,11 @@ def fig3_lines(rows) -> list[str]:
             )
         lines.append("")
     # the encodings under the repair (bundled map): pairwise, Holm-adjusted
-    by_enc = {e: [r["hv_ratio"] for r in d[BUNDLED]] for (label, e), d in cells.items() if label == key[0] and BUNDLED in d}
+    by_enc = {
+        e: [r["hv_ratio"] for r in d[BUNDLED]]
+        for (label, e), d in cells.items()
+        if label == key[0] and BUNDLED in d
+    }
     pairs = [(a, b) for i, a in enumerate(by_enc) for b in list(by_enc)[i + 1 :]]
     if pairs:
         ps = [mannwhitneyu(by_enc[a], by_enc[b], alternative="two-sided").pvalue for a, b in pairs]
@@ -121,7 +127,9 @@ def fig3_lines(rows) -> list[str]:
 
 
 def table1_lines(rows, base) -> list[str]:
-    base = {(r["grid"], r["p0"], r["map_seed"], r["seed"]): r for r in base if r["handling"] == "penalty 1000"}
+    base = {
+        (r["grid"], r["p0"], r["map_seed"], r["seed"]): r for r in base if r["handling"] == "penalty 1000"
+    }
     label = _label(rows[0])
     grid_rows = sorted({(r["grid"], r["p0"]) for r in rows})
     maps = sorted({r["map_seed"] for r in rows})
@@ -183,7 +191,11 @@ def goal_lines(fig3, table1, base) -> list[str]:
             + "."
         )
     if table1:
-        b = {(r["grid"], r["p0"], r["map_seed"], r["seed"]): r["success"] for r in base if r["handling"] == "penalty 1000"}
+        b = {
+            (r["grid"], r["p0"], r["map_seed"], r["seed"]): r["success"]
+            for r in base
+            if r["handling"] == "penalty 1000"
+        }
         lost = []
         for g, p in sorted({(r["grid"], r["p0"]) for r in table1}):
             rs = [r for r in table1 if (r["grid"], r["p0"]) == (g, p)]
@@ -191,9 +203,12 @@ def goal_lines(fig3, table1, base) -> list[str]:
             n_b = sum(b.get((g, p, r["map_seed"], r["seed"]), False) for r in rs)
             if n_a < n_b:
                 lost.append(f"{g}x{g} p0 {p:g}")
-            lines.append(f"- `{_label(rs[0])}`, Table 1 32x32 p0 {p:g}: {n_a} of {len(rs)} runs against {n_b} at penalty 1000.")
+            lines.append(
+                f"- `{_label(rs[0])}`, Table 1 32x32 p0 {p:g}: {n_a} of {len(rs)} runs against {n_b} at penalty 1000."
+            )
         lines.append(
-            "- Table 1 success: " + ("**not lost in any row**." if not lost else f"**lost in {', '.join(lost)}**.")
+            "- Table 1 success: "
+            + ("**not lost in any row**." if not lost else f"**lost in {', '.join(lost)}**.")
         )
     lines.append("")
     return lines

@@ -115,6 +115,29 @@ def test_local_frees_every_column_that_has_a_free_exit_and_never_adds_interferen
                 if free and not ws.corner_cutting and e != r:
                     free = not (f.occ[e, c - 1] or f.occ[r, c])
                 assert not free, (ws.name, i, k, q)
+        # the goal column (the end-fix) still on an obstacle: no exit row of the
+        # column before it, reachable by a free step, has a free end-fix
+        last = f.n_cols - 1
+        for i in np.flatnonzero(~ok[:, last] & ok[:, last - 1]):
+            r = f.start[0] if last == 1 else exits[i, last - 2]
+            for q in range(f.height):
+                e = f.start[0] if last == 1 else r + np.sign(q - r)
+                lo, hi = sorted((e, q))
+                if f.occ[lo : hi + 1, f.col0 + last - 1].any():
+                    continue
+                if (
+                    last > 1
+                    and not ws.corner_cutting
+                    and e != r
+                    and (f.occ[e, f.col0 + last - 2] or f.occ[r, f.col0 + last - 1])
+                ):
+                    continue
+                g = q + np.sign(f.goal[0] - q)
+                lo, hi = sorted((g, f.goal[0]))
+                end_free = not f.occ[lo : hi + 1, f.col0 + last].any()
+                if end_free and not ws.corner_cutting and g != q:
+                    end_free = not (f.occ[g, f.col0 + last - 1] or f.occ[q, f.col0 + last])
+                assert not end_free, (ws.name, i, q)
         # rows that were feasible stay so
         assert (after[before == 0] == 0).all()
         # and on the maps with a feasible path most rows end feasible

@@ -96,7 +96,9 @@ class FeasibleStepRepair(Repair):
     def __init__(self, mode: str = "local", share: float = 1.0):
         super().__init__()
         if mode not in MODES:
-            raise ConfigError(f"FeasibleStepRepair: unknown mode {mode!r}; expected one of {', '.join(MODES)}")
+            raise ConfigError(
+                f"FeasibleStepRepair: unknown mode {mode!r}; expected one of {', '.join(MODES)}"
+            )
         try:
             share = float(share)
         except (TypeError, ValueError):
