@@ -23,9 +23,10 @@ FIG3 = (
     "repair_fig3_bundled_reach.jsonl",
     "repair_fig3_bundled_baseline_mixed.jsonl",
     "repair_fig3_bundled_baseline_binary.jsonl",
+    "repair_fig3_bundled_half.jsonl",
     "repair_fig3_nocorridor.jsonl",
 )
-TABLE1 = "repair_table1.jsonl"
+TABLE1 = ("repair_table1.jsonl", "repair_table1_half.jsonl")
 TABLE1_BASE = "penalty_table1.jsonl"
 PAPER_SUCCESS = {(32, 0.3): 97, (32, 0.6): 74, (32, 0.8): 52}
 GOAL = 0.9
@@ -78,20 +79,22 @@ def fig3_lines(rows) -> list[str]:
             )
         lines.append(f"| {label} | {enc} | " + " | ".join(out) + " |")
     lines.append("")
-    # one test that can fail: repair vs each baseline, integer, bundled map, same seeds
+    # tests that can fail: the repair vs each other handling, per encoding, bundled map, same seeds
     key = ("penalty 1000 + feasible-local", "integer")
-    if key in cells and BUNDLED in cells[key]:
-        a = [r["hv_ratio"] for r in cells[key][BUNDLED]]
+    for (ref, enc_a), d_a in cells.items():
+        if ref != key[0] or BUNDLED not in d_a:
+            continue
+        a = [r["hv_ratio"] for r in d_a[BUNDLED]]
         for (label, enc), d in cells.items():
-            if enc != "integer" or label == key[0] or BUNDLED not in d:
+            if enc != enc_a or label == ref or BUNDLED not in d:
                 continue
             b = [r["hv_ratio"] for r in d[BUNDLED]]
             p = mannwhitneyu(a, b, alternative="two-sided").pvalue
             lines.append(
-                f"- Bundled map, integer, `{key[0]}` against `{label}` (same GA seeds): two-sided "
+                f"- Bundled map, {enc}, `{ref}` against `{label}` (same GA seeds): two-sided "
                 f"Mann-Whitney U p = {p:.2g} ({len(a)} and {len(b)} runs)."
             )
-        lines.append("")
+    lines.append("")
     # the encodings under the repair (bundled map): pairwise, Holm-adjusted
     by_enc = {
         e: [r["hv_ratio"] for r in d[BUNDLED]]
@@ -130,23 +133,22 @@ def table1_lines(rows, base) -> list[str]:
     base = {
         (r["grid"], r["p0"], r["map_seed"], r["seed"]): r for r in base if r["handling"] == "penalty 1000"
     }
-    label = _label(rows[0])
-    grid_rows = sorted({(r["grid"], r["p0"]) for r in rows})
     maps = sorted({r["map_seed"] for r in rows})
     lines = [
         "### Table 1 set-up with the repair: success per map",
         "",
-        f"`{label}`: success % of the 10 GA runs per dense map {', '.join(map(str, maps))} "
+        f"Success % of the 10 GA runs per dense map {', '.join(map(str, maps))} "
         "(integer, pop 200, at most 500 generations, stop at the first feasible path, unseeded); "
         "penalty 1000 without repair: the same runs in `penalty_table1.jsonl`. First feasible "
         "generation: median [min, max] over the successful runs.",
         "",
-        "| row | paper % | per map | median [min, max] over maps | pooled % | penalty 1000 pooled % "
-        "| both / repair only / penalty only / neither | first feasible gen (repair) | (penalty 1000) |",
-        "|---|---|---|---|---|---|---|---|---|",
+        "| handling | row | paper % | per map | median [min, max] over maps | pooled % | penalty 1000 "
+        "pooled % | both / repair only / penalty only / neither | first feasible gen (repair) | "
+        "(penalty 1000) |",
+        "|---|---|---|---|---|---|---|---|---|---|",
     ]
-    for g, p in grid_rows:
-        rs = [r for r in rows if (r["grid"], r["p0"]) == (g, p)]
+    for label, g, p in dict.fromkeys((_label(r), r["grid"], r["p0"]) for r in rows):
+        rs = [r for r in rows if (_label(r), r["grid"], r["p0"]) == (label, g, p)]
         per_map = [100 * np.mean([r["success"] for r in rs if r["map_seed"] == m]) for m in maps]
         pairs = [(r, base.get((g, p, r["map_seed"], r["seed"]))) for r in rs]
         pairs = [(a, b) for a, b in pairs if b is not None]
@@ -161,7 +163,7 @@ def table1_lines(rows, base) -> list[str]:
             return f"{np.median(v):.0f} [{min(v)}, {max(v)}]" if v else "-"
 
         lines.append(
-            f"| {g}x{g} p0 {p:g} | {PAPER_SUCCESS.get((g, p), '-')} | "
+            f"| {label} | {g}x{g} p0 {p:g} | {PAPER_SUCCESS.get((g, p), '-')} | "
             + " ".join(f"{v:.0f}" for v in per_map)
             + f" | {np.median(per_map):.0f} [{min(per_map):.0f}, {max(per_map):.0f}] | "
             f"{100 * np.mean([r['success'] for r in rs]):.0f} | "
@@ -197,12 +199,12 @@ def goal_lines(fig3, table1, base) -> list[str]:
             if r["handling"] == "penalty 1000"
         }
         lost = []
-        for g, p in sorted({(r["grid"], r["p0"]) for r in table1}):
-            rs = [r for r in table1 if (r["grid"], r["p0"]) == (g, p)]
+        for label, g, p in dict.fromkeys((_label(r), r["grid"], r["p0"]) for r in table1):
+            rs = [r for r in table1 if (_label(r), r["grid"], r["p0"]) == (label, g, p)]
             n_a = sum(r["success"] for r in rs)
             n_b = sum(b.get((g, p, r["map_seed"], r["seed"]), False) for r in rs)
             if n_a < n_b:
-                lost.append(f"{g}x{g} p0 {p:g}")
+                lost.append(f"{g}x{g} p0 {p:g} ({label})")
             lines.append(
                 f"- `{_label(rs[0])}`, Table 1 32x32 p0 {p:g}: {n_a} of {len(rs)} runs against {n_b} at penalty 1000."
             )
@@ -220,7 +222,7 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     d = Path(args.dir)
     fig3 = [r for f in FIG3 for r in _load(d / f) if r.get("part") == "fig3"]
-    table1 = [r for r in _load(d / TABLE1) if r.get("part") == "table1"]
+    table1 = [r for f in TABLE1 for r in _load(d / f) if r.get("part") == "table1"]
     base = [r for r in _load(d / TABLE1_BASE) if r.get("part") == "table1"]
     body = []
     if fig3:
