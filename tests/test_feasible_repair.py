@@ -208,3 +208,29 @@ def test_solve_with_the_repair_is_seeded_and_keeps_the_default_unchanged():
     assert np.array_equal(c.front.F, d.front.F) and "repair" not in c.settings
     r = solve(ws, pop_size=30, n_gen=2, seed=2, seed_from="none", repair="feasible-reach")
     assert len(r.front) > 0  # every repaired path is feasible here
+
+
+def test_cli_solve_takes_the_repair_and_records_it(tmp_path, capsys):
+    from gapath.cli.main import main
+
+    occ = dense_workspace(16, 0.6, seed=2).occ
+    path = tmp_path / "dense.txt"
+    path.write_text("\n".join("".join("#" if c else "." for c in row) for row in occ) + "\n")
+    out = tmp_path / "o"
+    args = [
+        "solve",
+        str(path),
+        "--paths",
+        "monotone",
+        "--start",
+        "15,0",
+        "--goal",
+        "0,15",
+        "--seed-from",
+        "none",
+    ]
+    args += ["--pop", "20", "--gen", "3", "--quiet", "--no-plots", "--out", str(out)]
+    assert main(args + ["--repair", "feasible-reach"]) == 0
+    assert "feasible-reach" in (out / "summary.json").read_text()
+    assert main(args + ["--repair", "nearest"]) == 2
+    assert "unknown repair 'nearest'" in capsys.readouterr().err
