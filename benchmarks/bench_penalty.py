@@ -197,6 +197,11 @@ def main(argv=None) -> int:
     )
     ap.add_argument("--handlings", default=",".join(_handling_label(h).split()[-1] for h in HANDLINGS))
     ap.add_argument("--encodings", default=",".join(FIG3_ENCODINGS))
+    ap.add_argument(
+        "--repair",
+        help="a repair of gapath.operators.repair.feasible.REPAIRS for every run (solve's repair=); "
+        "each line then carries it",
+    )
     ap.add_argument("--report", help="JSON lines to turn into penalty.md (no runs)")
     ap.add_argument("--fresh", help="JSON lines of a check on fresh GA seeds (with --report)")
     ap.add_argument("--out", default="docs/results/penalty.md")
@@ -207,6 +212,7 @@ def main(argv=None) -> int:
         write_report(args.report, args.out, args.fresh)
         return 0
     handlings = tuple(h if h.startswith("adaptive") else float(h) for h in args.handlings.split(","))
+    emit = with_repair(args.repair) if args.repair else print
     parts = args.parts.split(",")
     t0 = time.perf_counter()
     if "fig3" in parts:
@@ -218,13 +224,34 @@ def main(argv=None) -> int:
             args.fig3_seeds,
             handlings,
             tuple(args.encodings.split(",")),
+            emit=emit,
             first_seed=args.fig3_first_seed,
         )
     if "table1" in parts:
         rows = [(int(g), float(p)) for g, p in (x.split(":") for x in args.table1_rows.split(","))]
-        table1(rows, _seeds(args.table1_maps), args.table1_seeds, handlings)
+        table1(rows, _seeds(args.table1_maps), args.table1_seeds, handlings, emit=emit)
     print(json.dumps({"part": "wall", "seconds": round(time.perf_counter() - t0, 1)}))
     return 0
+
+
+def with_repair(name: str):
+    """Every later ``solver.solve`` call (the studies' runs) gets
+    ``repair=name``; returns the ``emit`` that adds ``repair`` to each line."""
+    from gapath import solver
+    from gapath.operators.repair.feasible import make_repair
+
+    make_repair(name)  # an unknown name fails here, before any run
+    solve = solver.solve
+
+    def solve_with_repair(*args, **kwargs):
+        return solve(*args, repair=name, **kwargs)
+
+    solver.solve = solve_with_repair
+
+    def emit(line):
+        print(json.dumps({**json.loads(line), "repair": name}))
+
+    return emit
 
 
 def _seeds(text: str) -> list[int]:

@@ -86,6 +86,7 @@ def solve(
     callback=None,
     pm_prob_var=None,
     adaptive_penalty=None,
+    repair=None,
 ) -> SolveResult:
     """Run Ahmed & Deb's NSGA-II on ``workspace`` and return its front.
 
@@ -131,6 +132,14 @@ def solve(
         of bits, gapath's default) or ``"grid"`` (1 / n for an n-column
         grid, Ahmed & Deb's "1/n"); see
         :class:`gapath.operators.DecayingBitflipMutation`.
+    repair : the repair of every new genome: None or ``"edge"`` (default:
+        Ahmed & Deb's edge-fixing), or a name in
+        :data:`gapath.operators.repair.feasible.REPAIRS` such as
+        ``"feasible-local"`` (the edge-fixing, then every column step that
+        touches an obstacle moved to the nearest free exit row, written back
+        into the genes; see
+        :class:`gapath.operators.repair.feasible.FeasibleStepRepair`).
+        Column-monotone paths and ``engine="fast"`` only.
 
     Raises
     ------
@@ -184,6 +193,15 @@ def solve(
     if engine not in ENGINES:
         raise ConfigError(f"unknown engine {engine!r}; expected one of {', '.join(ENGINES)}")
     extra = {} if handling is None else {"constraint_handling": handling}
+    if repair is not None and repair != "edge":
+        from gapath.operators.repair.feasible import make_repair
+
+        if paths != "monotone" or engine != "fast":
+            raise ConfigError(
+                f"repair={repair!r} needs paths='monotone' and engine='fast' "
+                f"(got paths={paths!r}, engine={engine!r})"
+            )
+        extra["repair"] = make_repair(repair)
     if pm_prob_var is not None:
         extra["pm_prob_var"] = pm_prob_var
     algorithm = ENGINES[engine](pop_size, tiebreak=tiebreak, sbx_eta=sbx_eta, sampling=sampling, **extra)
@@ -210,6 +228,8 @@ def solve(
         settings["adaptive_penalty"] = handling.settings()
     if pm_prob_var is not None:
         settings["pm_prob_var"] = pm_prob_var
+    if "repair" in extra:
+        settings["repair"] = repair if isinstance(repair, str) else repr(extra["repair"])
     t0 = time.perf_counter()
     interrupted = False
     res = None

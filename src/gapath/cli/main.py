@@ -89,6 +89,13 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
         "a penalty starting at --penalty that adapts to the share of feasible paths)",
     )
     p.add_argument(
+        "--repair",
+        default="edge",
+        help="repair of new genomes (with --paths monotone and the fast engine): edge (default: Ahmed & Deb's "
+        "edge-fixing), feasible-local (then every column step on an obstacle moved to the nearest "
+        "free exit row), feasible-reach, feasible-local-half, feasible-reach-half",
+    )
+    p.add_argument(
         "--sbx-eta",
         type=float,
         default=None,
@@ -256,6 +263,7 @@ def _run(args, workspace) -> int:
         engine=args.engine,
         progress=not args.quiet,
         paths=getattr(args, "paths", "monotone"),
+        repair=args.repair,
     )
     if args.constraints == "adaptive" and args.engine == "pymoo":
         raise ConfigError(

@@ -8,6 +8,7 @@ from gapath.operators.mutation.decaying_bitflip import DecayingBitflipMutation
 from gapath.operators.mutation.discrete_pm import DiscretePM
 from gapath.operators.mutation.mixed_mutation import MixedMutation
 from gapath.operators.repair.edge_fixing import EdgeFixingRepair
+from gapath.operators.repair.feasible import FeasibleStepRepair
 from gapath.operators.sampling.free_sampling import FreeSampling
 from gapath.operators.sampling.planner_sampling import PlannerSampling
 from gapath.operators.selection.smoothness_tournament import (
@@ -21,6 +22,7 @@ __all__ = [
     "DiscretePM",
     "DiscreteSBX",
     "EdgeFixingRepair",
+    "FeasibleStepRepair",
     "FreeSampling",
     "MixedCrossover",
     "MixedMutation",
