@@ -122,6 +122,8 @@ def test_solve_three_objectives_and_start_goal(text_map, tmp_path):
             ["solve", "{map}", "--constraints", "adaptive", "--engine", "pymoo"],
             "--constraints adaptive needs --engine fast",
         ),
+        (["solve", "{map}", "--repair", "feasible-local"], "--repair feasible-local needs --paths monotone"),
+        (["solve", "{map}", "--paths", "monotone", "--repair", "tidy"], "unknown repair 'tidy'"),
     ],
 )
 def test_bad_input_exits_2_with_a_clear_message(args, message, text_map, tmp_path, capsys):

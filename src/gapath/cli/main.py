@@ -270,6 +270,11 @@ def _run(args, workspace) -> int:
             "--constraints adaptive needs --engine fast (the stock pymoo engine has no "
             "adaptive penalty); use --constraints penalty with --engine pymoo"
         )
+    if args.repair != "edge" and (kwargs["paths"] != "monotone" or args.engine != "fast"):
+        raise ConfigError(
+            f"--repair {args.repair} needs --paths monotone and --engine fast "
+            f"(got --paths {kwargs['paths']}, --engine {args.engine})"
+        )
     out_dir = Path(args.out)
     if kwargs["paths"] == "free":  # no path at all: exit 1 with the reason, before the GA
         why = no_path_error(workspace, monotone=False)
