@@ -57,6 +57,7 @@ from gapath.errors import ConfigError, LabelBudgetError, NoPathError
 from gapath.grid import SQRT2
 from gapath.monotone import Frame, expand_profiles, split_paths
 from gapath.objectives import OBJECTIVES, QUARTER_PI, objective_index
+from gapath.planners._boa_kernels import _boa_run, _smoothest
 from gapath.planners._exact_kernels import (
     DONE,
     EIGHTHS,
@@ -660,20 +661,30 @@ def free_front(
             interrupt,
         )
         total = {"expansions": 0, "generated": 0, "labels": 0, "peak_bytes": 0}
-        li, lf, sols, st = _search_pass(*args, tie_break == "smoothest", total, t0)
+        ties = tie_break == "smoothest"
+        li, lf, sols, st, edges, n_edges = _search_pass(*args, ties, total, t0)
 
+    if mode == MODE_CELL and ties:
+        # the smoothest path of each solution over the tied in-edges; its objectives
+        # recomputed along it (a tied path may sum the vulnerability in another order)
+        cells, offsets, ns, nd, turns, vul, scratch = _smoothest(
+            li, int(st[S_N]), sols, edges, n_edges, pot, w
+        )
+        total["peak_bytes"] += int(scratch)
+    else:
+        cells, offsets = _trace(li, sols, w)
+        ns, nd, turns, vul = li[sols, NS], li[sols, ND], li[sols, TURNS], lf[sols, F_VUL]
     values = {
-        "length": (li[sols, NS] + SQRT2 * li[sols, ND]) * cs,
-        "vulnerability": lf[sols, F_VUL],
-        "smoothness": li[sols, TURNS] * QUARTER_PI,
+        "length": (ns + SQRT2 * nd) * cs,
+        "vulnerability": vul,
+        "smoothness": turns * QUARTER_PI,
     }
     F = np.column_stack([values[name] for name in names])
     # among tolerance-equal vectors prefer the smoothest path, then the shortest
-    order = np.lexsort((li[sols, NS] + SQRT2 * li[sols, ND], li[sols, TURNS]))
+    order = np.lexsort((ns + SQRT2 * nd, turns))
     keep = _tolerant_front(np.ascontiguousarray(F), order)
     keep = keep[np.lexsort(F[keep].T[::-1])]
-    cells, offsets = _trace(li, sols[keep], w)
-    paths = [cells[offsets[i] : offsets[i + 1]] for i in range(len(keep))]
+    paths = [cells[offsets[i] : offsets[i + 1]] for i in keep]
     stats = {
         **total,
         "solutions": int(st[S_SOLS]),
@@ -720,35 +731,64 @@ def _search_pass(
     )
     fixed = sum(a.nbytes for a in (hs, hd, hv, ht, gmin, first))
     slices = _Slices(1 << 14, 1 << 10, 1 << 26)
+    # two objectives: BOA* (_boa_run), which records the in-edges of tied labels
+    edges, est = np.empty((1024 if ties else 16, 3), np.int32), np.zeros(1, np.int64)
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
-        li, lf, sols, hk, hid, status = _free_run(
-            occ,
-            pot,
-            gr,
-            gc,
-            cs,
-            mask,
-            mode,
-            P,
-            Q,
-            hs,
-            hd,
-            hv,
-            ht,
-            gmin,
-            first,
-            li,
-            lf,
-            sols,
-            hk,
-            hid,
-            st,
-            stf,
-            slices.n,
-            budget,
-            ties,
-        )
+        if mode == MODE_CELL:
+            li, lf, sols, hk, hid, edges, status = _boa_run(
+                occ,
+                pot,
+                gr,
+                gc,
+                cs,
+                mask,
+                hs,
+                hd,
+                hv,
+                gmin,
+                first,
+                li,
+                lf,
+                sols,
+                hk,
+                hid,
+                st,
+                stf,
+                edges,
+                est,
+                slices.n,
+                budget,
+                ties,
+            )
+        else:
+            li, lf, sols, hk, hid, status = _free_run(
+                occ,
+                pot,
+                gr,
+                gc,
+                cs,
+                mask,
+                mode,
+                P,
+                Q,
+                hs,
+                hd,
+                hv,
+                ht,
+                gmin,
+                first,
+                li,
+                lf,
+                sols,
+                hk,
+                hid,
+                st,
+                stf,
+                slices.n,
+                budget,
+                ties,
+            )
         interrupt.check()
         now = time.perf_counter()
         slices.update(st[S_POPS] - pops, now - t1)
@@ -778,9 +818,12 @@ def _search_pass(
     total["generated"] += int(st[S_GENERATED])
     total["labels"] = max(total["labels"], int(st[S_N]))  # rows used at the peak
     total["peak_bytes"] = max(
-        total["peak_bytes"], int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes)
+        total["peak_bytes"],
+        int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + edges.nbytes),
     )
-    return li, lf, sols[: st[S_SOLS]], st
+    if mode == MODE_CELL and ties:
+        total["tie_edges"] = int(est[0])
+    return li, lf, sols[: st[S_SOLS]], st, edges, int(est[0])
 
 
 # ---------------------------------------------------------------------------
