@@ -362,7 +362,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     vulnerable one is taken. Nodes are taken in the post-order of a
     depth-first search from the solutions, so parents come before children.
     The trace prefers, at each node, its own in-edge, then the recorded
-    ones in the order they were recorded.
+    ones in the order they were recorded, and the lowest heading.
 
     Returns ``(cells, offsets, n_straight, n_diag, turns, vul, scratch_bytes)``:
     the cells of solution ``i``'s path are ``cells[offsets[i]:offsets[i + 1]]``
@@ -446,33 +446,63 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
             T[i * 8 + d] = bt
             V[i * 8 + d] = bv
 
-    # trace each solution back from its least (T, V), then count along the path
+    # trace each solution back from its least (T, V) (the steps written out: a
+    # helper call per step cost most of the time), then evaluate it forwards
     n_sols = len(sols)
-    counts = np.empty(n_sols, np.int64)
-    for si in range(n_sols):
-        m = 0
-        v, d = _last_step(T, V, idx, sols[si])
-        while v >= 0:
-            m += 1
-            v, d = _step_back(li, T, V, idx, off, ep, edir, pot, w, v, d)
-        counts[si] = m
     offsets = np.zeros(n_sols + 1, np.int64)
-    for si in range(n_sols):
-        offsets[si + 1] = offsets[si] + counts[si]
-    cells = np.empty((offsets[n_sols], 2), np.int64)
     out_ns = np.zeros(n_sols, np.int64)
     out_nd = np.zeros(n_sols, np.int64)
     out_turns = np.zeros(n_sols, np.int64)
     out_vul = np.zeros(n_sols)
+    buf = np.empty(k, np.int32)  # the nodes of one path, goal first (distinct nodes)
+    total = 0
     for si in range(n_sols):
-        a, b = offsets[si], offsets[si + 1]
-        pos = b - 1
-        v, d = _last_step(T, V, idx, sols[si])
-        while v >= 0:
-            cells[pos, 0] = li[v, CELL] // w
-            cells[pos, 1] = li[v, CELL] % w
-            pos -= 1
-            v, d = _step_back(li, T, V, idx, off, ep, edir, pot, w, v, d)
+        total += li[sols[si], NS] + li[sols[si], ND] + 1
+    cells = np.empty((total, 2), np.int64)
+    for si in range(n_sols):
+        v = sols[si]
+        i = idx[v] * 8
+        d = 0
+        for dd in range(1, 8):
+            if T[i + dd] < T[i + d] or (T[i + dd] == T[i + d] and V[i + dd] < V[i + d]):
+                d = dd
+        m = 0
+        while True:
+            buf[m] = v
+            m += 1
+            if li[v, F_PARENT] < 0:
+                break
+            # an in-edge (p, d) of v (its own first) and a heading h of p giving T, V
+            i = idx[v] * 8 + d
+            c = li[v, CELL]
+            pv = pot[c // w, c % w]
+            found = False
+            for e in range(off[v] - 1, off[v + 1]):
+                if e < off[v]:
+                    p, de = li[v, F_PARENT], li[v, F_HEAD]
+                else:
+                    p, de = ep[e], edir[e]
+                if de != d:
+                    continue
+                base = idx[p] * 8
+                for hh in range(8):
+                    if T[base + hh] + turn(hh, d) == T[i] and V[base + hh] + pv == V[i]:
+                        v, d = p, hh
+                        found = True
+                        break
+                if found:
+                    break
+        a = offsets[si]
+        b = a + m
+        offsets[si + 1] = b
+        if b > cells.shape[0]:  # not reached when tied paths have equal step counts
+            grown = np.empty((max(b, 2 * cells.shape[0]), 2), np.int64)
+            grown[:a] = cells[:a]
+            cells = grown
+        for t in range(m):
+            c = li[buf[m - 1 - t], CELL]
+            cells[a + t, 0] = c // w
+            cells[a + t, 1] = c % w
         # the objectives along the path, in path order (as gapath.objectives does)
         vul = pot[cells[a, 0], cells[a, 1]]
         ns = 0
@@ -493,44 +523,9 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         out_nd[si] = nd
         out_turns[si] = eighths
         out_vul[si] = vul
+    cells = cells[: offsets[n_sols]]
     scratch = 0
     for arr_bytes in (off.nbytes, fill.nbytes, ep.nbytes, edir.nbytes, state.nbytes, idx.nbytes):
         scratch += arr_bytes
-    scratch += order.nbytes + stack.nbytes + T.nbytes + V.nbytes + cells.nbytes
+    scratch += order.nbytes + stack.nbytes + T.nbytes + V.nbytes + buf.nbytes + cells.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
-
-
-@numba.njit(cache=True)
-def _last_step(T, V, idx, s):
-    """``(s, heading)``: solution ``s`` and the heading of its least ``(T, V)``."""
-    i = idx[s] * 8
-    best = 0
-    for d in range(1, 8):
-        if T[i + d] < T[i + best] or (T[i + d] == T[i + best] and V[i + d] < V[i + best]):
-            best = d
-    return s, best
-
-
-@numba.njit(cache=True)
-def _step_back(li, T, V, idx, off, ep, edir, pot, w, v, d):
-    """The predecessor ``(p, h)`` of ``(v, d)`` on a least ``(T, V)`` path:
-    an in-edge ``(p, d)`` of ``v`` (its own first, then the recorded ones in
-    their order) and a heading ``h`` of ``p`` that give ``T[v, d]`` and
-    ``V[v, d]``; ``(-1, -1)`` at the start label."""
-    if li[v, F_PARENT] < 0:
-        return -1, -1
-    i = idx[v] * 8 + d
-    c = li[v, CELL]
-    pv = pot[c // w, c % w]
-    for e in range(off[v] - 1, off[v + 1]):
-        if e < off[v]:
-            p, de = li[v, F_PARENT], li[v, F_HEAD]
-        else:
-            p, de = ep[e], edir[e]
-        if de != d:
-            continue
-        base = idx[p] * 8
-        for hh in range(8):
-            if T[base + hh] + turn(hh, d) == T[i] and V[base + hh] + pv == V[i]:
-                return p, hh
-    return -1, -1  # not reached: T[v, d], V[v, d] came from one of these
