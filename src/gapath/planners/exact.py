@@ -39,7 +39,9 @@ Bit-exact objectives
     of eighth turns and the vulnerability summed cell by cell in path order,
     so the values in :attr:`ExactFront.F` are computed with the arithmetic of
     :mod:`gapath.objectives` and equal what :func:`gapath.objectives.evaluate_path`
-    or :func:`gapath.objectives.evaluate_profiles` give for the returned paths.
+    or :func:`gapath.objectives.evaluate_profiles` give for the returned paths
+    (when :func:`free_front` picks the smoothest of tied paths after its
+    search, the values are summed again along the path it returns).
 """
 
 from __future__ import annotations
@@ -508,10 +510,11 @@ def free_front(
         the search and propagates.
     tie_break : {"smoothest", "none"}, optional
         Which path represents tolerance-equal objective vectors when
-        smoothness is not an objective: the smoothest (default), or the
-        first found ("none": BOA* as published; the same ``F`` up to the tolerance,
-        faster on maps with many exact ties, and ``smoothness`` is that of
-        the returned path). Ignored when smoothness is an objective.
+        smoothness is not an objective: the smoothest, then the least
+        vulnerable (default), or the first found ("none": BOA* as published;
+        the same ``F`` up to the tolerance, a little faster on maps with many
+        exact ties, and ``smoothness`` is that of the returned path). Ignored
+        when smoothness is an objective.
 
     Returns
     -------
@@ -521,7 +524,9 @@ def free_front(
         when smoothness is not an objective). ``profiles`` is None (free paths
         have no column profile). The paths are simple (no repeated cell).
         ``stats`` has ``expansions``, ``generated``, ``labels``,
-        ``peak_bytes``, ``heuristic_seconds``, ``seconds``.
+        ``peak_bytes``, ``heuristic_seconds``, ``seconds`` (and
+        ``tie_edges``, the ties recorded, with the default tie-break on
+        length and vulnerability).
 
     Raises
     ------
@@ -544,22 +549,33 @@ def free_front(
     Notes
     -----
     States and objectives
-        For (length, vulnerability) a state is a cell; each label also
-        carries the heading of its last step and its total turn, used only to
-        keep the smoothest path among tolerance-equal ones: a label ``a``
-        discards a tolerance-equal label ``b`` at the same cell only if
-        ``turns(a) + gap <= turns(b)``, ``gap`` being the most by which the next
-        turn after ``a``'s heading can exceed the one after ``b``'s. When
-        smoothness is an objective the state is (cell, incoming heading), and
-        labels of the other headings of the cell are compared with the same
-        charge. A single objective ``x`` is solved as the (x, smoothness)
-        front followed by the tolerance filter on ``x``.
+        For (length, vulnerability) a state is a cell, and the search is
+        BOA* itself: a label tied with the one already expanded at its cell
+        is dropped. The smoothest path among tolerance-equal ones is found
+        after the search: each label dropped because it ties, in both
+        objectives, the label last expanded at its cell (or the last
+        solution) is recorded as an alternative in-edge (parent, step) of
+        that label, and the goal test keeps the labels whose f-vector ties
+        the last solution (a tied path may leave the first one early). The
+        expanded labels and these edges hold every path of every front
+        vector (a prefix of a Pareto-optimal path is Pareto-optimal at its
+        cell); a dynamic programme over them, on (label, incoming heading),
+        gives the smoothest path of each solution, and among equally smooth
+        ones the least vulnerable. Its objectives are recomputed along it.
+        When smoothness is an objective the state is (cell, incoming
+        heading), and labels of the other headings of the cell are compared
+        with their turn counts charged by the most the next turn can differ.
+        A single objective ``x`` is solved as the (x, smoothness) front
+        followed by the tolerance filter on ``x``.
 
     Tie-breaking cost
-        Keeping tolerance-equal labels that differ only in heading or turns
-        multiplies the labels on maps with many exact ties (flat potential:
-        about 5x on MovingAI's Berlin_1_256); ``tie_break="none"`` drops them
-        as BOA* does.
+        The tied labels are not expanded: the tie-break costs one 12-byte
+        edge per dropped tie, the labels whose f-vector ties a solution and
+        a pass over the edges after the search (on MovingAI's Berlin_1_256,
+        where 36 % of the cells have potential exactly 0: 2-57 % more
+        expansions than ``tie_break="none"`` and 5-18 % more time; the
+        former search, which kept tied labels that differed in heading or
+        turns, expanded up to 5x more).
 
     Heuristics
         Exact single-objective costs-to-go from backward Dijkstra searches
@@ -732,6 +748,7 @@ def _search_pass(
     fixed = sum(a.nbytes for a in (hs, hd, hv, ht, gmin, first))
     slices = _Slices(1 << 14, 1 << 10, 1 << 26)
     # two objectives: BOA* (_boa_run), which records the in-edges of tied labels
+    # (the smoothest tie-break, `ties`) for _smoothest
     edges, est = np.empty((1024 if ties else 16, 3), np.int32), np.zeros(1, np.int64)
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
