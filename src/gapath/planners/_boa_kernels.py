@@ -277,6 +277,7 @@ def _boa_steps(
         first[c] = x
         r, col = c // w, c % w
         head = li[x, F_HEAD]
+        ns_x, nd_x, turns_x = li[x, NS], li[x, ND], li[x, TURNS]
         mk = mask[c]
         for d in range(8):
             if not (mk >> d) & 1:
@@ -285,28 +286,18 @@ def _boa_steps(
             cell = r2 * w + c2
             if hv[cell] == np.inf:  # the goal cannot be reached from there
                 continue
-            if free >= 0:  # a recycled row (its NEXT links the free list)
-                j = free
-            else:
-                j = n
-            li[j, CELL] = cell
-            li[j, F_HEAD] = d
-            li[j, F_PARENT] = x
-            li[j, NS] = li[x, NS] + (1 - d % 2)
-            li[j, ND] = li[x, ND] + d % 2
-            li[j, TURNS] = li[x, TURNS] + (turn(head, d) if head >= 0 else 0)
-            qj = q + pot[r2, c2]
-            lf[j, F_VUL] = qj
             n_generated += 1
-            f_vul = qj + hv[cell]
-            # eager checks (BOA*: prune before the open list)
+            ns_j = ns_x + (1 - d % 2)
+            nd_j = nd_x + d % 2
+            qj = q + pot[r2, c2]
+            # eager checks (BOA*: prune before the open list), on the values alone
             if cell != goal:
                 m = gmin[cell]
                 if m < np.inf and not (qj < m and not _eq(qj, m)):
                     if ties and _eq(qj, m):
                         a = first[cell]
                         if _eq(
-                            (li[j, NS] + SQRT2 * li[j, ND]) * cell_size,
+                            (ns_j + SQRT2 * nd_j) * cell_size,
                             (li[a, NS] + SQRT2 * li[a, ND]) * cell_size,
                         ):
                             edges[ne, E_NODE] = a
@@ -314,7 +305,8 @@ def _boa_steps(
                             edges[ne, E_DIR] = d
                             ne += 1
                     continue
-            f_len = ((li[j, NS] + hs[cell]) + SQRT2 * (li[j, ND] + hd[cell])) * cell_size
+            f_vul = qj + hv[cell]
+            f_len = ((ns_j + hs[cell]) + SQRT2 * (nd_j + hd[cell])) * cell_size
             if goal_min < np.inf and not (f_vul < goal_min and not _eq(f_vul, goal_min)):
                 if not (ties and _eq(f_vul, goal_min) and _eq(f_len, goal_len)):
                     continue
@@ -324,13 +316,24 @@ def _boa_steps(
                     edges[ne, E_DIR] = d
                     ne += 1
                     continue
-            if j == free:
+            # a new label: a recycled row (its NEXT links the free list) or a new one
+            if free >= 0:
+                j = free
                 free = li[j, NEXT]
                 n_free -= 1
             else:
+                j = n
                 n += 1
+            turns_j = turns_x + (turn(head, d) if head >= 0 else 0)
+            li[j, CELL] = cell
+            li[j, F_HEAD] = d
+            li[j, F_PARENT] = x
+            li[j, NS] = ns_j
+            li[j, ND] = nd_j
+            li[j, TURNS] = turns_j
             li[j, NEXT] = -1
-            _heap_push(hk, hid, size, f_len, f_vul, np.float64(li[j, TURNS]), j)
+            lf[j, F_VUL] = qj
+            _heap_push(hk, hid, size, f_len, f_vul, np.float64(turns_j), j)
             size += 1
     st[S_N] = n
     st[S_SIZE] = size
@@ -420,9 +423,10 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                 k += 1
                 sp -= 1
 
-    # least (turns, vulnerability) per (node, incoming heading)
+    # least (turns, vulnerability) per (node, incoming heading); hm: the headings set
     T = np.full(k * 8, _BIG, np.int64)
     V = np.full(k * 8, np.inf)
+    hm = np.zeros(k, np.uint8)
     for i in range(k):
         v = order[i]
         c = li[v, CELL]
@@ -431,20 +435,25 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
             for d in range(8):
                 T[i * 8 + d] = 0
                 V[i * 8 + d] = pv
+            hm[i] = 255
             continue
         for e in range(off[v] - 1, off[v + 1]):
             if e < off[v]:
                 p, d = li[v, F_PARENT], li[v, F_HEAD]
             else:
                 p, d = ep[e], edir[e]
-            base = idx[p] * 8
+            ip = idx[p]
+            base = ip * 8
+            bits = hm[ip]
             bt, bv = T[i * 8 + d], V[i * 8 + d]
             for hh in range(8):
-                t = T[base + hh] + turn(hh, d)
-                if t < bt or (t == bt and V[base + hh] + pv < bv):
-                    bt, bv = t, V[base + hh] + pv
+                if (bits >> hh) & 1:
+                    t = T[base + hh] + turn(hh, d)
+                    if t < bt or (t == bt and V[base + hh] + pv < bv):
+                        bt, bv = t, V[base + hh] + pv
             T[i * 8 + d] = bt
             V[i * 8 + d] = bv
+            hm[i] |= 1 << d
 
     # trace each solution back from its least (T, V) (the steps written out: a
     # helper call per step cost most of the time), then evaluate it forwards
@@ -527,5 +536,5 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     scratch = 0
     for arr_bytes in (off.nbytes, fill.nbytes, ep.nbytes, edir.nbytes, state.nbytes, idx.nbytes):
         scratch += arr_bytes
-    scratch += order.nbytes + stack.nbytes + T.nbytes + V.nbytes + buf.nbytes + cells.nbytes
+    scratch += order.nbytes + stack.nbytes + T.nbytes + V.nbytes + hm.nbytes + buf.nbytes + cells.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
