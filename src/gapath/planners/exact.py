@@ -679,15 +679,17 @@ def free_front(
         total = {"expansions": 0, "generated": 0, "labels": 0, "peak_bytes": 0}
         ties = tie_break == "smoothest"
         li, lf, sols, st, edges, n_edges = _search_pass(*args, ties, total, t0)
+        after = mode == MODE_CELL and ties  # the smoothest path is chosen after the search
+        if after:
+            # the smoothest path of each solution over the tied in-edges; its objectives
+            # recomputed along it (a tied path may sum the vulnerability in another order)
+            cells, offsets, ns, nd, turns, vul, scratch = _smoothest(
+                li, int(st[S_N]), sols, edges, n_edges, pot, w
+            )
+            interrupt.check()
+            total["peak_bytes"] += int(scratch)
 
-    if mode == MODE_CELL and ties:
-        # the smoothest path of each solution over the tied in-edges; its objectives
-        # recomputed along it (a tied path may sum the vulnerability in another order)
-        cells, offsets, ns, nd, turns, vul, scratch = _smoothest(
-            li, int(st[S_N]), sols, edges, n_edges, pot, w
-        )
-        total["peak_bytes"] += int(scratch)
-    else:
+    if not after:
         cells, offsets = _trace(li, sols, w)
         ns, nd, turns, vul = li[sols, NS], li[sols, ND], li[sols, TURNS], lf[sols, F_VUL]
     values = {
