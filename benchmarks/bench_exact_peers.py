@@ -190,6 +190,7 @@ def main(argv=None) -> int:
                         hv=round(hv_ratio(cF, front.F), 6),
                         gapath_expansions=front.stats["expansions"],
                         c_expansions=c_exp,
+                        tie_edges=front.stats.get("tie_edges"),
                         peak_mb=round(front.stats["peak_bytes"] / 1e6, 2),
                         c_solver="BOA*" if n_obj == 2 else "LT-MOA*v",
                         tie_break=args.tie_break if n_obj == 2 else None,

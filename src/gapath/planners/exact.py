@@ -39,7 +39,9 @@ Bit-exact objectives
     of eighth turns and the vulnerability summed cell by cell in path order,
     so the values in :attr:`ExactFront.F` are computed with the arithmetic of
     :mod:`gapath.objectives` and equal what :func:`gapath.objectives.evaluate_path`
-    or :func:`gapath.objectives.evaluate_profiles` give for the returned paths.
+    or :func:`gapath.objectives.evaluate_profiles` give for the returned paths
+    (when :func:`free_front` picks the smoothest of tied paths after its
+    search, the values are summed again along the path it returns).
 """
 
 from __future__ import annotations
@@ -57,6 +59,7 @@ from gapath.errors import ConfigError, LabelBudgetError, NoPathError
 from gapath.grid import SQRT2
 from gapath.monotone import Frame, expand_profiles, split_paths
 from gapath.objectives import OBJECTIVES, QUARTER_PI, objective_index
+from gapath.planners._boa_kernels import _boa_run, _smoothest
 from gapath.planners._exact_heuristics import _free_prepare
 from gapath.planners._exact_kernels import (
     DONE,
@@ -551,10 +554,11 @@ def free_front(
         the search and propagates.
     tie_break : {"smoothest", "none"}, optional
         Which path represents tolerance-equal objective vectors when
-        smoothness is not an objective: the smoothest (default), or the
-        first found ("none": BOA* as published; the same ``F`` up to the tolerance,
-        faster on maps with many exact ties, and ``smoothness`` is that of
-        the returned path). Ignored when smoothness is an objective.
+        smoothness is not an objective: the smoothest, then the least
+        vulnerable (default), or the first found ("none": BOA* as published;
+        the same ``F`` up to the tolerance, a little faster on maps with many
+        exact ties, and ``smoothness`` is that of the returned path). Ignored
+        when smoothness is an objective.
 
     Returns
     -------
@@ -564,7 +568,9 @@ def free_front(
         when smoothness is not an objective). ``profiles`` is None (free paths
         have no column profile). The paths are simple (no repeated cell).
         ``stats`` has ``expansions``, ``generated``, ``labels``,
-        ``peak_bytes``, ``heuristic_seconds``, ``seconds``.
+        ``peak_bytes``, ``heuristic_seconds``, ``seconds`` (and
+        ``tie_edges``, the ties recorded, with the default tie-break on
+        length and vulnerability).
 
     Raises
     ------
@@ -587,22 +593,33 @@ def free_front(
     Notes
     -----
     States and objectives
-        For (length, vulnerability) a state is a cell; each label also
-        carries the heading of its last step and its total turn, used only to
-        keep the smoothest path among tolerance-equal ones: a label ``a``
-        discards a tolerance-equal label ``b`` at the same cell only if
-        ``turns(a) + gap <= turns(b)``, ``gap`` being the most by which the next
-        turn after ``a``'s heading can exceed the one after ``b``'s. When
-        smoothness is an objective the state is (cell, incoming heading), and
-        labels of the other headings of the cell are compared with the same
-        charge. A single objective ``x`` is solved as the (x, smoothness)
-        front followed by the tolerance filter on ``x``.
+        For (length, vulnerability) a state is a cell, and the search is
+        BOA* itself: a label tied with the one already expanded at its cell
+        is dropped. The smoothest path among tolerance-equal ones is found
+        after the search: each label dropped because it ties, in both
+        objectives, the label last expanded at its cell (or the last
+        solution) is recorded as an alternative in-edge (parent, step) of
+        that label, and the goal test keeps the labels whose f-vector ties
+        the last solution (a tied path may leave the first one early). The
+        expanded labels and these edges hold every path of every front
+        vector (a prefix of a Pareto-optimal path is Pareto-optimal at its
+        cell); a dynamic programme over them, on (label, incoming heading),
+        gives the smoothest path of each solution, and among equally smooth
+        ones the least vulnerable. Its objectives are recomputed along it.
+        When smoothness is an objective the state is (cell, incoming
+        heading), and labels of the other headings of the cell are compared
+        with their turn counts charged by the most the next turn can differ.
+        A single objective ``x`` is solved as the (x, smoothness) front
+        followed by the tolerance filter on ``x``.
 
     Tie-breaking cost
-        Keeping tolerance-equal labels that differ only in heading or turns
-        multiplies the labels on maps with many exact ties (flat potential:
-        about 5x on MovingAI's Berlin_1_256); ``tie_break="none"`` drops them
-        as BOA* does.
+        The tied labels are not expanded: the tie-break costs one 12-byte
+        edge per dropped tie, the labels whose f-vector ties a solution and
+        a pass over the edges after the search (on MovingAI's Berlin_1_256,
+        where 36 % of the cells have potential exactly 0: 2-57 % more
+        expansions than ``tie_break="none"`` and 5-18 % more time; the
+        former search, which kept tied labels that differed in heading or
+        turns, expanded up to 5x more).
 
     Heuristics
         Exact single-objective costs-to-go from backward Dijkstra searches
@@ -702,20 +719,32 @@ def free_front(
             interrupt,
         )
         total = {"expansions": 0, "generated": 0, "labels": 0, "peak_bytes": 0}
-        li, lf, sols, st = _search_pass(*args, tie_break == "smoothest", total, t0)
+        ties = tie_break == "smoothest"
+        li, lf, sols, st, edges, n_edges = _search_pass(*args, ties, total, t0)
+        after = mode == MODE_CELL and ties  # the smoothest path is chosen after the search
+        if after:
+            # the smoothest path of each solution over the tied in-edges; its objectives
+            # recomputed along it (a tied path may sum the vulnerability in another order)
+            cells, offsets, ns, nd, turns, vul, scratch = _smoothest(
+                li, int(st[S_N]), sols, edges, n_edges, pot, w
+            )
+            interrupt.check()
+            total["peak_bytes"] += int(scratch)
 
+    if not after:
+        cells, offsets = _trace(li, sols, w)
+        ns, nd, turns, vul = li[sols, NS], li[sols, ND], li[sols, TURNS], lf[sols, F_VUL]
     values = {
-        "length": (li[sols, NS] + SQRT2 * li[sols, ND]) * cs,
-        "vulnerability": lf[sols, F_VUL],
-        "smoothness": li[sols, TURNS] * QUARTER_PI,
+        "length": (ns + SQRT2 * nd) * cs,
+        "vulnerability": vul,
+        "smoothness": turns * QUARTER_PI,
     }
     F = np.column_stack([values[name] for name in names])
     # among tolerance-equal vectors prefer the smoothest path, then the shortest
-    order = np.lexsort((li[sols, NS] + SQRT2 * li[sols, ND], li[sols, TURNS]))
+    order = np.lexsort((ns + SQRT2 * nd, turns))
     keep = _tolerant_front(np.ascontiguousarray(F), order)
     keep = keep[np.lexsort(F[keep].T[::-1])]
-    cells, offsets = _trace(li, sols[keep], w)
-    paths = [cells[offsets[i] : offsets[i + 1]] for i in range(len(keep))]
+    paths = [cells[offsets[i] : offsets[i + 1]] for i in keep]
     stats = {
         **total,
         "solutions": int(st[S_SOLS]),
@@ -759,35 +788,65 @@ def _search_pass(
     gmin, first, li, lf, sols, hk, hid, st, stf = state
     fixed = hs.nbytes + hd.nbytes + hv.nbytes + ht.nbytes + gmin.nbytes + first.nbytes
     slices = _Slices(1 << 14, 1 << 10, 1 << 26)
+    # two objectives: BOA* (_boa_run), which records the in-edges of tied labels
+    # (the smoothest tie-break, `ties`) for _smoothest
+    edges, est = np.empty((1024 if ties else 16, 3), np.int32), np.zeros(1, np.int64)
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
-        li, lf, sols, hk, hid, status = _free_run(
-            occ,
-            pot,
-            gr,
-            gc,
-            cs,
-            mask,
-            mode,
-            P,
-            Q,
-            hs,
-            hd,
-            hv,
-            ht,
-            gmin,
-            first,
-            li,
-            lf,
-            sols,
-            hk,
-            hid,
-            st,
-            stf,
-            slices.n,
-            budget,
-            ties,
-        )
+        if mode == MODE_CELL:
+            li, lf, sols, hk, hid, edges, status = _boa_run(
+                occ,
+                pot,
+                gr,
+                gc,
+                cs,
+                mask,
+                hs,
+                hd,
+                hv,
+                gmin,
+                first,
+                li,
+                lf,
+                sols,
+                hk,
+                hid,
+                st,
+                stf,
+                edges,
+                est,
+                slices.n,
+                budget,
+                ties,
+            )
+        else:
+            li, lf, sols, hk, hid, status = _free_run(
+                occ,
+                pot,
+                gr,
+                gc,
+                cs,
+                mask,
+                mode,
+                P,
+                Q,
+                hs,
+                hd,
+                hv,
+                ht,
+                gmin,
+                first,
+                li,
+                lf,
+                sols,
+                hk,
+                hid,
+                st,
+                stf,
+                slices.n,
+                budget,
+                ties,
+            )
         interrupt.check()
         if status == PAUSED:  # a longer search: hold Ctrl-C from now on
             interrupt.arm()
@@ -821,9 +880,12 @@ def _search_pass(
     total["generated"] += int(st[S_GENERATED])
     total["labels"] = max(total["labels"], int(st[S_N]))  # rows used at the peak
     total["peak_bytes"] = max(
-        total["peak_bytes"], int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes)
+        total["peak_bytes"],
+        int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + edges.nbytes),
     )
-    return li, lf, sols[: st[S_SOLS]], st
+    if mode == MODE_CELL and ties:
+        total["tie_edges"] = int(est[0])
+    return li, lf, sols[: st[S_SOLS]], st, edges, int(est[0])
 
 
 # ---------------------------------------------------------------------------

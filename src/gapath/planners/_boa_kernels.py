@@ -1,0 +1,540 @@
+"""Numba kernels of the two-objective free search (private): BOA* on
+(length, vulnerability) and the smoothest representative of tied vectors.
+
+:func:`_boa_run` is BOA* (Hernandez et al. 2020, 2023) with cells as states,
+resumable like :func:`gapath.planners._exact_kernels._free_run` (its state
+is the arrays of :func:`gapath.planners._exact_kernels._free_init`, plus an
+edge table). With ``ties=False`` it is BOA* as published: a label whose
+second objective ties ``g2_min`` of its cell within SPEC's tolerance is
+dropped, whatever its path.
+
+With ``ties=True`` (the default tie-break: the smoothest path among
+tolerance-equal objective vectors) the search expands the same labels, and
+two things change:
+
+* a label dropped because it ties, in both objectives and within the
+  tolerance, the label last expanded at its cell (or the last solution, at
+  the goal) is recorded as an alternative in-edge of that label: a row
+  ``(label, parent, direction)`` of the edge table. The dropped label's
+  paths are the parent's paths plus one step; they have the tied label's
+  vector, so that label stands for all of them. Labels dropped because they
+  are dominated are not recorded;
+* the goal test keeps a label whose f-vector ties the last solution in both
+  objectives (BOA* drops it): a tied path that left the first one earlier
+  would be lost otherwise.
+
+The expanded labels and their in-edges (the primary one, to the label's own
+parent, and the recorded ones) form a DAG that holds, up to the tolerance,
+every path whose prefixes are Pareto-optimal at their cells, hence every
+path of every front vector. :func:`_smoothest` runs a min-turn dynamic
+programme over that DAG, state (label, incoming heading), and traces the
+smoothest path of each solution, with its objectives recomputed along the
+path in path order (so that they equal :func:`gapath.objectives.evaluate_path`).
+Tied labels are never expanded: the cost of the tie-break is one row per
+tie and about eight operations per edge after the search.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from gapath.grid import DC, DIRECTION, DR, SQRT2, turn
+from gapath.planners._exact_kernels import (
+    CELL,
+    DONE,
+    F_HEAD,
+    F_PARENT,
+    F_VUL,
+    ND,
+    NEED_ROOM,
+    NEXT,
+    NS,
+    OVER_BUDGET,
+    PAUSED,
+    S_EXPANDED,
+    S_FREE,
+    S_GENERATED,
+    S_GOAL_FIRST,
+    S_N,
+    S_N_FREE,
+    S_POPS,
+    S_SIZE,
+    S_SOLS,
+    SF_GOAL_MIN,
+    TURNS,
+    _eq,
+    _grow,
+    _grow1,
+    _heap_pop,
+    _heap_push,
+)
+
+#: Columns of the edge table: the label the edge enters, its parent (an
+#: expanded label) and the direction of the step.
+E_NODE, E_PARENT, E_DIR = range(3)
+
+_BIG = np.int64(1) << 40
+
+
+@numba.njit(cache=True)
+def _boa_run(
+    occ,
+    pot,
+    gr,
+    gc,
+    cell_size,
+    mask,
+    hs,
+    hd,
+    hv,
+    gmin,
+    first,
+    li,
+    lf,
+    sols,
+    hk,
+    hid,
+    st,
+    stf,
+    edges,
+    est,
+    n_steps,
+    max_labels,
+    ties,
+):
+    """Advance BOA* by at most ``n_steps`` pops of the open list.
+
+    The arguments are those of :func:`gapath.planners._exact_kernels._free_run`
+    for ``mode=MODE_CELL`` (without the turn heuristic, which a two-objective
+    search does not use) plus ``edges``, the (capacity, 3) int32 edge table,
+    and ``est = [number of edges]`` (updated in place). ``first[c]`` is the
+    label last expanded at cell ``c``. Returns ``(li, lf, sols, hk, hid,
+    edges, status)``; status DONE (open list empty), PAUSED or OVER_BUDGET.
+    :func:`_boa_steps` never reallocates (reference counting of arrays
+    reassigned in a numba loop cost most of the time); this loop grows what
+    it asks for.
+    """
+    pops0 = st[S_POPS]
+    while True:
+        status = _boa_steps(
+            occ,
+            pot,
+            gr,
+            gc,
+            cell_size,
+            mask,
+            hs,
+            hd,
+            hv,
+            gmin,
+            first,
+            li,
+            lf,
+            sols,
+            hk,
+            hid,
+            st,
+            stf,
+            edges,
+            est,
+            n_steps - (st[S_POPS] - pops0),
+            max_labels,
+            ties,
+        )
+        if status != NEED_ROOM:
+            return li, lf, sols, hk, hid, edges, status
+        if st[S_N] + 8 > li.shape[0]:
+            li = _grow(li, st[S_N] + 8)
+            lf = _grow(lf, st[S_N] + 8)
+        if st[S_SIZE] + 8 > hid.shape[0]:
+            hk = _grow(hk, st[S_SIZE] + 8)
+            hid = _grow1(hid, st[S_SIZE] + 8)
+        if st[S_SOLS] + 1 > sols.shape[0]:
+            sols = _grow1(sols, st[S_SOLS] + 1)
+        if est[0] + 9 > edges.shape[0]:
+            edges = _grow(edges, est[0] + 9)
+
+
+@numba.njit(cache=True)
+def _boa_steps(
+    occ,
+    pot,
+    gr,
+    gc,
+    cell_size,
+    mask,
+    hs,
+    hd,
+    hv,
+    gmin,
+    first,
+    li,
+    lf,
+    sols,
+    hk,
+    hid,
+    st,
+    stf,
+    edges,
+    est,
+    n_steps,
+    max_labels,
+    ties,
+):
+    """The loop of :func:`_boa_run`, in arrays it never reallocates: returns
+    NEED_ROOM before a pop when the label tables, the heap, the solution
+    list or the edge table could overflow (a pop records at most 9 edges)."""
+    h, w = occ.shape
+    goal = gr * w + gc
+    n = st[S_N]
+    size = st[S_SIZE]
+    n_sols = st[S_SOLS]
+    n_expanded = st[S_EXPANDED]
+    n_generated = st[S_GENERATED]
+    goal_first = st[S_GOAL_FIRST]  # the last solution found
+    free = st[S_FREE]
+    n_free = st[S_N_FREE]
+    goal_min = stf[SF_GOAL_MIN]
+    # length of the last solution: the strict goal test compares with it
+    goal_len = np.inf
+    if goal_first >= 0:
+        goal_len = (li[goal_first, NS] + SQRT2 * li[goal_first, ND]) * cell_size
+    ne = est[0]
+    status = DONE
+    steps = 0
+    pops0 = st[S_POPS]
+
+    while size > 0:
+        if steps == n_steps:
+            status = PAUSED
+            break
+        if n - n_free + 8 > max_labels:  # an expansion adds up to 8 labels
+            status = OVER_BUDGET
+            break
+        if (
+            n + 8 > li.shape[0]
+            or size + 8 > hid.shape[0]
+            or n_sols + 1 > sols.shape[0]
+            or ne + 9 > edges.shape[0]
+        ):
+            status = NEED_ROOM
+            break
+        steps += 1
+        x, size = _heap_pop(hk, hid, size)
+        c = li[x, CELL]
+        q = lf[x, F_VUL]
+
+        # lazy checks: g2_min of the cell, then the last solution
+        covered = False
+        tie = -1  # the label x ties: x's in-edge becomes one of its in-edges
+        if c != goal:
+            m = gmin[c]
+            if m < np.inf and not (q < m and not _eq(q, m)):
+                covered = True
+                if ties and _eq(q, m):
+                    a = first[c]
+                    if _eq(
+                        (li[x, NS] + SQRT2 * li[x, ND]) * cell_size,
+                        (li[a, NS] + SQRT2 * li[a, ND]) * cell_size,
+                    ):
+                        tie = a
+        if not covered and goal_min < np.inf:
+            fq = q + hv[c]
+            if not (fq < goal_min and not _eq(fq, goal_min)):
+                covered = True
+                if ties and _eq(fq, goal_min):
+                    fl = ((li[x, NS] + hs[c]) + SQRT2 * (li[x, ND] + hd[c])) * cell_size
+                    if _eq(fl, goal_len):  # ties the last solution: keep, or attach at the goal
+                        if c == goal:
+                            tie = goal_first
+                        else:
+                            covered = False
+        if covered:
+            if tie >= 0:
+                edges[ne, E_NODE] = tie
+                edges[ne, E_PARENT] = li[x, F_PARENT]
+                edges[ne, E_DIR] = li[x, F_HEAD]
+                ne += 1
+            li[x, NEXT] = free  # recycle the row: nothing refers to x
+            free = x
+            n_free += 1
+            continue
+
+        # a solution: record it, never expand it
+        if c == goal:
+            goal_min = q
+            goal_len = (li[x, NS] + SQRT2 * li[x, ND]) * cell_size
+            li[x, NEXT] = goal_first
+            goal_first = x
+            sols[n_sols] = x
+            n_sols += 1
+            continue
+
+        # expand x (q < g2_min of the cell beyond the tolerance)
+        n_expanded += 1
+        gmin[c] = q
+        first[c] = x
+        r, col = c // w, c % w
+        head = li[x, F_HEAD]
+        ns_x, nd_x, turns_x = li[x, NS], li[x, ND], li[x, TURNS]
+        mk = mask[c]
+        for d in range(8):
+            if not (mk >> d) & 1:
+                continue
+            r2, c2 = r + DR[d], col + DC[d]
+            cell = r2 * w + c2
+            if hv[cell] == np.inf:  # the goal cannot be reached from there
+                continue
+            n_generated += 1
+            ns_j = ns_x + (1 - d % 2)
+            nd_j = nd_x + d % 2
+            qj = q + pot[r2, c2]
+            # eager checks (BOA*: prune before the open list), on the values alone
+            if cell != goal:
+                m = gmin[cell]
+                if m < np.inf and not (qj < m and not _eq(qj, m)):
+                    if ties and _eq(qj, m):
+                        a = first[cell]
+                        if _eq(
+                            (ns_j + SQRT2 * nd_j) * cell_size,
+                            (li[a, NS] + SQRT2 * li[a, ND]) * cell_size,
+                        ):
+                            edges[ne, E_NODE] = a
+                            edges[ne, E_PARENT] = x
+                            edges[ne, E_DIR] = d
+                            ne += 1
+                    continue
+            f_vul = qj + hv[cell]
+            f_len = ((ns_j + hs[cell]) + SQRT2 * (nd_j + hd[cell])) * cell_size
+            if goal_min < np.inf and not (f_vul < goal_min and not _eq(f_vul, goal_min)):
+                if not (ties and _eq(f_vul, goal_min) and _eq(f_len, goal_len)):
+                    continue
+                if cell == goal:  # ties the last solution
+                    edges[ne, E_NODE] = goal_first
+                    edges[ne, E_PARENT] = x
+                    edges[ne, E_DIR] = d
+                    ne += 1
+                    continue
+            # a new label: a recycled row (its NEXT links the free list) or a new one
+            if free >= 0:
+                j = free
+                free = li[j, NEXT]
+                n_free -= 1
+            else:
+                j = n
+                n += 1
+            turns_j = turns_x + (turn(head, d) if head >= 0 else 0)
+            li[j, CELL] = cell
+            li[j, F_HEAD] = d
+            li[j, F_PARENT] = x
+            li[j, NS] = ns_j
+            li[j, ND] = nd_j
+            li[j, TURNS] = turns_j
+            li[j, NEXT] = -1
+            lf[j, F_VUL] = qj
+            _heap_push(hk, hid, size, f_len, f_vul, np.float64(turns_j), j)
+            size += 1
+    st[S_N] = n
+    st[S_SIZE] = size
+    st[S_SOLS] = n_sols
+    st[S_EXPANDED] = n_expanded
+    st[S_GENERATED] = n_generated
+    st[S_GOAL_FIRST] = goal_first
+    st[S_FREE] = free
+    st[S_N_FREE] = n_free
+    st[S_POPS] = pops0 + steps
+    stf[SF_GOAL_MIN] = goal_min
+    est[0] = ne
+    return status
+
+
+@numba.njit(cache=True)
+def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
+    """The smoothest path of each solution over the DAG of expanded labels.
+
+    Nodes are the label rows reachable backward from ``sols``; the in-edges
+    of a node are ``(parent, heading)`` of its own row and the rows of
+    ``edges[:n_edges]`` that enter it. ``(T, V)[v, d]`` is the
+    lexicographically least (total turn in eighths, vulnerability) of a path
+    of the DAG that ends at ``v`` with heading ``d``: over the in-edges
+    ``(p, d)`` of ``v`` and the headings ``h`` of ``p``, ``(T[p, h] +
+    turn(h, d), V[p, h] + P(v))``; ``(0, P(start))`` at the start label (it
+    has no heading). ``V`` is summed in path order, so it is the value the
+    path's own evaluation gives; among equally smooth tied paths the least
+    vulnerable one is taken. Nodes are taken in the post-order of a
+    depth-first search from the solutions, so parents come before children.
+    The trace prefers, at each node, its own in-edge, then the recorded
+    ones in the order they were recorded, and the lowest heading.
+
+    Returns ``(cells, offsets, n_straight, n_diag, turns, vul, scratch_bytes)``:
+    the cells of solution ``i``'s path are ``cells[offsets[i]:offsets[i + 1]]``
+    (``(row, col)``), its step counts, total turn and vulnerability summed
+    along it in path order from the start cell; ``scratch_bytes``, the memory
+    of the programme's arrays.
+    """
+    # alternative in-edges by node (counting sort)
+    off = np.zeros(n_rows + 1, np.int64)
+    for e in range(n_edges):
+        off[edges[e, E_NODE] + 1] += 1
+    for v in range(n_rows):
+        off[v + 1] += off[v]
+    fill = off[:n_rows].copy()
+    ep = np.empty(n_edges, np.int32)
+    edir = np.empty(n_edges, np.int32)
+    for e in range(n_edges):
+        v = edges[e, E_NODE]
+        k = fill[v]
+        ep[k] = edges[e, E_PARENT]
+        edir[k] = edges[e, E_DIR]
+        fill[v] = k + 1
+
+    # post-order of the nodes reachable from the solutions
+    state = np.zeros(n_rows, np.int8)  # 0 unseen, 1 open, 2 done
+    idx = np.full(n_rows, -1, np.int32)
+    order = np.empty(n_rows, np.int32)
+    stack = np.empty(n_rows + n_edges + len(sols) + 1, np.int32)
+    k = 0
+    for s in sols:
+        if state[s] != 0:
+            continue
+        sp = 0
+        stack[sp] = s
+        sp += 1
+        while sp > 0:
+            v = stack[sp - 1]
+            if state[v] == 2:
+                sp -= 1
+            elif state[v] == 0:
+                state[v] = 1
+                p = li[v, F_PARENT]
+                if p >= 0 and state[p] == 0:
+                    stack[sp] = p
+                    sp += 1
+                for e in range(off[v], off[v + 1]):
+                    p = ep[e]
+                    if state[p] == 0:
+                        stack[sp] = p
+                        sp += 1
+            else:
+                state[v] = 2
+                idx[v] = k
+                order[k] = v
+                k += 1
+                sp -= 1
+
+    # least (turns, vulnerability) per (node, incoming heading); hm: the headings set
+    T = np.full(k * 8, _BIG, np.int64)
+    V = np.full(k * 8, np.inf)
+    hm = np.zeros(k, np.uint8)
+    for i in range(k):
+        v = order[i]
+        c = li[v, CELL]
+        pv = pot[c // w, c % w]
+        if li[v, F_PARENT] < 0:  # the start label: no heading, no turn to come
+            for d in range(8):
+                T[i * 8 + d] = 0
+                V[i * 8 + d] = pv
+            hm[i] = 255
+            continue
+        for e in range(off[v] - 1, off[v + 1]):
+            if e < off[v]:
+                p, d = li[v, F_PARENT], li[v, F_HEAD]
+            else:
+                p, d = ep[e], edir[e]
+            ip = idx[p]
+            base = ip * 8
+            bits = hm[ip]
+            bt, bv = T[i * 8 + d], V[i * 8 + d]
+            for hh in range(8):
+                if (bits >> hh) & 1:
+                    t = T[base + hh] + turn(hh, d)
+                    if t < bt or (t == bt and V[base + hh] + pv < bv):
+                        bt, bv = t, V[base + hh] + pv
+            T[i * 8 + d] = bt
+            V[i * 8 + d] = bv
+            hm[i] |= 1 << d
+
+    # trace each solution back from its least (T, V) (the steps written out: a
+    # helper call per step cost most of the time), then evaluate it forwards
+    n_sols = len(sols)
+    offsets = np.zeros(n_sols + 1, np.int64)
+    out_ns = np.zeros(n_sols, np.int64)
+    out_nd = np.zeros(n_sols, np.int64)
+    out_turns = np.zeros(n_sols, np.int64)
+    out_vul = np.zeros(n_sols)
+    buf = np.empty(k, np.int32)  # the nodes of one path, goal first (distinct nodes)
+    total = 0
+    for si in range(n_sols):
+        total += li[sols[si], NS] + li[sols[si], ND] + 1
+    cells = np.empty((total, 2), np.int64)
+    for si in range(n_sols):
+        v = sols[si]
+        i = idx[v] * 8
+        d = 0
+        for dd in range(1, 8):
+            if T[i + dd] < T[i + d] or (T[i + dd] == T[i + d] and V[i + dd] < V[i + d]):
+                d = dd
+        m = 0
+        while True:
+            buf[m] = v
+            m += 1
+            if li[v, F_PARENT] < 0:
+                break
+            # an in-edge (p, d) of v (its own first) and a heading h of p giving T, V
+            i = idx[v] * 8 + d
+            c = li[v, CELL]
+            pv = pot[c // w, c % w]
+            found = False
+            for e in range(off[v] - 1, off[v + 1]):
+                if e < off[v]:
+                    p, de = li[v, F_PARENT], li[v, F_HEAD]
+                else:
+                    p, de = ep[e], edir[e]
+                if de != d:
+                    continue
+                base = idx[p] * 8
+                for hh in range(8):
+                    if T[base + hh] + turn(hh, d) == T[i] and V[base + hh] + pv == V[i]:
+                        v, d = p, hh
+                        found = True
+                        break
+                if found:
+                    break
+        a = offsets[si]
+        b = a + m
+        offsets[si + 1] = b
+        if b > cells.shape[0]:  # not reached when tied paths have equal step counts
+            grown = np.empty((max(b, 2 * cells.shape[0]), 2), np.int64)
+            grown[:a] = cells[:a]
+            cells = grown
+        for t in range(m):
+            c = li[buf[m - 1 - t], CELL]
+            cells[a + t, 0] = c // w
+            cells[a + t, 1] = c % w
+        # the objectives along the path, in path order (as gapath.objectives does)
+        vul = pot[cells[a, 0], cells[a, 1]]
+        ns = 0
+        nd = 0
+        eighths = 0
+        prev = -1
+        for t in range(a + 1, b):
+            vul += pot[cells[t, 0], cells[t, 1]]
+            d = DIRECTION[cells[t, 0] - cells[t - 1, 0] + 1, cells[t, 1] - cells[t - 1, 1] + 1]
+            if d % 2 == 1:
+                nd += 1
+            else:
+                ns += 1
+            if prev >= 0:
+                eighths += turn(prev, d)
+            prev = d
+        out_ns[si] = ns
+        out_nd[si] = nd
+        out_turns[si] = eighths
+        out_vul[si] = vul
+    cells = cells[: offsets[n_sols]]
+    scratch = 0
+    for arr_bytes in (off.nbytes, fill.nbytes, ep.nbytes, edir.nbytes, state.nbytes, idx.nbytes):
+        scratch += arr_bytes
+    scratch += order.nbytes + stack.nbytes + T.nbytes + V.nbytes + hm.nbytes + buf.nbytes + cells.nbytes
+    return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
