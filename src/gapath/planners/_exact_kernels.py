@@ -1156,10 +1156,12 @@ def _free_steps(
                     if gmin[b + 1] <= bound:  # the head: the least vulnerable is within it
                         covered = True
                         break
+                    # walk to the first entry within the bound; vulnerability grows along
+                    # the list, so stop at the first entry more vulnerable than x
                     a = first[c * N_SLOTS + k]
-                    while li[a, TURNS] > bound:
+                    while li[a, TURNS] > bound and _le(lf[a, F_VUL], v):
                         a = li[a, NEXT]
-                    if _le(lf[a, F_VUL], v):
+                    if li[a, TURNS] <= bound and _le(lf[a, F_VUL], v):
                         covered = True
                         break
             tmax = first[goal_state]
@@ -1293,10 +1295,10 @@ def _free_steps(
                         if gmin[b + 1] <= bound:  # the head: the least vulnerable is within it
                             covered = True
                             break
-                        a = first[cell * N_SLOTS + k]
-                        while li[a, TURNS] > bound:
+                        a = first[cell * N_SLOTS + k]  # as at the pop (above)
+                        while li[a, TURNS] > bound and _le(lf[a, F_VUL], v):
                             a = li[a, NEXT]
-                        if _le(lf[a, F_VUL], v):
+                        if li[a, TURNS] <= bound and _le(lf[a, F_VUL], v):
                             covered = True
                             break
                 tmax = first[goal_state]
