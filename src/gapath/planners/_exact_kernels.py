@@ -809,6 +809,10 @@ def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties):
     is dominated by, or tolerance-equal to and not smoother than, the same
     completion of ``a``: the next turn after ``a``'s heading may exceed the
     one after ``x``'s by ``_heading_gap``, so ``a``'s turns are charged with it.
+
+    MODE_THREE's checks are written out in :func:`_free_steps`, reading the
+    staircase summaries (THREE_BLOCK) before walking a list; its branch here
+    gives the same answer by walking every list.
     """
     c = li[x, CELL]
     hx = li[x, F_HEAD]
