@@ -40,7 +40,9 @@ def nearest_free(occ, cell):
     then row-major order)."""
     rows, cols = np.nonzero(~occ)
     r0, c0 = cell
-    key = np.lexsort((cols, rows, abs(rows - r0) + abs(cols - c0), np.maximum(abs(rows - r0), abs(cols - c0))))
+    key = np.lexsort(
+        (cols, rows, abs(rows - r0) + abs(cols - c0), np.maximum(abs(rows - r0), abs(cols - c0)))
+    )
     return int(rows[key[0]]), int(cols[key[0]])
 
 
