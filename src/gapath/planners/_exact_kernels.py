@@ -393,6 +393,13 @@ OBJ_LEN, OBJ_VUL, OBJ_SMOOTH = range(3)
 MODE_CELL, MODE_HEADING, MODE_THREE = range(3)
 N_SLOTS = 9  # per cell: the 8 headings and "no heading" (slot 8)
 _BIG_TURNS = 1 << 40
+#: MODE_THREE keeps per-cell summaries of its staircases in ``gmin`` (which the
+#: two-objective modes use for g2_min): a block of THREE_BLOCK floats per cell,
+#: the smallest vulnerability in any of the cell's 9 staircases, then for each
+#: slot the head's vulnerability (the staircase's smallest; inf if empty), the
+#: head's turns (the largest) and the tail's turns (the smallest); after the
+#: blocks, the goal front (:func:`_goal_insert`). 4 * H * W * N_SLOTS floats.
+THREE_BLOCK = 1 + 3 * N_SLOTS
 
 
 @numba.njit(cache=True)
@@ -560,6 +567,50 @@ def _stair_insert(li, lf, first, s, x):
         li[keep, NEXT] = x
 
 
+@numba.njit(cache=True)
+def _goal_insert(li, lf, gmin, base, first, goal_state, x):
+    """Record solution ``x`` in MODE_THREE's goal front.
+
+    Solutions leave the open list in order of length, so covering a label at
+    the goal is a 2-D question on (turns, vulnerability), like a state's
+    staircase, but asked for every generated label; it is answered in O(1)
+    by a prefix minimum over turn counts: ``gmin[base + u]`` is the smallest
+    vulnerability of a solution with at most ``u`` eighth turns, for ``u <=
+    first[goal_state]``, the largest turn count of a solution (-1: none
+    yet). A solution's path is simple, so its turn count is below ``4 * H *
+    W``, the room left after the cells' blocks (see THREE_BLOCK)."""
+    t = li[x, TURNS]
+    v = lf[x, F_VUL]
+    tmax = first[goal_state]
+    if t > tmax:
+        fill = gmin[base + tmax] if tmax >= 0 else np.inf
+        for u in range(tmax + 1, t + 1):
+            gmin[base + u] = fill
+        tmax = t
+        first[goal_state] = t
+    for u in range(t, tmax + 1):  # non-increasing: stop at the first entry <= v
+        if gmin[base + u] <= v:
+            break
+        gmin[base + u] = v
+
+
+@numba.njit(cache=True)
+def _three_insert(li, lf, first, gmin, s, x):
+    """:func:`_stair_insert` of label ``x`` into staircase ``s`` (MODE_THREE),
+    and the summaries of ``s`` and its cell updated (see THREE_BLOCK). The
+    head's vulnerability never increases (a new head is less vulnerable than
+    every entry), and ``x`` is the tail exactly when nothing follows it."""
+    _stair_insert(li, lf, first, s, x)
+    c = s // N_SLOTS
+    b = c * THREE_BLOCK + 1 + 3 * (s % N_SLOTS)
+    a = first[s]
+    gmin[b] = lf[a, F_VUL]
+    gmin[b + 1] = li[a, TURNS]
+    if li[x, NEXT] < 0:
+        gmin[b + 2] = li[x, TURNS]
+    gmin[c * THREE_BLOCK] = min(gmin[c * THREE_BLOCK], gmin[b])
+
+
 @numba.njit(cache=True, inline="always")
 def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties):
     """True if a label already expanded at the state of ``x`` covers ``x``.
@@ -573,6 +624,10 @@ def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties):
     is dominated by, or tolerance-equal to and not smoother than, the same
     completion of ``a``: the next turn after ``a``'s heading may exceed the
     one after ``x``'s by ``_heading_gap``, so ``a``'s turns are charged with it.
+
+    MODE_THREE's checks are written out in :func:`_free_steps`, reading the
+    staircase summaries (THREE_BLOCK) before walking a list; its branch here
+    gives the same answer by walking every list.
     """
     c = li[x, CELL]
     hx = li[x, F_HEAD]
@@ -627,12 +682,9 @@ def _goal_covered(
 ):
     """True if a solution already found covers the f-vector of ``x`` (its
     lower bound at the goal), i.e. every completion of ``x`` is dominated by
-    a solution or tolerance-equal to one and not smoother."""
-    if mode == MODE_THREE:
-        fv = _f(li, lf, x, OBJ_VUL, cell_size, hs, hd, hv, ht)
-        ft = li[x, TURNS] + _ht(ht, li[x, CELL], li[x, F_HEAD])
-        m = _stair_min(li, lf, first, goal_state, ft)
-        return m < np.inf and _le(m, fv)
+    a solution or tolerance-equal to one and not smoother. MODE_CELL and
+    MODE_HEADING (MODE_THREE's goal check is written out in
+    :func:`_free_steps`, on the array of :func:`_goal_insert`)."""
     if goal_min == np.inf:
         return False
     fq = _f(li, lf, x, Q, cell_size, hs, hd, hv, ht)
@@ -672,7 +724,8 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
 
     Returns ``(gmin, first, li, lf, sols, hk, hid, st, stf)``, the arrays
     :func:`_free_run` resumes from."""
-    gmin = np.full(n_states, np.inf)  # BOA*: g2_min of each state
+    # BOA*: g2_min of each state; MODE_THREE: staircase summaries and goal front (THREE_BLOCK)
+    gmin = np.full(n_states * (4 if mode == MODE_THREE else 1), np.inf)
     first = np.full(n_states + 1, -1, np.int32)  # newest label / staircase head
     li = np.empty((1024, 7), np.int32)
     lf = np.empty((1024, 2))
@@ -835,7 +888,8 @@ def _free_steps(
     solution list could overflow."""
     h, w = occ.shape
     goal = gr * w + gc
-    goal_state = first.shape[0] - 1  # MODE_THREE: the goal's staircase
+    goal_state = first.shape[0] - 1  # MODE_THREE: first[goal_state] = largest solution turns (_goal_insert)
+    goal_base = THREE_BLOCK * h * w  # MODE_THREE: the goal front in gmin (_goal_insert)
     second = OBJ_VUL if mode == MODE_THREE else Q
     n = st[S_N]
     size = st[S_SIZE]
@@ -902,6 +956,38 @@ def _free_steps(
                         ties,
                     )
                 )
+        elif mode == MODE_THREE:
+            # the staircases walked here, as at generation (see below); x's heading is
+            # -1 only for the start label
+            t = li[x, TURNS]
+            v = lf[x, F_VUL]
+            hx = li[x, F_HEAD]
+            covered = False
+            base = c * THREE_BLOCK
+            if c != goal and gmin[base] < np.inf and _le(gmin[base], v):
+                for k in range(N_SLOTS):
+                    b = base + 1 + 3 * k
+                    if gmin[b] == np.inf or not _le(gmin[b], v):
+                        continue
+                    bound = t - (0 if k == 8 else (4 if hx < 0 else turn(k, hx)))  # _heading_gap
+                    if gmin[b + 2] > bound:  # the tail: nothing within the bound
+                        continue
+                    if gmin[b + 1] <= bound:  # the head: the least vulnerable is within it
+                        covered = True
+                        break
+                    # walk to the first entry within the bound; vulnerability grows along
+                    # the list, so stop at the first entry more vulnerable than x
+                    a = first[c * N_SLOTS + k]
+                    while li[a, TURNS] > bound and _le(lf[a, F_VUL], v):
+                        a = li[a, NEXT]
+                    if li[a, TURNS] <= bound and _le(lf[a, F_VUL], v):
+                        covered = True
+                        break
+            tmax = first[goal_state]
+            if not covered and tmax >= 0:
+                bound = t + (ht[c * N_SLOTS + (hx if hx >= 0 else 8)] if ht.shape[0] > 1 else 0)
+                m = gmin[goal_base + min(bound, tmax)]
+                covered = m < np.inf and _le(m, v + hv[c])
         else:
             covered = (
                 c != goal and _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties)
@@ -932,7 +1018,7 @@ def _free_steps(
         # 4a. a solution: record it, never expand it
         if c == goal:
             if mode == MODE_THREE:
-                _stair_insert(li, lf, first, goal_state, x)
+                _goal_insert(li, lf, gmin, goal_base, first, goal_state, x)
             else:
                 goal_min = min(goal_min, _g(li, lf, x, Q, cell_size))
                 lf[x, RUNMIN] = goal_min
@@ -946,7 +1032,7 @@ def _free_steps(
         n_expanded += 1
         s = c if mode == MODE_CELL else c * N_SLOTS + _slot(li[x, F_HEAD])
         if mode == MODE_THREE:
-            _stair_insert(li, lf, first, s, x)
+            _three_insert(li, lf, first, gmin, s, x)
         else:
             gmin[s] = min(gmin[s], _g(li, lf, x, Q, cell_size))
             lf[x, RUNMIN] = gmin[s]
@@ -1016,25 +1102,29 @@ def _free_steps(
                 t = li[j, TURNS]
                 v = lf[j, F_VUL]
                 covered = False
-                if cell != goal:
+                base = cell * THREE_BLOCK
+                if cell != goal and gmin[base] < np.inf and _le(gmin[base], v):
                     for k in range(N_SLOTS):
-                        a = first[cell * N_SLOTS + k]
-                        if a < 0:
+                        b = base + 1 + 3 * k
+                        if gmin[b] == np.inf or not _le(gmin[b], v):
                             continue
                         bound = t - (0 if k == 8 else turn(k, d))  # _heading_gap
-                        if bound < 0:
+                        if gmin[b + 2] > bound:  # the tail: nothing within the bound
                             continue
-                        while a >= 0 and li[a, TURNS] > bound:
-                            a = li[a, NEXT]
-                        if a >= 0 and _le(lf[a, F_VUL], v):
+                        if gmin[b + 1] <= bound:  # the head: the least vulnerable is within it
                             covered = True
                             break
-                if not covered:
+                        a = first[cell * N_SLOTS + k]  # as at the pop (above)
+                        while li[a, TURNS] > bound and _le(lf[a, F_VUL], v):
+                            a = li[a, NEXT]
+                        if li[a, TURNS] <= bound and _le(lf[a, F_VUL], v):
+                            covered = True
+                            break
+                tmax = first[goal_state]
+                if not covered and tmax >= 0:
                     bound = t + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0)
-                    a = first[goal_state]
-                    while a >= 0 and li[a, TURNS] > bound:
-                        a = li[a, NEXT]
-                    covered = a >= 0 and _le(lf[a, F_VUL], f_vul)
+                    m = gmin[goal_base + min(bound, tmax)]
+                    covered = m < np.inf and _le(m, f_vul)
                 if covered:
                     continue
             else:

@@ -1,0 +1,111 @@
+"""The three-objective free search's dominance structures (issue 15 item 2).
+
+MODE_THREE keeps, besides each state's (turns, vulnerability) staircase (a
+linked list of labels), per-cell summaries of the staircases and the goal
+front as a prefix minimum over turn counts, both in ``gmin``; the checks
+read the summaries first. These tests run the search kernels to the end and
+recompute every summary from the lists and the solutions. The fronts themselves are checked against brute force and an
+independent label-setting search in ``test_exact_free.py``; the kernel was
+compared with the implementation before the summaries on 584 random cases
+(identical ``F``, smoothness and expansions; docs/results/exact_speed.md).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from gapath import Workspace, random_workspace
+from gapath.planners import _exact_kernels as K
+from gapath.planners.exact import _search_plan, free_front
+
+LVS = ("length", "vulnerability", "smoothness")
+
+
+def _run(ws: Workspace, n_steps: int = 1 << 30):
+    """The MODE_THREE search arrays after the search (as free_front runs it)."""
+    occ = np.ascontiguousarray(ws.occ)
+    pot = np.ascontiguousarray(ws.potential, dtype=np.float64)
+    (sr, sc), (gr, gc) = ws.start, ws.goal
+    h, w = ws.shape
+    mode, P, Q = _search_plan(LVS)
+    assert mode == K.MODE_THREE
+    mask = K._move_masks(occ, ws.corner_cutting)
+    hs, hd, hv, ht = K._free_heuristics(occ, pot, gr, gc, ws.corner_cutting, True, mask)
+    state = K._free_init(pot, sr, sc, w, 1.0, mode, P, Q, hs, hd, hv, ht, h * w * K.N_SLOTS)
+    gmin, first, li, lf, sols, hk, hid, st, stf = state
+    while True:
+        li, lf, sols, hk, hid, status = K._free_run(
+            occ, pot, gr, gc, 1.0, mask, mode, P, Q, hs, hd, hv, ht, gmin, first,
+            li, lf, sols, hk, hid, st, stf, n_steps, 1 << 30, True,
+        )  # fmt: skip
+        if status == K.DONE:
+            return gmin, first, li, lf, sols[: st[K.S_SOLS]]
+
+
+def _maps():
+    out = []
+    for seed in range(6):
+        out.append(random_workspace((14, 14), 30, seed=seed))
+    rng = np.random.default_rng(7)
+    for _ in range(4):  # flat potential far from obstacles: many exact ties
+        occ = rng.random((18, 18)) < 0.08
+        occ[17, 0] = occ[0, 17] = False
+        out.append(Workspace(occ, corner_cutting=bool(rng.integers(2))))
+    return out
+
+
+@pytest.mark.parametrize("ws", _maps(), ids=lambda ws: ws.name)
+@pytest.mark.parametrize("n_steps", [1 << 30, 5])
+def test_summaries_match_the_staircases(ws, n_steps):
+    gmin, first, li, lf, sols = _run(ws, n_steps)
+    h, w = ws.shape
+    n_cells = h * w
+    assert gmin.shape[0] >= (K.THREE_BLOCK + 4) * n_cells + 1
+    n_checked = n_cells_used = 0
+    for c in range(n_cells):
+        base = c * K.THREE_BLOCK
+        heads = []
+        for k in range(K.N_SLOTS):
+            b = base + 1 + 3 * k
+            a = first[c * K.N_SLOTS + k]
+            if a < 0:
+                assert gmin[b] == np.inf
+                continue
+            turns, vul = [], []
+            while a >= 0:
+                turns.append(li[a, K.TURNS])
+                vul.append(lf[a, K.F_VUL])
+                assert li[a, K.CELL] == c
+                a = li[a, K.NEXT]
+            # a staircase: turns strictly decreasing, vulnerability strictly increasing
+            assert all(np.diff(turns) < 0) and all(np.diff(vul) > 0)
+            assert (gmin[b], gmin[b + 1], gmin[b + 2]) == (vul[0], turns[0], turns[-1])
+            heads.append(vul[0])
+            n_checked += 1
+        assert gmin[base] == (min(heads) if heads else np.inf)
+        n_cells_used += bool(heads)
+    assert n_checked > n_cells_used  # several headings at some cells
+
+    # the goal front: prefix minimum of the solutions' vulnerabilities over turns
+    goal_base = K.THREE_BLOCK * n_cells
+    t_sol, v_sol = li[sols, K.TURNS], lf[sols, K.F_VUL]
+    tmax = first[first.shape[0] - 1]
+    assert tmax == t_sol.max()
+    for u in range(tmax + 1):
+        within = v_sol[t_sol <= u]
+        assert gmin[goal_base + u] == (within.min() if len(within) else np.inf)
+
+
+@pytest.mark.parametrize("ws", _maps()[:3] + _maps()[-2:], ids=lambda ws: ws.name)
+def test_front_does_not_depend_on_slicing(ws):
+    """The summaries live across kernel calls: a search resumed every 3 pops
+    gives the front of one call."""
+    one = free_front(ws, LVS)
+    _, _, li, lf, sols = _run(ws, 3)
+    F = np.column_stack(
+        [(li[sols, K.NS] + np.sqrt(2) * li[sols, K.ND]), lf[sols, K.F_VUL], li[sols, K.TURNS] * np.pi / 4]
+    )
+    # every front point is among the sliced search's solutions
+    for f in one.F:
+        assert np.isclose(F, f, rtol=1e-9, atol=1e-9).all(axis=1).any()
