@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 
 from gapath import Workspace, random_workspace
+from gapath.planners import _exact_heuristics as H
 from gapath.planners import _exact_kernels as K
 from gapath.planners.exact import _search_plan, free_front
 
@@ -30,14 +31,14 @@ def _run(ws: Workspace, n_steps: int = 1 << 30):
     h, w = ws.shape
     mode, P, Q = _search_plan(LVS)
     assert mode == K.MODE_THREE
-    mask = K._move_masks(occ, ws.corner_cutting)
-    hs, hd, hv, ht = K._free_heuristics(occ, pot, gr, gc, ws.corner_cutting, True, mask)
+    mask = H._move_masks(occ, ws.corner_cutting)
+    hs, hd, hv, ht = H._free_heuristics(occ, pot, gr, gc, ws.corner_cutting, True, mask)
     state = K._free_init(pot, sr, sc, w, 1.0, mode, P, Q, hs, hd, hv, ht, h * w * K.N_SLOTS)
     gmin, first, li, lf, sols, hk, hid, st, stf = state
     while True:
         li, lf, sols, hk, hid, status = K._free_run(
             occ, pot, gr, gc, 1.0, mask, mode, P, Q, hs, hd, hv, ht, gmin, first,
-            li, lf, sols, hk, hid, st, stf, n_steps, 1 << 30, True,
+            li, lf, sols, hk, hid, st, stf, n_steps, 1 << 30,
         )  # fmt: skip
         if status == K.DONE:
             return gmin, first, li, lf, sols[: st[K.S_SOLS]]

@@ -531,21 +531,6 @@ def _f(li, lf, i, o, cell_size, hs, hd, hv, ht):
 
 
 @numba.njit(cache=True, inline="always")
-def _stair_min(li, lf, first, s, bound):
-    """Smallest vulnerability among the labels of staircase ``s`` whose turn
-    count is at most ``bound`` (``inf`` if none).
-
-    A staircase is a linked list of labels sorted by turns, decreasing, with
-    vulnerability strictly increasing: the first entry within the bound is
-    the least vulnerable one (EMOA* keeps the same 2-D front in a balanced
-    tree; the lists here are short)."""
-    a = first[s]
-    while a >= 0 and li[a, TURNS] > bound:
-        a = li[a, NEXT]
-    return lf[a, F_VUL] if a >= 0 else np.inf
-
-
-@numba.njit(cache=True, inline="always")
 def _stair_insert(li, lf, first, s, x):
     """Insert label ``x`` (not covered by staircase ``s``) into it, dropping
     the entries it makes redundant: as many turns or more and as vulnerable
@@ -612,101 +597,36 @@ def _three_insert(li, lf, first, gmin, s, x):
 
 
 @numba.njit(cache=True, inline="always")
-def _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties):
-    """True if a label already expanded at the state of ``x`` covers ``x``.
+def _state_covered(li, lf, x, gmin, cell_size):
+    """MODE_HEADING: True if a label already expanded at the cell of ``x``
+    covers ``x``.
 
-    Without ``ties`` (MODE_CELL only) it is BOA* as published: a label that
-    ties ``g2_min`` within the tolerance is covered whatever its turns.
-
-    Every expanded label ``a`` at the same cell left the open list before
-    ``x`` (or before ``x``'s parent), so ``P(a) <= P(x)``; only the other
-    objectives are compared. ``a`` covers ``x`` when each completion of ``x``
-    is dominated by, or tolerance-equal to and not smoother than, the same
-    completion of ``a``: the next turn after ``a``'s heading may exceed the
-    one after ``x``'s by ``_heading_gap``, so ``a``'s turns are charged with it.
-
-    MODE_THREE's checks are written out in :func:`_free_steps`, reading the
-    staircase summaries (THREE_BLOCK) before walking a list; its branch here
-    gives the same answer by walking every list.
+    BOA* with ``Q`` = turns: every expanded label ``a`` at the cell left the
+    open list before ``x`` (or before ``x``'s parent), so ``P(a) <= P(x)``;
+    ``a`` covers ``x`` when its turns, charged with the most by which the
+    next turn after ``a``'s heading may exceed the one after ``x``'s
+    (``_heading_gap``, 0 for ``x``'s own state), are not above ``x``'s. So
+    the g2_min of each heading of the cell decides.
     """
     c = li[x, CELL]
     hx = li[x, F_HEAD]
-    if mode == MODE_CELL:
-        # BOA*: g2_min(cell) decides unless x ties it within the tolerance
-        q = _g(li, lf, x, Q, cell_size)
-        m = gmin[c]
-        if m == np.inf or (q < m and not _eq(q, m)):
-            return False
-        if not ties or (m < q and not _eq(m, q)):
-            return True
-        p = _g(li, lf, x, P, cell_size)
-        a = first[c]
-        while a >= 0 and _le(lf[a, RUNMIN], q):
-            ap = _g(li, lf, a, P, cell_size)
-            aq = _g(li, lf, a, Q, cell_size)
-            if _le(ap, p) and _le(aq, q):
-                if not _eq(ap, p) or not _eq(aq, q):
-                    return True
-                if li[a, TURNS] + _heading_gap(li[a, F_HEAD], hx) <= li[x, TURNS]:
-                    return True
-            a = li[a, NEXT]
-        return False
-    if mode == MODE_HEADING:
-        # BOA* with Q = turns: g2_min of each heading of the cell, charged
-        # with the heading gap (0 for x's own state)
-        t = li[x, TURNS]
-        for k in range(N_SLOTS):
-            m = gmin[c * N_SLOTS + k]
-            if m < np.inf and m + _heading_gap(k if k < 8 else -1, hx) <= t:
-                return True
-        return False
-    # three objectives: a 2-D (turns, vulnerability) staircase per state
     t = li[x, TURNS]
-    v = lf[x, F_VUL]
     for k in range(N_SLOTS):
-        s = c * N_SLOTS + k
-        if first[s] < 0:
-            continue
-        bound = t - _heading_gap(k if k < 8 else -1, hx)
-        if bound < 0:
-            continue
-        m = _stair_min(li, lf, first, s, bound)
-        if m < np.inf and _le(m, v):
+        m = gmin[c * N_SLOTS + k]
+        if m < np.inf and m + _heading_gap(k if k < 8 else -1, hx) <= t:
             return True
     return False
 
 
 @numba.njit(cache=True, inline="always")
-def _goal_covered(
-    li, lf, x, mode, P, Q, goal_min, goal_first, first, goal_state, cell_size, hs, hd, hv, ht, ties
-):
-    """True if a solution already found covers the f-vector of ``x`` (its
-    lower bound at the goal), i.e. every completion of ``x`` is dominated by
-    a solution or tolerance-equal to one and not smoother. MODE_CELL and
-    MODE_HEADING (MODE_THREE's goal check is written out in
-    :func:`_free_steps`, on the array of :func:`_goal_insert`)."""
+def _goal_covered(li, lf, x, Q, goal_min, cell_size, hs, hd, hv, ht):
+    """MODE_HEADING: True if a solution already found covers the f-vector of
+    ``x`` (its lower bound at the goal). Q is the (integer) turn count, so a
+    tie within the tolerance is an equal turn count: covered."""
     if goal_min == np.inf:
         return False
     fq = _f(li, lf, x, Q, cell_size, hs, hd, hv, ht)
-    if fq < goal_min and not _eq(fq, goal_min):
-        return False
-    if goal_min < fq and not _eq(goal_min, fq):
-        return True
-    if mode == MODE_HEADING or not ties:  # MODE_HEADING: Q is integer, goal_min == fq
-        return True
-    fp = _f(li, lf, x, P, cell_size, hs, hd, hv, ht)
-    to_go = _ht(ht, li[x, CELL], li[x, F_HEAD])
-    a = goal_first
-    while a >= 0 and _le(lf[a, RUNMIN], fq):
-        ap = _g(li, lf, a, P, cell_size)
-        aq = _g(li, lf, a, Q, cell_size)
-        if _le(ap, fp) and _le(aq, fq):
-            if not _eq(ap, fp) or not _eq(aq, fq):
-                return True
-            if li[a, TURNS] <= li[x, TURNS] + to_go:
-                return True
-        a = li[a, NEXT]
-    return False
+    return not (fq < goal_min and not _eq(fq, goal_min))
 
 
 # -- the search -------------------------------------------------------------------
@@ -788,18 +708,16 @@ def _free_run(
     stf,
     n_steps,
     max_labels,
-    ties,
 ):
     """Advance the multi-objective label-setting search from start to goal
     by at most ``n_steps`` pops of the open list.
 
-    ``mode`` is ``MODE_CELL`` (objectives ``P = length``, ``Q =
-    vulnerability``, turns as tie-break, states = cells), ``MODE_HEADING``
-    (``P`` = length or vulnerability, ``Q`` = smoothness, states = (cell,
-    heading)) or ``MODE_THREE`` (length, vulnerability, smoothness, states =
-    (cell, heading)). ``ties=False`` (MODE_CELL): BOA* as published, ties
-    within the tolerance are dropped whatever their turns. ``mask``: the
-    allowed moves of each cell (:func:`_move_masks`).
+    ``mode`` is ``MODE_HEADING`` (``P`` = length or vulnerability, ``Q`` =
+    smoothness, states = (cell, heading)) or ``MODE_THREE`` (length,
+    vulnerability, smoothness, states = (cell, heading)); ``MODE_CELL``
+    (length, vulnerability) is BOA* in :mod:`gapath.planners._boa_kernels`.
+    ``mask``: the allowed moves of each cell
+    (:func:`gapath.planners._exact_heuristics._move_masks`).
 
     The state is the arrays made by :func:`_free_init` and the scalars in
     ``st``/``stf`` (updated in place). A label dropped when it leaves the
@@ -841,7 +759,6 @@ def _free_run(
             stf,
             n_steps - (st[S_POPS] - pops0),
             max_labels,
-            ties,
         )
         if status != NEED_ROOM:
             return li, lf, sols, hk, hid, status
@@ -881,7 +798,6 @@ def _free_steps(
     stf,
     n_steps,
     max_labels,
-    ties,
 ):
     """The search loop of :func:`_free_run`, in arrays it never reallocates:
     returns NEED_ROOM before a pop when the label tables, the heap or the
@@ -896,7 +812,6 @@ def _free_steps(
     n_sols = st[S_SOLS]
     n_expanded = st[S_EXPANDED]
     n_generated = st[S_GENERATED]
-    goal_first = st[S_GOAL_FIRST]
     free = st[S_FREE]
     n_free = st[S_N_FREE]
     goal_min = stf[SF_GOAL_MIN]
@@ -919,44 +834,8 @@ def _free_steps(
         x, size = _heap_pop(hk, hid, size)
         c = li[x, CELL]
 
-        # 3. dominance checks (lazy: the sets changed since x was generated); for two
-        # objectives the O(1) g2_min tests first, the full checks only on a tie
-        if mode == MODE_CELL:
-            covered = False
-            q = lf[x, F_VUL]
-            if c != goal:
-                m = gmin[c]
-                if m < np.inf and not (q < m and not _eq(q, m)):
-                    covered = (
-                        not ties
-                        or (m < q and not _eq(m, q))
-                        or _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties)
-                    )
-            fq = q + hv[c]
-            if not covered and goal_min < np.inf and not (fq < goal_min and not _eq(fq, goal_min)):
-                covered = (
-                    not ties
-                    or (goal_min < fq and not _eq(goal_min, fq))
-                    or _goal_covered(
-                        li,
-                        lf,
-                        x,
-                        mode,
-                        P,
-                        Q,
-                        goal_min,
-                        goal_first,
-                        first,
-                        goal_state,
-                        cell_size,
-                        hs,
-                        hd,
-                        hv,
-                        ht,
-                        ties,
-                    )
-                )
-        elif mode == MODE_THREE:
+        # 3. dominance checks (lazy: the sets changed since x was generated)
+        if mode == MODE_THREE:
             # the staircases walked here, as at generation (see below); x's heading is
             # -1 only for the start label
             t = li[x, TURNS]
@@ -989,25 +868,8 @@ def _free_steps(
                 m = gmin[goal_base + min(bound, tmax)]
                 covered = m < np.inf and _le(m, v + hv[c])
         else:
-            covered = (
-                c != goal and _state_covered(li, lf, x, mode, P, Q, gmin, first, cell_size, ties)
-            ) or _goal_covered(
-                li,
-                lf,
-                x,
-                mode,
-                P,
-                Q,
-                goal_min,
-                goal_first,
-                first,
-                goal_state,
-                cell_size,
-                hs,
-                hd,
-                hv,
-                ht,
-                ties,
+            covered = (c != goal and _state_covered(li, lf, x, gmin, cell_size)) or _goal_covered(
+                li, lf, x, Q, goal_min, cell_size, hs, hd, hv, ht
             )
         if covered:
             li[x, NEXT] = free  # recycle the row
@@ -1021,23 +883,17 @@ def _free_steps(
                 _goal_insert(li, lf, gmin, goal_base, first, goal_state, x)
             else:
                 goal_min = min(goal_min, _g(li, lf, x, Q, cell_size))
-                lf[x, RUNMIN] = goal_min
-                li[x, NEXT] = goal_first
-                goal_first = x
             sols[n_sols] = x
             n_sols += 1
             continue
 
         # 4b. expand x: it joins its state's set
         n_expanded += 1
-        s = c if mode == MODE_CELL else c * N_SLOTS + _slot(li[x, F_HEAD])
+        s = c * N_SLOTS + _slot(li[x, F_HEAD])
         if mode == MODE_THREE:
             _three_insert(li, lf, first, gmin, s, x)
         else:
-            gmin[s] = min(gmin[s], _g(li, lf, x, Q, cell_size))
-            lf[x, RUNMIN] = gmin[s]
-            li[x, NEXT] = first[s]
-            first[s] = x
+            gmin[s] = min(gmin[s], _g(li, lf, x, Q, cell_size))  # MODE_HEADING: g2_min only
         r, col = c // w, c % w
         head = li[x, F_HEAD]
         mk = mask[c]
@@ -1064,40 +920,8 @@ def _free_steps(
             f_len = ((li[j, NS] + hs[cell]) + SQRT2 * (li[j, ND] + hd[cell])) * cell_size
             f_vul = lf[j, F_VUL] + hv[cell]
             f_turn = np.float64(li[j, TURNS] + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0))
-            # 3. eager dominance checks (BOA*: prune before the open list); for two
-            # objectives the O(1) g2_min tests first, the full checks only on a tie
-            if mode == MODE_CELL:
-                if cell != goal:
-                    q = lf[j, F_VUL]
-                    m = gmin[cell]
-                    if m < np.inf and not (q < m and not _eq(q, m)):
-                        if not ties or (m < q and not _eq(m, q)):
-                            continue
-                        if _state_covered(li, lf, j, mode, P, Q, gmin, first, cell_size, ties):
-                            continue
-                if goal_min < np.inf and not (f_vul < goal_min and not _eq(f_vul, goal_min)):
-                    if not ties or (goal_min < f_vul and not _eq(goal_min, f_vul)):
-                        continue
-                    if _goal_covered(
-                        li,
-                        lf,
-                        j,
-                        mode,
-                        P,
-                        Q,
-                        goal_min,
-                        goal_first,
-                        first,
-                        goal_state,
-                        cell_size,
-                        hs,
-                        hd,
-                        hv,
-                        ht,
-                        ties,
-                    ):
-                        continue
-            elif mode == MODE_THREE:
+            # 3. eager dominance checks (prune before the open list)
+            if mode == MODE_THREE:
                 # the (turns, vulnerability) staircases, walked here (see above)
                 t = li[j, TURNS]
                 v = lf[j, F_VUL]
@@ -1128,26 +952,9 @@ def _free_steps(
                 if covered:
                     continue
             else:
-                if cell != goal and _state_covered(li, lf, j, mode, P, Q, gmin, first, cell_size, ties):
+                if cell != goal and _state_covered(li, lf, j, gmin, cell_size):
                     continue
-                if _goal_covered(
-                    li,
-                    lf,
-                    j,
-                    mode,
-                    P,
-                    Q,
-                    goal_min,
-                    goal_first,
-                    first,
-                    goal_state,
-                    cell_size,
-                    hs,
-                    hd,
-                    hv,
-                    ht,
-                    ties,
-                ):
+                if _goal_covered(li, lf, j, Q, goal_min, cell_size, hs, hd, hv, ht):
                     continue
             if j == free:
                 free = li[j, NEXT]
@@ -1164,7 +971,6 @@ def _free_steps(
     st[S_SOLS] = n_sols
     st[S_EXPANDED] = n_expanded
     st[S_GENERATED] = n_generated
-    st[S_GOAL_FIRST] = goal_first
     st[S_FREE] = free
     st[S_N_FREE] = n_free
     st[S_POPS] = pops0 + steps

@@ -845,7 +845,6 @@ def _search_pass(
                 stf,
                 slices.n,
                 budget,
-                ties,
             )
         interrupt.check()
         if status == PAUSED:  # a longer search: hold Ctrl-C from now on
