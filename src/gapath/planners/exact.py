@@ -59,9 +59,7 @@ from gapath.monotone import Frame, expand_profiles, split_paths
 from gapath.objectives import OBJECTIVES, QUARTER_PI, objective_index
 from gapath.planners._exact_kernels import (
     DONE,
-    EIGHTHS,
     F_VUL,
-    LENGTH,
     MODE_CELL,
     MODE_HEADING,
     MODE_THREE,
@@ -72,8 +70,6 @@ from gapath.planners._exact_kernels import (
     OBJ_SMOOTH,
     OBJ_VUL,
     OVER_BUDGET,
-    PARENT,
-    ROW,
     S_EXPANDED,
     S_GENERATED,
     S_N,
@@ -82,16 +78,29 @@ from gapath.planners._exact_kernels import (
     S_SIZE,
     S_SOLS,
     TURNS,
-    VUL,
     _free_heuristics,
     _free_init,
     _free_run,
-    _monotone_columns,
-    _monotone_start,
     _move_masks,
     _tolerant_front,
     _trace,
 )
+from gapath.planners._monotone_kernels import LENGTH as M_LENGTH
+from gapath.planners._monotone_kernels import (
+    M_EIGHTHS,
+    M_LINK,
+    ST_CANDIDATES,
+    ST_HELD,
+    ST_K,
+    ST_MADE,
+    ST_PEAK,
+    ST_PEAK_BYTES,
+    T_PARENT,
+    T_ROW,
+    _monotone_init,
+    _monotone_steps,
+)
+from gapath.planners._monotone_kernels import VUL as M_VUL
 
 if TYPE_CHECKING:
     from gapath.front import PathFront
@@ -355,20 +364,18 @@ def monotone_front(
     names = _check_objectives(objectives)
     frame = Frame.of(workspace)
     (sr, _), (gr, _) = frame.start, frame.goal
-    primary = {"length": LENGTH, "vulnerability": VUL, "smoothness": 2}[names[0]]
+    primary = {"length": M_LENGTH, "vulnerability": M_VUL, "smoothness": 2}[names[0]]
     budget = _budget(max_labels)
     t0 = time.perf_counter()
     occ, pot = frame.occ, np.ascontiguousarray(frame.potential, dtype=np.float64)
     cs, cc = float(workspace.cell_size), bool(workspace.corner_cutting)
     use = ("length" in names, "vulnerability" in names, "smoothness" in names)
     with _DeferredInterrupt() as interrupt:
-        li, lf, off, n = _monotone_start(occ, pot, sr, frame.col0, cs)
-        st = np.array([n, 1], np.int64)
+        tree, ci, cf, off, st = _monotone_init(occ, pot, sr, frame.col0, cs)
         slices = _Slices(4, 1, 1 << 20)
-        peak = 0
         while True:
-            k0, t1 = st[1], time.perf_counter()
-            li, lf, off, status, n_cand = _monotone_columns(
+            k0, t1 = st[ST_K], time.perf_counter()
+            tree, ci, cf, off, status = _monotone_steps(
                 occ,
                 pot,
                 gr,
@@ -378,8 +385,9 @@ def monotone_front(
                 cc,
                 *use,
                 primary,
-                li,
-                lf,
+                tree,
+                ci,
+                cf,
                 off,
                 st,
                 slices.n,
@@ -387,21 +395,23 @@ def monotone_front(
             )
             interrupt.check()
             now = time.perf_counter()
-            slices.update(st[1] - k0, now - t1)
-            peak = max(peak, li.nbytes + lf.nbytes + off.nbytes + n_cand * (li.itemsize * 6 + 16))
+            slices.update(st[ST_K] - k0, now - t1)
             stats = {
-                "columns": int(st[1]),
+                "columns": int(st[ST_K]),
                 "n_cols": int(frame.n_cols),
-                "labels": int(st[0]),
-                "peak_bytes": int(peak),
+                "labels": int(st[ST_HELD]),
+                "labels_peak": int(st[ST_PEAK]),
+                "labels_made": int(st[ST_MADE]),
+                "candidates": int(st[ST_CANDIDATES]),
+                "peak_bytes": int(st[ST_PEAK_BYTES]),
                 "seconds": now - t0,
             }
             if status == OVER_BUDGET:
                 raise LabelBudgetError(
                     f"monotone DP stopped at the label budget max_labels={budget:,} "
-                    f"(--max-labels): {stats['labels']:,} labels stored and {int(n_cand):,} "
-                    f"candidates for the next column after {stats['columns']} of "
-                    f"{stats['n_cols']} columns ({stats['seconds']:.1f} s); no front (a partial "
+                    f"(--max-labels): {stats['labels']:,} labels held after {stats['columns']} of "
+                    f"{stats['n_cols']} columns and more needed for the next one "
+                    f"({stats['seconds']:.1f} s); no front (a partial "
                     f"DP is not a Pareto front). Raise the budget, or use a smaller map or fewer "
                     f"objectives",
                     {**stats, "max_labels": budget},
@@ -419,21 +429,21 @@ def monotone_front(
             f"corner_cutting={workspace.corner_cutting})"
         )
 
-    # back-pointers -> exit row of every column
+    # ancestry tree -> exit row of every column
     final = np.arange(lo, hi)
     exits = np.empty((len(final), frame.n_cols), np.int64)
-    idx = final
+    node = ci[final, M_LINK]
     for k in range(frame.n_cols - 1, -1, -1):
-        exits[:, k] = li[idx, ROW]
-        idx = li[idx, PARENT]
+        exits[:, k] = tree[node, T_ROW]
+        node = tree[node, T_PARENT]
     entries = np.empty_like(exits)
     entries[:, 0] = sr
     entries[:, 1:] = exits[:, :-1] + np.sign(exits[:, 1:] - exits[:, :-1])
 
     values = {
-        "length": lf[final, LENGTH],
-        "vulnerability": lf[final, VUL],
-        "smoothness": li[final, EIGHTHS] * QUARTER_PI,
+        "length": cf[final, M_LENGTH],
+        "vulnerability": cf[final, M_VUL],
+        "smoothness": ci[final, M_EIGHTHS] * QUARTER_PI,
     }
     F = np.column_stack([values[name] for name in names])
     order = np.lexsort(F.T[::-1])

@@ -1,0 +1,638 @@
+"""Numba kernels of :func:`gapath.planners.exact.monotone_front` (private).
+
+The multi-objective DP over the columns of the canonical frame
+(:class:`gapath.monotone.Frame`). A label is a partial path ending at an exit
+row of the current column. Compared with enumerating, for every label of the
+previous column, every exit row its vertical run can reach, the DP here
+builds the runs row by row:
+
+* ``up[t]``: the non-dominated partial paths that are at row ``t`` of the
+  new column going up (last step north): the diagonal arrivals at ``t + 1``
+  and ``up[t + 1]``, each extended by one vertical step. All of them have the
+  same heading and the same future, so a label that another one covers at
+  ``t`` stays covered along the rest of the run: filtering ``up[t]`` on its
+  own loses nothing. ``down[t]`` likewise.
+* the labels of exit row ``t``: the non-dominated labels among the
+  horizontal arrival, the two diagonal arrivals, ``up[t]`` and ``down[t]``,
+  with the same covering rule (and tie order) as before, so the front is the
+  same.
+
+Memory: only the current column's labels are kept in full; every label
+also has a node (exit row, parent node) in an ancestry tree, and the nodes
+no live label descends from are freed by a mark-and-compact pass whenever
+the tree has doubled since the last one. The tree then holds the ancestry
+of the current column's labels, not every label ever made.
+
+The kernel is resumable like the free search: the state (tree, current
+column, counters in ``st``) lives in arrays owned by the caller, and a call
+returns after a number of columns or before exceeding the label budget.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from gapath.grid import SQRT2, can_step, turn
+from gapath.planners._exact_kernels import DONE, OVER_BUDGET, PAUSED, _eq, _grow, _heading_gap, _le
+
+# label table (int32): heading of the last step, straight and diagonal step
+# counts, total turn in eighths, and LINK: the label's tree node (current
+# column) or the index of the label it extends (candidates, next column)
+M_HEAD, M_NS, M_ND, M_EIGHTHS, M_LINK = range(5)
+M_COLS = 5
+LENGTH, VUL = range(2)  # float table
+# tree (int32): exit row and parent node (-1 in the start column)
+T_ROW, T_PARENT = range(2)
+
+# headings, coded as in gapath.objectives (eighths counter-clockwise from east;
+# "up" is towards row 0); monotone paths only use these five
+NO_HEADING, EAST, NORTH_EAST, NORTH, SOUTH, SOUTH_EAST = -1, 0, 1, 2, 6, 7
+
+# st: counters shared with the caller
+(
+    ST_TREE,  # tree nodes held
+    ST_K,  # next column of the frame
+    ST_LIVE,  # tree nodes kept by the last compaction
+    ST_MADE,  # labels made in total (all columns)
+    ST_CANDIDATES,  # candidate labels filtered in total
+    ST_PEAK,  # most labels held at once (tree + the column being built)
+    ST_PEAK_BYTES,  # most bytes held by the DP's arrays
+    ST_HELD,  # labels held when the kernel returned
+    ST_COMPACTIONS,
+) = range(9)
+ST_N = 9
+
+
+@numba.njit(cache=True, inline="always")
+def _put(bi, bf, bk, m, head, ns, nd, eighths, vul, link, cell_size, primary):
+    """Write candidate ``m`` and its sort key (the primary objective)."""
+    bi[m, M_HEAD] = head
+    bi[m, M_NS] = ns
+    bi[m, M_ND] = nd
+    bi[m, M_EIGHTHS] = eighths
+    bi[m, M_LINK] = link
+    bf[m, LENGTH] = (ns + SQRT2 * nd) * cell_size
+    bf[m, VUL] = vul
+    if primary == 2:
+        bk[m] = np.float64(eighths)
+    else:
+        bk[m] = bf[m, primary]
+
+
+@numba.njit(cache=True, inline="always")
+def _key(ti, tf, i, primary):
+    """Value of the primary (first) objective of label ``i``."""
+    return np.float64(ti[i, M_EIGHTHS]) if primary == 2 else tf[i, primary]
+
+
+@numba.njit(cache=True, inline="always")
+def _covers(ai, af, a, bi, bf, b, use_len, use_vul, use_smooth, at_goal):
+    """True if label ``a`` makes label ``b`` (same row, same column) useless:
+    every completion of ``b`` is dominated by, or tolerance-equal and not
+    smoother than, the same completion of ``a``.
+
+    The next turn depends on the heading, so ``a``'s turn count is charged
+    with the worst difference its heading can make (nothing at the goal)."""
+    strictly_better = False
+    if use_len:
+        if not _le(af[a, LENGTH], bf[b, LENGTH]):
+            return False
+        strictly_better = strictly_better or not _eq(af[a, LENGTH], bf[b, LENGTH])
+    if use_vul:
+        if not _le(af[a, VUL], bf[b, VUL]):
+            return False
+        strictly_better = strictly_better or not _eq(af[a, VUL], bf[b, VUL])
+    gap = 0 if at_goal else _heading_gap(ai[a, M_HEAD], bi[b, M_HEAD])
+    smoother = ai[a, M_EIGHTHS] + gap <= bi[b, M_EIGHTHS]
+    if use_smooth:
+        return smoother
+    # smoothness only breaks ties between tolerance-equal vectors
+    return strictly_better or smoother
+
+
+@numba.njit(cache=True, inline="always")
+def _before(bk, bi, x, y):
+    """Candidate order: primary objective, then the index of the extended
+    label (the order in which the previous DP generated its candidates)."""
+    return bk[x] < bk[y] or (bk[x] == bk[y] and bi[x, M_LINK] < bi[y, M_LINK])
+
+
+@numba.njit(cache=True)
+def _sort(bk, bi, m, idx, tmp):
+    """``idx[:m]``: the candidates ``0 .. m - 1`` in :func:`_before` order.
+
+    A natural merge sort: the candidates arrive as a few sorted runs (one per
+    source), which it merges in ``log2(runs)`` passes."""
+    for i in range(m):
+        idx[i] = i
+    if m < 2:
+        return idx
+    in_order = True
+    for i in range(1, m):
+        if _before(bk, bi, i, i - 1):
+            in_order = False
+            break
+    if in_order:
+        return idx
+    src, dst = idx, tmp
+    while True:
+        # merge neighbouring ascending runs of src into dst
+        i = 0
+        n_runs = 0
+        while i < m:
+            j = i + 1
+            while j < m and not _before(bk, bi, src[j], src[j - 1]):
+                j += 1
+            if j == m:  # a last run without a partner
+                for q in range(i, m):
+                    dst[q] = src[q]
+                n_runs += 1
+                break
+            e = j + 1
+            while e < m and not _before(bk, bi, src[e], src[e - 1]):
+                e += 1
+            a, b, o = i, j, i
+            while a < j and b < e:
+                if _before(bk, bi, src[b], src[a]):
+                    dst[o] = src[b]
+                    b += 1
+                else:
+                    dst[o] = src[a]
+                    a += 1
+                o += 1
+            while a < j:
+                dst[o] = src[a]
+                a += 1
+                o += 1
+            while b < e:
+                dst[o] = src[b]
+                b += 1
+                o += 1
+            n_runs += 1
+            i = e
+        src, dst = dst, src
+        if n_runs <= 1:
+            return src
+
+
+@numba.njit(cache=True)
+def _filter(oi, of, n, bi, bf, bk, order, m, use_len, use_vul, use_smooth, primary, at_goal):
+    """Append to ``oi, of`` (which hold ``n`` labels) the candidates
+    ``order[:m]`` (sorted by the primary objective) that no other candidate
+    covers. Returns the new count.
+
+    A new label can only cover an earlier one when their primary values tie;
+    the running minima of the kept labels let most candidates be accepted or
+    rejected without scanning the kept ones."""
+    first = n
+    big = np.inf
+    min_len, min_vul, min_eighths = big, big, big
+    for q in range(m):
+        j = order[q]
+        # a kept label can cover j only if it is not worse in every objective
+        maybe_covered = n > first
+        if use_len and not _le(min_len, bf[j, LENGTH]):
+            maybe_covered = False
+        if use_vul and not _le(min_vul, bf[j, VUL]):
+            maybe_covered = False
+        if use_smooth and min_eighths > bi[j, M_EIGHTHS]:
+            maybe_covered = False
+        if maybe_covered:
+            covered = False
+            for i in range(n - 1, first - 1, -1):
+                if _covers(oi, of, i, bi, bf, j, use_len, use_vul, use_smooth, at_goal):
+                    covered = True
+                    break
+            if covered:
+                continue
+        # j can cover a kept label only if their primary values tie
+        if n > first and _le(bk[j], _key(oi, of, n - 1, primary)):
+            kept = first
+            for i in range(first, n):
+                if not _covers(bi, bf, j, oi, of, i, use_len, use_vul, use_smooth, at_goal):
+                    if kept != i:
+                        for x in range(M_COLS):
+                            oi[kept, x] = oi[i, x]
+                        of[kept, LENGTH] = of[i, LENGTH]
+                        of[kept, VUL] = of[i, VUL]
+                    kept += 1
+            if kept < n:
+                n = kept
+                min_len, min_vul, min_eighths = big, big, big
+                for i in range(first, n):
+                    min_len = min(min_len, of[i, LENGTH])
+                    min_vul = min(min_vul, of[i, VUL])
+                    min_eighths = min(min_eighths, np.float64(oi[i, M_EIGHTHS]))
+        for x in range(M_COLS):
+            oi[n, x] = bi[j, x]
+        of[n, LENGTH] = bf[j, LENGTH]
+        of[n, VUL] = bf[j, VUL]
+        min_len = min(min_len, bf[j, LENGTH])
+        min_vul = min(min_vul, bf[j, VUL])
+        min_eighths = min(min_eighths, np.float64(bi[j, M_EIGHTHS]))
+        n += 1
+    return n
+
+
+@numba.njit(cache=True)
+def _monotone_init(occ, pot, start_row, col0, cell_size):
+    """The DP state after the start column: one label per exit row reachable
+    by a single vertical run from the start.
+
+    Returns ``(tree, ci, cf, off, st)``; ``off[r] .. off[r + 1]`` are the
+    labels of exit row ``r`` of the current column."""
+    h = occ.shape[0]
+    ci = np.empty((max(64, h), M_COLS), np.int32)
+    cf = np.empty((max(64, h), 2))
+    tree = np.empty((max(256, 4 * h), 2), np.int32)
+    off = np.zeros(h + 1, np.int64)
+    vul_to = np.full(h, np.nan)
+    vul_to[start_row] = pot[start_row, col0]
+    for s in (-1, 1):
+        r, v = start_row, pot[start_row, col0]
+        while 0 <= r + s < h and not occ[r + s, col0]:
+            r += s
+            v += pot[r, col0]
+            vul_to[r] = v
+    n = 0
+    for r in range(h):
+        off[r] = n
+        if np.isnan(vul_to[r]):
+            continue
+        d = abs(r - start_row)
+        ci[n, M_HEAD] = NO_HEADING if d == 0 else (NORTH if r < start_row else SOUTH)
+        ci[n, M_NS] = d
+        ci[n, M_ND] = 0
+        ci[n, M_EIGHTHS] = 0
+        ci[n, M_LINK] = n
+        cf[n, LENGTH] = d * cell_size
+        cf[n, VUL] = vul_to[r]
+        tree[n, T_ROW] = r
+        tree[n, T_PARENT] = -1
+        n += 1
+    off[h] = n
+    st = np.zeros(ST_N, np.int64)
+    st[ST_TREE] = n
+    st[ST_K] = 1
+    st[ST_LIVE] = n
+    st[ST_MADE] = n
+    st[ST_PEAK] = n
+    st[ST_HELD] = n
+    return tree, ci, cf, off, st
+
+
+@numba.njit(cache=True)
+def _compact(tree, n_tree, ci, n_cur):
+    """Free the tree nodes no current label descends from; renumber the
+    rest (parents keep smaller numbers than their children) and the current
+    labels' links. Returns the number of nodes kept."""
+    live = np.zeros(n_tree, np.bool_)
+    for j in range(n_cur):
+        x = ci[j, M_LINK]
+        while x >= 0 and not live[x]:
+            live[x] = True
+            x = tree[x, T_PARENT]
+    new = np.empty(n_tree, np.int32)
+    kept = 0
+    for x in range(n_tree):
+        if live[x]:
+            new[x] = kept
+            p = tree[x, T_PARENT]
+            tree[kept, T_ROW] = tree[x, T_ROW]
+            tree[kept, T_PARENT] = new[p] if p >= 0 else -1
+            kept += 1
+    for j in range(n_cur):
+        ci[j, M_LINK] = new[ci[j, M_LINK]]
+    return kept
+
+
+@numba.njit(cache=True)
+def _room(bi, bf, bk, idx, tmp, m):
+    """Candidate buffers with room for ``m`` candidates."""
+    if m > bi.shape[0]:
+        size = max(m, 2 * bi.shape[0])
+        bi = np.empty((size, M_COLS), np.int32)
+        bf = np.empty((size, 2))
+        bk = np.empty(size)
+        idx = np.empty(size, np.int64)
+        tmp = np.empty(size, np.int64)
+    return bi, bf, bk, idx, tmp
+
+
+@numba.njit(cache=True)
+def _monotone_steps(
+    occ,
+    pot,
+    goal_row,
+    col0,
+    n_cols,
+    cell_size,
+    corner_cutting,
+    use_len,
+    use_vul,
+    use_smooth,
+    primary,
+    tree,
+    ci,
+    cf,
+    off,
+    st,
+    n_steps,
+    max_labels,
+):
+    """Advance the DP by at most ``n_steps`` columns.
+
+    ``st`` (see ``ST_*``) is updated in place. Stops before committing a
+    column whose labels, run sets and tree would exceed ``max_labels``
+    labels held at once. Returns ``(tree, ci, cf, off, status)`` (status
+    DONE after the goal column, PAUSED, or OVER_BUDGET); the goal's labels
+    are then ``off[goal_row] .. off[goal_row + 1]``, their ancestry in
+    ``tree``."""
+    h = occ.shape[0]
+    cap = max(64, 2 * off[h])
+    ni = np.empty((cap, M_COLS), np.int32)  # the column being built
+    nf = np.empty((cap, 2))
+    noff = np.empty(h + 1, np.int64)
+    ui = np.empty((cap, M_COLS), np.int32)  # up[t] of every row
+    uf = np.empty((cap, 2))
+    ulo = np.zeros(h, np.int64)
+    uhi = np.zeros(h, np.int64)
+    di = np.empty((2, max(64, h), M_COLS), np.int32)  # down[t - 1], down[t]
+    df = np.empty((2, max(64, h), 2))
+    dn = np.zeros(2, np.int64)
+    bi = np.empty((64, M_COLS), np.int32)  # candidates of one set
+    bf = np.empty((64, 2))
+    bk = np.empty(64)
+    idx = np.empty(64, np.int64)
+    tmp = np.empty(64, np.int64)
+    steps = 0
+    while st[ST_K] < n_cols:
+        if steps == n_steps:
+            return tree, ci, cf, off, PAUSED
+        k = st[ST_K]
+        c = col0 + k
+        at_goal = k == n_cols - 1  # the goal column: exit row = goal row
+        made = 0
+
+        # 1. up[t], t from the bottom: the diagonal arrivals at t + 1 (from
+        #    row t + 2) and up[t + 1], one vertical step further
+        nu = 0
+        for t in range(h - 1, -1, -1):
+            ulo[t] = nu
+            uhi[t] = nu
+            if t == h - 1 or occ[t, c] or occ[t + 1, c]:
+                continue
+            m = 0
+            p = t + 2
+            diag = p < h and off[p + 1] > off[p] and can_step(occ, p, c - 1, -1, 1, corner_cutting)
+            need = (off[p + 1] - off[p] if diag else 0) + uhi[t + 1] - ulo[t + 1]
+            if need == 0:
+                continue
+            bi, bf, bk, idx, tmp = _room(bi, bf, bk, idx, tmp, need)
+            if diag:
+                for a in range(off[p], off[p + 1]):
+                    e = ci[a, M_EIGHTHS] + 1
+                    if ci[a, M_HEAD] != NO_HEADING:
+                        e += turn(ci[a, M_HEAD], NORTH_EAST)
+                    v = cf[a, VUL] + pot[t + 1, c]
+                    v += pot[t, c]
+                    _put(bi, bf, bk, m, NORTH, ci[a, M_NS] + 1, ci[a, M_ND] + 1, e, v, a, cell_size, primary)
+                    m += 1
+            for x in range(ulo[t + 1], uhi[t + 1]):
+                _put(
+                    bi,
+                    bf,
+                    bk,
+                    m,
+                    NORTH,
+                    ui[x, M_NS] + 1,
+                    ui[x, M_ND],
+                    ui[x, M_EIGHTHS],
+                    uf[x, VUL] + pot[t, c],
+                    ui[x, M_LINK],
+                    cell_size,
+                    primary,
+                )
+                m += 1
+            made += m
+            order = _sort(bk, bi, m, idx, tmp)
+            ui = _grow(ui, nu + m)
+            uf = _grow(uf, nu + m)
+            nu = _filter(ui, uf, nu, bi, bf, bk, order, m, use_len, use_vul, use_smooth, primary, False)
+            uhi[t] = nu
+            if st[ST_TREE] + nu > max_labels:
+                st[ST_HELD] = st[ST_TREE]
+                return tree, ci, cf, off, OVER_BUDGET
+            st[ST_PEAK] = max(st[ST_PEAK], st[ST_TREE] + nu)
+
+        # 2. down[t] from the top (kept for one row), and the labels of
+        #    every exit row t
+        nn = 0
+        dn[:] = 0
+        last = goal_row if at_goal else h - 1
+        for t in range(last + 1):
+            noff[t] = nn
+            cur = t & 1
+            prev = 1 - cur
+            # down[t]: the diagonal arrivals at t - 1 (from row t - 2) and
+            # down[t - 1], one vertical step further
+            dn[cur] = 0
+            if t >= 1 and not occ[t, c] and not occ[t - 1, c]:
+                m = 0
+                p = t - 2
+                diag = p >= 0 and off[p + 1] > off[p] and can_step(occ, p, c - 1, 1, 1, corner_cutting)
+                need = (off[p + 1] - off[p] if diag else 0) + dn[prev]
+                if need > 0:
+                    bi, bf, bk, idx, tmp = _room(bi, bf, bk, idx, tmp, need)
+                    if diag:
+                        for a in range(off[p], off[p + 1]):
+                            e = ci[a, M_EIGHTHS] + 1
+                            if ci[a, M_HEAD] != NO_HEADING:
+                                e += turn(ci[a, M_HEAD], SOUTH_EAST)
+                            v = cf[a, VUL] + pot[t - 1, c]
+                            v += pot[t, c]
+                            _put(
+                                bi,
+                                bf,
+                                bk,
+                                m,
+                                SOUTH,
+                                ci[a, M_NS] + 1,
+                                ci[a, M_ND] + 1,
+                                e,
+                                v,
+                                a,
+                                cell_size,
+                                primary,
+                            )
+                            m += 1
+                    for x in range(dn[prev]):
+                        _put(
+                            bi,
+                            bf,
+                            bk,
+                            m,
+                            SOUTH,
+                            di[prev, x, M_NS] + 1,
+                            di[prev, x, M_ND],
+                            di[prev, x, M_EIGHTHS],
+                            df[prev, x, VUL] + pot[t, c],
+                            di[prev, x, M_LINK],
+                            cell_size,
+                            primary,
+                        )
+                        m += 1
+                    made += m
+                    order = _sort(bk, bi, m, idx, tmp)
+                    if m > di.shape[1]:
+                        size = max(m, 2 * di.shape[1])
+                        d2i = np.empty((2, size, M_COLS), np.int32)
+                        d2f = np.empty((2, size, 2))
+                        d2i[prev, : dn[prev]] = di[prev, : dn[prev]]
+                        d2f[prev, : dn[prev]] = df[prev, : dn[prev]]
+                        di, df = d2i, d2f
+                    dn[cur] = _filter(
+                        di[cur],
+                        df[cur],
+                        0,
+                        bi,
+                        bf,
+                        bk,
+                        order,
+                        m,
+                        use_len,
+                        use_vul,
+                        use_smooth,
+                        primary,
+                        False,
+                    )
+            if occ[t, c] or (at_goal and t != goal_row):
+                continue
+            # the labels of exit row t: horizontal arrival, diagonal arrivals
+            # from t + 1 and t - 1, up[t], down[t]
+            flat = off[t + 1] - off[t]
+            ne = t + 1 < h and off[t + 2] > off[t + 1] and can_step(occ, t + 1, c - 1, -1, 1, corner_cutting)
+            se = t >= 1 and off[t] > off[t - 1] and can_step(occ, t - 1, c - 1, 1, 1, corner_cutting)
+            need = flat + (off[t + 2] - off[t + 1] if ne else 0) + (off[t] - off[t - 1] if se else 0)
+            need += uhi[t] - ulo[t] + dn[cur]
+            if need == 0:
+                continue
+            bi, bf, bk, idx, tmp = _room(bi, bf, bk, idx, tmp, need)
+            m = 0
+            if se:
+                for a in range(off[t - 1], off[t]):
+                    e = ci[a, M_EIGHTHS]
+                    if ci[a, M_HEAD] != NO_HEADING:
+                        e += turn(ci[a, M_HEAD], SOUTH_EAST)
+                    _put(
+                        bi,
+                        bf,
+                        bk,
+                        m,
+                        SOUTH_EAST,
+                        ci[a, M_NS],
+                        ci[a, M_ND] + 1,
+                        e,
+                        cf[a, VUL] + pot[t, c],
+                        a,
+                        cell_size,
+                        primary,
+                    )
+                    m += 1
+            for x in range(dn[cur]):
+                for q in range(M_COLS):
+                    bi[m, q] = di[cur, x, q]
+                bf[m, LENGTH] = df[cur, x, LENGTH]
+                bf[m, VUL] = df[cur, x, VUL]
+                bk[m] = _key(bi, bf, m, primary)
+                m += 1
+            for a in range(off[t], off[t + 1]):
+                e = ci[a, M_EIGHTHS]
+                if ci[a, M_HEAD] != NO_HEADING:
+                    e += turn(ci[a, M_HEAD], EAST)
+                _put(
+                    bi,
+                    bf,
+                    bk,
+                    m,
+                    EAST,
+                    ci[a, M_NS] + 1,
+                    ci[a, M_ND],
+                    e,
+                    cf[a, VUL] + pot[t, c],
+                    a,
+                    cell_size,
+                    primary,
+                )
+                m += 1
+            if ne:
+                for a in range(off[t + 1], off[t + 2]):
+                    e = ci[a, M_EIGHTHS]
+                    if ci[a, M_HEAD] != NO_HEADING:
+                        e += turn(ci[a, M_HEAD], NORTH_EAST)
+                    _put(
+                        bi,
+                        bf,
+                        bk,
+                        m,
+                        NORTH_EAST,
+                        ci[a, M_NS],
+                        ci[a, M_ND] + 1,
+                        e,
+                        cf[a, VUL] + pot[t, c],
+                        a,
+                        cell_size,
+                        primary,
+                    )
+                    m += 1
+            for x in range(ulo[t], uhi[t]):
+                for q in range(M_COLS):
+                    bi[m, q] = ui[x, q]
+                bf[m, LENGTH] = uf[x, LENGTH]
+                bf[m, VUL] = uf[x, VUL]
+                bk[m] = _key(bi, bf, m, primary)
+                m += 1
+            made += m - dn[cur] - (uhi[t] - ulo[t])
+            order = _sort(bk, bi, m, idx, tmp)
+            ni = _grow(ni, nn + m)
+            nf = _grow(nf, nn + m)
+            nn = _filter(ni, nf, nn, bi, bf, bk, order, m, use_len, use_vul, use_smooth, primary, at_goal)
+            held = st[ST_TREE] + nn + nu + dn[0] + dn[1]
+            if held > max_labels:
+                st[ST_HELD] = st[ST_TREE]
+                return tree, ci, cf, off, OVER_BUDGET
+            if held > st[ST_PEAK]:
+                st[ST_PEAK] = held
+        for t in range(last + 1, h + 1):
+            noff[t] = nn
+
+        # 3. commit: a tree node per new label, the new column becomes current
+        n_tree = st[ST_TREE]
+        tree = _grow(tree, n_tree + nn)
+        for t in range(h):
+            for j in range(noff[t], noff[t + 1]):
+                tree[n_tree, T_ROW] = t
+                tree[n_tree, T_PARENT] = ci[ni[j, M_LINK], M_LINK]
+                ni[j, M_LINK] = n_tree
+                n_tree += 1
+        nbytes = (
+            tree.shape[0] * 8
+            + (ci.shape[0] + ni.shape[0] + ui.shape[0] + bi.shape[0] + 2 * di.shape[1]) * (4 * M_COLS + 16)
+            + bi.shape[0] * 24
+        )
+        st[ST_PEAK_BYTES] = max(st[ST_PEAK_BYTES], nbytes)
+        ci, ni = ni, ci
+        cf, nf = nf, cf
+        off, noff = noff, off
+        st[ST_MADE] += nn
+        st[ST_CANDIDATES] += made
+        if n_tree >= 2 * st[ST_LIVE] + 4 * h or at_goal:
+            n_tree = _compact(tree, n_tree, ci, nn)
+            st[ST_LIVE] = n_tree
+            st[ST_COMPACTIONS] += 1
+        st[ST_TREE] = n_tree
+        st[ST_HELD] = n_tree
+        st[ST_K] = k + 1
+        steps += 1
+    return tree, ci, cf, off, DONE

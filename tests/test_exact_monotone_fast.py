@@ -1,0 +1,89 @@
+"""The monotone DP (run sets built row by row, ancestry tree with its dead
+nodes freed) against the DP it replaced (tests/_monotone_reference.py):
+bit-identical F and smoothness on random small cases, both corner rules,
+one to three objectives in several orders; and the memory it holds is a
+small part of the labels it makes."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from _monotone_reference import reference_front
+
+from gapath import Workspace, random_workspace
+from gapath.errors import NoPathError
+from gapath.planners.exact import monotone_front
+
+ORDERS = [
+    ("length", "vulnerability"),
+    ("vulnerability", "length"),
+    ("length", "smoothness"),
+    ("smoothness", "length"),
+    ("vulnerability", "smoothness"),
+    ("length", "vulnerability", "smoothness"),
+    ("smoothness", "vulnerability", "length"),
+    ("vulnerability", "length", "smoothness"),
+    ("length",),
+    ("vulnerability",),
+    ("smoothness",),
+]
+
+
+def _random_case(rng):
+    h, w = (int(x) for x in rng.integers(3, 22, 2))
+    occ = rng.random((h, w)) < rng.choice([0.0, 0.05, 0.1, 0.2, 0.3])
+    while True:
+        s = (int(rng.integers(0, h)), int(rng.integers(0, w)))
+        g = (int(rng.integers(0, h)), int(rng.integers(0, w)))
+        if s != g:
+            break
+    occ[s] = occ[g] = False
+    return Workspace(occ, s, g, corner_cutting=bool(rng.integers(0, 2)))
+
+
+def _front_or_none(ws, names):
+    try:
+        return monotone_front(ws, names)
+    except NoPathError:
+        return None
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_equals_the_previous_dp_on_random_cases(seed):
+    rng = np.random.default_rng(1000 + seed)
+    found = 0
+    for _ in range(25):
+        ws = _random_case(rng)
+        for names in ORDERS:
+            ref = reference_front(ws, names)
+            new = _front_or_none(ws, names)
+            assert (ref is None) == (new is None), (ws, names)
+            if ref is None:
+                continue
+            found += 1
+            F, smooth, made = ref
+            assert np.array_equal(new.F, F), (ws, names)
+            assert np.array_equal(new.smoothness, smooth), (ws, names)
+            # the same labels survive every column
+            assert new.stats["labels_made"] == made, (ws, names)
+    assert found > 100  # most cases have a path
+
+
+@pytest.mark.parametrize("names", [("length", "vulnerability"), ("length", "vulnerability", "smoothness")])
+def test_equals_the_previous_dp_on_a_larger_map(names):
+    ws = random_workspace((40, 40), int(0.12 * 40 * 40), seed=9)
+    for w in (ws, ws.replace(corner_cutting=False)):
+        F, smooth, made = reference_front(w, names)
+        new = monotone_front(w, names)
+        assert np.array_equal(new.F, F) and np.array_equal(new.smoothness, smooth)
+        assert new.stats["labels_made"] == made
+
+
+def test_memory_is_the_live_ancestry_not_every_label():
+    ws = random_workspace((64, 64), int(0.1 * 64 * 64), seed=2)
+    s = monotone_front(ws).stats
+    # every label of every column would be held by a DP without freeing
+    assert s["labels_peak"] * 3 < s["labels_made"]
+    # at the end only the ancestry of the goal's labels is left
+    assert s["labels"] * 20 < s["labels_made"]
+    assert s["peak_bytes"] < 40 * s["labels_made"]
