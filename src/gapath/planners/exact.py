@@ -313,21 +313,25 @@ def monotone_front(
         Any subset of ``"length"``, ``"vulnerability"``, ``"smoothness"``, in
         the column order wanted for ``F`` (default length, vulnerability).
     max_labels : int, optional
-        Label budget: the most labels held at once (those of the columns
-        done plus the candidates of the next one). None: no budget.
+        Label budget: the most labels held at once (the ancestry tree of the
+        current column's labels, plus the labels and vertical-run sets of
+        the column being built). None: no budget.
     progress : callable, optional
         Called about ten times a second, and once at the end, with a dict
-        ``phase="monotone"``, ``columns``, ``n_cols``, ``labels``,
-        ``seconds``. An exception it raises (e.g. KeyboardInterrupt) ends
-        the computation and propagates.
+        ``phase="monotone"``, ``columns``, ``n_cols``, ``labels`` (held
+        now), ``labels_peak``, ``labels_made``, ``candidates``,
+        ``peak_bytes``, ``seconds``. An exception it raises (e.g.
+        KeyboardInterrupt) ends the computation and propagates.
 
     Returns
     -------
     ExactFront
         One path per tolerance-equal Pareto-optimal objective vector, sorted
         lexicographically. Among tolerance-equal paths the smoothest one is
-        preferred. ``stats`` has ``columns``, ``labels``, ``peak_bytes``,
-        ``seconds``.
+        preferred. ``stats`` has ``columns``, ``labels`` (held at the end:
+        the ancestry of the front's paths), ``labels_peak`` (the most held
+        at once), ``labels_made`` (labels of all columns together),
+        ``candidates`` (labels filtered), ``peak_bytes``, ``seconds``.
 
     Raises
     ------
@@ -349,6 +353,14 @@ def monotone_front(
     label with heading ``h_b`` at the same row only after its turn count is
     charged with the turn between ``h_a`` and ``h_b`` (the most the next turn
     can differ by). This is exact for smoothness and keeps one state per row.
+
+    The vertical runs are built row by row (the non-dominated partial paths
+    going up, or down, at each row of the new column), so a label is not
+    extended to every row its run can reach; only the current column's
+    labels are held in full, and an ancestry tree (exit row and parent per
+    label) whose dead branches are freed as the DP advances gives the
+    paths back. Memory is therefore about a column of labels plus the
+    ancestry of the live ones.
 
     Examples
     --------
