@@ -1,8 +1,10 @@
 """The monotone DP (run sets built row by row, ancestry tree with its dead
-nodes freed) against the DP it replaced (tests/_monotone_reference.py):
-bit-identical F and smoothness on random small cases, both corner rules,
-one to three objectives in several orders; and the memory it holds is a
-small part of the labels it makes."""
+nodes freed, labels dropped by the goal bound) against the DP it replaced
+(tests/_monotone_reference.py): bit-identical F and smoothness on random
+small cases, both corner rules, one to three objectives in several orders,
+with and without the goal bound (without it, the very same labels survive
+every column); and the memory it holds is a small part of the labels it
+makes."""
 
 from __future__ import annotations
 
@@ -12,6 +14,7 @@ from _monotone_reference import reference_front
 
 from gapath import Workspace, random_workspace
 from gapath.errors import NoPathError
+from gapath.planners import exact
 from gapath.planners.exact import monotone_front
 
 ORDERS = [
@@ -48,8 +51,14 @@ def _front_or_none(ws, names):
         return None
 
 
-@pytest.mark.parametrize("seed", range(8))
-def test_equals_the_previous_dp_on_random_cases(seed):
+@pytest.fixture(params=[True, False], ids=["bound", "no-bound"])
+def goal_bound(request, monkeypatch):
+    monkeypatch.setattr(exact, "_MONOTONE_GOAL_BOUND", request.param)
+    return request.param
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_equals_the_previous_dp_on_random_cases(seed, goal_bound):
     rng = np.random.default_rng(1000 + seed)
     found = 0
     for _ in range(25):
@@ -64,26 +73,38 @@ def test_equals_the_previous_dp_on_random_cases(seed):
             F, smooth, made = ref
             assert np.array_equal(new.F, F), (ws, names)
             assert np.array_equal(new.smoothness, smooth), (ws, names)
-            # the same labels survive every column
-            assert new.stats["labels_made"] == made, (ws, names)
+            if goal_bound:
+                assert new.stats["labels_made"] <= made
+            else:  # the same labels survive every column
+                assert new.stats["labels_made"] == made, (ws, names)
+                assert new.stats["pruned"] == 0
     assert found > 100  # most cases have a path
 
 
 @pytest.mark.parametrize("names", [("length", "vulnerability"), ("length", "vulnerability", "smoothness")])
-def test_equals_the_previous_dp_on_a_larger_map(names):
+def test_equals_the_previous_dp_on_a_larger_map(names, goal_bound):
     ws = random_workspace((40, 40), int(0.12 * 40 * 40), seed=9)
     for w in (ws, ws.replace(corner_cutting=False)):
         F, smooth, made = reference_front(w, names)
         new = monotone_front(w, names)
         assert np.array_equal(new.F, F) and np.array_equal(new.smoothness, smooth)
-        assert new.stats["labels_made"] == made
+        assert (new.stats["labels_made"] < made) if goal_bound else (new.stats["labels_made"] == made)
 
 
-def test_memory_is_the_live_ancestry_not_every_label():
+def test_memory_is_the_live_ancestry_not_every_label(goal_bound):
     ws = random_workspace((64, 64), int(0.1 * 64 * 64), seed=2)
     s = monotone_front(ws).stats
     # every label of every column would be held by a DP without freeing
     assert s["labels_peak"] * 3 < s["labels_made"]
     # at the end only the ancestry of the goal's labels is left
-    assert s["labels"] * 20 < s["labels_made"]
+    assert s["labels"] * 8 < s["labels_made"]
     assert s["peak_bytes"] < 40 * s["labels_made"]
+
+
+def test_the_goal_bound_drops_labels_on_a_larger_map():
+    ws = random_workspace((64, 64), int(0.1 * 64 * 64), seed=2)
+    s = monotone_front(ws).stats
+    assert s["pruned"] > 0
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(exact, "_MONOTONE_GOAL_BOUND", False)
+        assert monotone_front(ws).stats["labels_made"] > 1.5 * s["labels_made"]

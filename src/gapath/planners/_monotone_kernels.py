@@ -60,8 +60,10 @@ NO_HEADING, EAST, NORTH_EAST, NORTH, SOUTH, SOUTH_EAST = -1, 0, 1, 2, 6, 7
     ST_PEAK_BYTES,  # most bytes held by the DP's arrays
     ST_HELD,  # labels held when the kernel returned
     ST_COMPACTIONS,
-) = range(9)
-ST_N = 9
+    ST_STAIR,  # points of the goal-bound staircase
+    ST_PRUNED,  # candidates dropped by the goal bound
+) = range(11)
+ST_N = 11
 
 
 @numba.njit(cache=True, inline="always")
@@ -235,6 +237,192 @@ def _filter(oi, of, n, bi, bf, bk, order, m, use_len, use_vul, use_smooth, prima
     return n
 
 
+# ---------------------------------------------------------------------------
+# goal bounds: a label whose objectives plus a lower bound of any completion
+# are dominated (by a clear margin) by a known monotone path cannot lead to
+# the front, and is dropped when it is made
+# ---------------------------------------------------------------------------
+# bounds[q, k, t] for frame column k and row t: q = 4 * state + value, state
+# 0 = at exit row t (next step into column k + 1), 1 = going up at row t of
+# column k (may exit at t or step up), 2 = going down; value 0 = least
+# remaining length, 1 = the vulnerability of that completion, 2 = least
+# remaining vulnerability, 3 = the length of that completion (inf: no
+# completion).
+B_EXIT, B_UP, B_DOWN = 0, 4, 8
+B_LEN, B_LEN_VUL, B_VUL, B_VUL_LEN = range(4)
+#: Relative margin of the goal-bound test (much larger than the tolerance
+#: and than the rounding of sums taken in another order).
+PRUNE_MARGIN = 1e-6
+#: Goal-bound modes: only labels with no completion (a smoothness objective),
+#: length alone, vulnerability alone, both.
+P_DEAD, P_LEN, P_VUL, P_BOTH = range(4)
+
+
+@numba.njit(cache=True, inline="always")
+def _lex_take(b, q, k, t, a1, a2, c1, c2):
+    """``b[q:q+2, k, t] = (c1, c2)`` if that pair is lexicographically
+    smaller than ``(a1, a2)`` (the current one)."""
+    if c1 < a1 or (c1 == a1 and c2 < a2):
+        b[q, k, t] = c1
+        b[q + 1, k, t] = c2
+
+
+@numba.njit(cache=True)
+def _monotone_bounds(occ, pot, goal_row, col0, n_cols, cell_size, corner_cutting):
+    """Cost-to-go bounds of the monotone paths (see ``B_*``), by one
+    single-objective DP per objective backwards over the columns."""
+    h = occ.shape[0]
+    inf = np.inf
+    b = np.full((12, n_cols, h), inf)
+    d = SQRT2 * cell_size
+    for k in range(n_cols - 1, -1, -1):
+        c = col0 + k
+        if k == n_cols - 1:
+            for q in (B_LEN, B_LEN_VUL, B_VUL, B_VUL_LEN):
+                b[B_EXIT + q, k, goal_row] = 0.0
+        else:
+            for t in range(h):
+                if occ[t, c]:
+                    continue
+                for obj in (B_LEN, B_VUL):
+                    q = B_EXIT + obj
+                    if not occ[t, c + 1]:
+                        r = B_EXIT
+                        if obj == B_LEN:
+                            x1, x2 = (
+                                cell_size + b[r + B_LEN, k + 1, t],
+                                pot[t, c + 1] + b[r + B_LEN_VUL, k + 1, t],
+                            )
+                        else:
+                            x1, x2 = (
+                                pot[t, c + 1] + b[r + B_VUL, k + 1, t],
+                                cell_size + b[r + B_VUL_LEN, k + 1, t],
+                            )
+                        _lex_take(b, q, k, t, b[q, k, t], b[q + 1, k, t], x1, x2)
+                    for dr in (-1, 1):
+                        if can_step(occ, t, c, dr, 1, corner_cutting):
+                            r = B_UP if dr == -1 else B_DOWN
+                            if obj == B_LEN:
+                                x1 = d + b[r + B_LEN, k + 1, t + dr]
+                                x2 = pot[t + dr, c + 1] + b[r + B_LEN_VUL, k + 1, t + dr]
+                            else:
+                                x1 = pot[t + dr, c + 1] + b[r + B_VUL, k + 1, t + dr]
+                                x2 = d + b[r + B_VUL_LEN, k + 1, t + dr]
+                            _lex_take(b, q, k, t, b[q, k, t], b[q + 1, k, t], x1, x2)
+        # runs inside column k: exit here, or one more vertical step
+        for r, dr in ((B_UP, -1), (B_DOWN, 1)):
+            t = 0 if dr == -1 else h - 1
+            while 0 <= t < h:
+                if not occ[t, c]:
+                    for q in range(4):
+                        b[r + q, k, t] = b[B_EXIT + q, k, t]
+                    u = t + dr
+                    if 0 <= u < h and not occ[u, c]:
+                        q = r + B_LEN
+                        _lex_take(
+                            b,
+                            q,
+                            k,
+                            t,
+                            b[q, k, t],
+                            b[q + 1, k, t],
+                            cell_size + b[q, k, u],
+                            pot[u, c] + b[q + 1, k, u],
+                        )
+                        q = r + B_VUL
+                        _lex_take(
+                            b,
+                            q,
+                            k,
+                            t,
+                            b[q, k, t],
+                            b[q + 1, k, t],
+                            pot[u, c] + b[q, k, u],
+                            cell_size + b[q + 1, k, u],
+                        )
+                t -= dr
+    return b
+
+
+@numba.njit(cache=True, inline="always")
+def _margin(x):
+    return PRUNE_MARGIN * max(1.0, abs(x))
+
+
+@numba.njit(cache=True, inline="always")
+def _last_le(s1, n, x):
+    """Index of the last ``s1[:n]`` entry ``<= x`` (-1: none); ``s1`` sorted."""
+    lo, hi = 0, n
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if s1[mid] <= x:
+            lo = mid + 1
+        else:
+            hi = mid
+    return lo - 1
+
+
+@numba.njit(cache=True, inline="always")
+def _dominated(stair, n, f1, f2):
+    """True if a point of the staircase ``stair[:, :n]`` dominates
+    ``(f1, f2)`` with a clear margin in one coordinate."""
+    i = _last_le(stair[0], n, f1 - _margin(f1))
+    if i >= 0 and stair[1, i] <= f2:
+        return True
+    i = _last_le(stair[0], n, f1)
+    return i >= 0 and stair[1, i] <= f2 - _margin(f2)
+
+
+@numba.njit(cache=True)
+def _stair_add(stair, n, p1, p2):
+    """Add the point ``(p1, p2)`` to the staircase (``stair[0]`` increasing,
+    ``stair[1]`` decreasing, exact comparisons) unless a point dominates or
+    equals it; removes the points it dominates. Returns ``(stair, n)``."""
+    lo = _last_le(stair[0], n, p1) + 1  # first entry > p1
+    if lo > 0 and stair[1, lo - 1] <= p2:
+        return stair, n
+    # entries from start on have s1 >= p1; those with s2 >= p2 are dominated
+    start = lo
+    while start > 0 and stair[0, start - 1] == p1:
+        start -= 1
+    end = start
+    while end < n and stair[1, end] >= p2:
+        end += 1
+    if n - (end - start) + 1 > stair.shape[1]:
+        out = np.empty((2, 2 * stair.shape[1]))
+        out[:, :n] = stair[:, :n]
+        stair = out
+    shift = 1 - (end - start)
+    if shift > 0:
+        for i in range(n - 1, end - 1, -1):
+            stair[0, i + shift] = stair[0, i]
+            stair[1, i + shift] = stair[1, i]
+    elif shift < 0:
+        for i in range(end, n):
+            stair[0, i + shift] = stair[0, i]
+            stair[1, i + shift] = stair[1, i]
+    stair[0, start] = p1
+    stair[1, start] = p2
+    return stair, n + shift
+
+
+@numba.njit(cache=True, inline="always")
+def _hopeless(bounds, r, k, t, length, vul, pmode, stair, n_stair):
+    """True if no completion of a label with ``length, vul`` in state ``r``
+    (``B_EXIT``/``B_UP``/``B_DOWN``) at row ``t`` of frame column ``k`` can
+    be on the front."""
+    bl = bounds[r + B_LEN, k, t]
+    if bl == np.inf:
+        return True
+    if pmode == P_DEAD:
+        return False
+    if pmode == P_LEN:
+        return _dominated(stair, n_stair, length + bl, 0.0)
+    if pmode == P_VUL:
+        return _dominated(stair, n_stair, vul + bounds[r + B_VUL, k, t], 0.0)
+    return _dominated(stair, n_stair, length + bl, vul + bounds[r + B_VUL, k, t])
+
+
 @numba.njit(cache=True)
 def _monotone_init(occ, pot, start_row, col0, cell_size):
     """The DP state after the start column: one label per exit row reachable
@@ -340,12 +528,18 @@ def _monotone_steps(
     st,
     n_steps,
     max_labels,
+    bounds,
+    pmode,
+    stair,
 ):
     """Advance the DP by at most ``n_steps`` columns.
 
     ``st`` (see ``ST_*``) is updated in place. Stops before committing a
     column whose labels, run sets and tree would exceed ``max_labels``
-    labels held at once. Returns ``(tree, ci, cf, off, status)`` (status
+    labels held at once. Candidates that cannot lead to the front (see
+    :func:`_hopeless`; ``bounds`` from :func:`_monotone_bounds`, ``pmode``
+    a ``P_*`` mode, ``stair`` the known monotone paths' staircase) are
+    dropped when made. Returns ``(tree, ci, cf, off, stair, status)`` (status
     DONE after the goal column, PAUSED, or OVER_BUDGET); the goal's labels
     are then ``off[goal_row] .. off[goal_row + 1]``, their ancestry in
     ``tree``."""
@@ -369,11 +563,31 @@ def _monotone_steps(
     steps = 0
     while st[ST_K] < n_cols:
         if steps == n_steps:
-            return tree, ci, cf, off, PAUSED
+            return tree, ci, cf, off, stair, PAUSED
         k = st[ST_K]
         c = col0 + k
         at_goal = k == n_cols - 1  # the goal column: exit row = goal row
         made = 0
+        pruned = 0
+        # the paths through the current labels along their best completions
+        n_stair = st[ST_STAIR]
+        if pmode != P_DEAD:
+            for t in range(h):
+                x1 = bounds[B_EXIT + B_LEN, k - 1, t]
+                if off[t + 1] == off[t] or x1 == np.inf:
+                    continue
+                x2 = bounds[B_EXIT + B_LEN_VUL, k - 1, t]
+                y1 = bounds[B_EXIT + B_VUL_LEN, k - 1, t]
+                y2 = bounds[B_EXIT + B_VUL, k - 1, t]
+                for a in range(off[t], off[t + 1]):
+                    if pmode == P_BOTH:
+                        stair, n_stair = _stair_add(stair, n_stair, cf[a, LENGTH] + x1, cf[a, VUL] + x2)
+                        stair, n_stair = _stair_add(stair, n_stair, cf[a, LENGTH] + y1, cf[a, VUL] + y2)
+                    elif pmode == P_LEN:
+                        stair, n_stair = _stair_add(stair, n_stair, cf[a, LENGTH] + x1, 0.0)
+                    else:
+                        stair, n_stair = _stair_add(stair, n_stair, cf[a, VUL] + y2, 0.0)
+            st[ST_STAIR] = n_stair
 
         # 1. up[t], t from the bottom: the diagonal arrivals at t + 1 (from
         #    row t + 2) and up[t + 1], one vertical step further
@@ -399,6 +613,11 @@ def _monotone_steps(
                     v += pot[t, c]
                     _put(bi, bf, bk, m, NORTH, ci[a, M_NS] + 1, ci[a, M_ND] + 1, e, v, a, cell_size, primary)
                     m += 1
+                    if _hopeless(
+                        bounds, B_UP, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair
+                    ):
+                        m -= 1
+                        pruned += 1
             for x in range(ulo[t + 1], uhi[t + 1]):
                 _put(
                     bi,
@@ -415,6 +634,9 @@ def _monotone_steps(
                     primary,
                 )
                 m += 1
+                if _hopeless(bounds, B_UP, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair):
+                    m -= 1
+                    pruned += 1
             made += m
             order = _sort(bk, bi, m, idx, tmp)
             ui = _grow(ui, nu + m)
@@ -423,7 +645,7 @@ def _monotone_steps(
             uhi[t] = nu
             if st[ST_TREE] + nu > max_labels:
                 st[ST_HELD] = st[ST_TREE]
-                return tree, ci, cf, off, OVER_BUDGET
+                return tree, ci, cf, off, stair, OVER_BUDGET
             st[ST_PEAK] = max(st[ST_PEAK], st[ST_TREE] + nu)
 
         # 2. down[t] from the top (kept for one row), and the labels of
@@ -467,6 +689,11 @@ def _monotone_steps(
                                 primary,
                             )
                             m += 1
+                            if _hopeless(
+                                bounds, B_DOWN, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair
+                            ):
+                                m -= 1
+                                pruned += 1
                     for x in range(dn[prev]):
                         _put(
                             bi,
@@ -483,6 +710,11 @@ def _monotone_steps(
                             primary,
                         )
                         m += 1
+                        if _hopeless(
+                            bounds, B_DOWN, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair
+                        ):
+                            m -= 1
+                            pruned += 1
                     made += m
                     order = _sort(bk, bi, m, idx, tmp)
                     if m > di.shape[1]:
@@ -540,6 +772,11 @@ def _monotone_steps(
                         primary,
                     )
                     m += 1
+                    if _hopeless(
+                        bounds, B_EXIT, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair
+                    ):
+                        m -= 1
+                        pruned += 1
             for x in range(dn[cur]):
                 for q in range(M_COLS):
                     bi[m, q] = di[cur, x, q]
@@ -547,6 +784,9 @@ def _monotone_steps(
                 bf[m, VUL] = df[cur, x, VUL]
                 bk[m] = _key(bi, bf, m, primary)
                 m += 1
+                if _hopeless(bounds, B_EXIT, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair):
+                    m -= 1
+                    pruned += 1
             for a in range(off[t], off[t + 1]):
                 e = ci[a, M_EIGHTHS]
                 if ci[a, M_HEAD] != NO_HEADING:
@@ -566,6 +806,9 @@ def _monotone_steps(
                     primary,
                 )
                 m += 1
+                if _hopeless(bounds, B_EXIT, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair):
+                    m -= 1
+                    pruned += 1
             if ne:
                 for a in range(off[t + 1], off[t + 2]):
                     e = ci[a, M_EIGHTHS]
@@ -586,6 +829,11 @@ def _monotone_steps(
                         primary,
                     )
                     m += 1
+                    if _hopeless(
+                        bounds, B_EXIT, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair
+                    ):
+                        m -= 1
+                        pruned += 1
             for x in range(ulo[t], uhi[t]):
                 for q in range(M_COLS):
                     bi[m, q] = ui[x, q]
@@ -593,7 +841,10 @@ def _monotone_steps(
                 bf[m, VUL] = uf[x, VUL]
                 bk[m] = _key(bi, bf, m, primary)
                 m += 1
-            made += m - dn[cur] - (uhi[t] - ulo[t])
+                if _hopeless(bounds, B_EXIT, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair):
+                    m -= 1
+                    pruned += 1
+            made += m
             order = _sort(bk, bi, m, idx, tmp)
             ni = _grow(ni, nn + m)
             nf = _grow(nf, nn + m)
@@ -601,7 +852,7 @@ def _monotone_steps(
             held = st[ST_TREE] + nn + nu + dn[0] + dn[1]
             if held > max_labels:
                 st[ST_HELD] = st[ST_TREE]
-                return tree, ci, cf, off, OVER_BUDGET
+                return tree, ci, cf, off, stair, OVER_BUDGET
             if held > st[ST_PEAK]:
                 st[ST_PEAK] = held
         for t in range(last + 1, h + 1):
@@ -627,6 +878,7 @@ def _monotone_steps(
         off, noff = noff, off
         st[ST_MADE] += nn
         st[ST_CANDIDATES] += made
+        st[ST_PRUNED] += pruned
         if n_tree >= 2 * st[ST_LIVE] + 4 * h or at_goal:
             n_tree = _compact(tree, n_tree, ci, nn)
             st[ST_LIVE] = n_tree
@@ -635,4 +887,4 @@ def _monotone_steps(
         st[ST_HELD] = n_tree
         st[ST_K] = k + 1
         steps += 1
-    return tree, ci, cf, off, DONE
+    return tree, ci, cf, off, stair, DONE

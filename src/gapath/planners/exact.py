@@ -89,14 +89,20 @@ from gapath.planners._monotone_kernels import LENGTH as M_LENGTH
 from gapath.planners._monotone_kernels import (
     M_EIGHTHS,
     M_LINK,
+    P_BOTH,
+    P_DEAD,
+    P_LEN,
+    P_VUL,
     ST_CANDIDATES,
     ST_HELD,
     ST_K,
     ST_MADE,
     ST_PEAK,
     ST_PEAK_BYTES,
+    ST_PRUNED,
     T_PARENT,
     T_ROW,
+    _monotone_bounds,
     _monotone_init,
     _monotone_steps,
 )
@@ -125,6 +131,10 @@ TOL = 1e-9
 
 #: Largest label budget: label rows are indexed by 32-bit integers.
 MAX_LABELS = 2**31 - 1024
+
+#: The monotone DP drops the labels that its goal bounds show cannot reach
+#: the front (False: every label is filtered, as the DP did before; tests).
+_MONOTONE_GOAL_BOUND = True
 
 #: Seconds of work between two returns of a resumable kernel (progress,
 #: Ctrl-C and the budget are handled between kernel calls).
@@ -384,10 +394,16 @@ def monotone_front(
     use = ("length" in names, "vulnerability" in names, "smoothness" in names)
     with _DeferredInterrupt() as interrupt:
         tree, ci, cf, off, st = _monotone_init(occ, pot, sr, frame.col0, cs)
+        if _MONOTONE_GOAL_BOUND:
+            bounds = _monotone_bounds(occ, pot, gr, frame.col0, frame.n_cols, cs, cc)
+            pmode = P_DEAD if use[2] else (P_BOTH if use[0] and use[1] else (P_LEN if use[0] else P_VUL))
+        else:  # no label is dropped before the filters (the tests' reference)
+            bounds, pmode = np.zeros((12, frame.n_cols, occ.shape[0])), P_DEAD
+        stair = np.empty((2, 64))
         slices = _Slices(4, 1, 1 << 20)
         while True:
             k0, t1 = st[ST_K], time.perf_counter()
-            tree, ci, cf, off, status = _monotone_steps(
+            tree, ci, cf, off, stair, status = _monotone_steps(
                 occ,
                 pot,
                 gr,
@@ -404,6 +420,9 @@ def monotone_front(
                 st,
                 slices.n,
                 budget,
+                bounds,
+                pmode,
+                stair,
             )
             interrupt.check()
             now = time.perf_counter()
@@ -415,7 +434,8 @@ def monotone_front(
                 "labels_peak": int(st[ST_PEAK]),
                 "labels_made": int(st[ST_MADE]),
                 "candidates": int(st[ST_CANDIDATES]),
-                "peak_bytes": int(st[ST_PEAK_BYTES]),
+                "pruned": int(st[ST_PRUNED]),
+                "peak_bytes": int(st[ST_PEAK_BYTES] + bounds.nbytes + stair.nbytes),
                 "seconds": now - t0,
             }
             if status == OVER_BUDGET:
