@@ -98,7 +98,9 @@ def test_memory_is_the_live_ancestry_not_every_label(goal_bound):
     assert s["labels_peak"] * 3 < s["labels_made"]
     # at the end only the ancestry of the goal's labels is left
     assert s["labels"] * 8 < s["labels_made"]
-    assert s["peak_bytes"] < 40 * s["labels_made"]
+    # the previous DP's tables held a 40-byte row for every label it made
+    made_before = reference_front(ws, ("length", "vulnerability"))[2]
+    assert s["peak_bytes"] * 1.5 < 40 * made_before
 
 
 def test_the_goal_bound_drops_labels_on_a_larger_map():

@@ -344,6 +344,63 @@ def _monotone_bounds(occ, pot, goal_row, col0, n_cols, cell_size, corner_cutting
     return b
 
 
+@numba.njit(cache=True)
+def _monotone_tradeoffs(
+    occ, pot, goal_row, col0, n_cols, cell_size, corner_cutting, weights, len_scale, vul_scale
+):
+    """Length and vulnerability of the monotone completion from each exit
+    state minimising ``w * length / len_scale + (1 - w) * vulnerability /
+    vul_scale``, for each ``w`` of ``weights``: ``out[2 * i]`` (length) and
+    ``out[2 * i + 1]`` (vulnerability), ``(n_cols, h)`` each, inf where no
+    completion exists. Their paths through the labels are points of the
+    staircase of the goal bound."""
+    h = occ.shape[0]
+    inf = np.inf
+    out = np.full((2 * weights.shape[0], n_cols, h), inf)
+    d = SQRT2 * cell_size
+    x = np.empty((3, h))  # exit states of column k: cost, length, vulnerability
+    run = np.empty((2, 3, h))  # up / down states of column k + 1
+    for i in range(weights.shape[0]):
+        wl = weights[i] / len_scale
+        wv = (1.0 - weights[i]) / vul_scale
+        for k in range(n_cols - 1, -1, -1):
+            c = col0 + k
+            x[:] = inf
+            if k == n_cols - 1:
+                x[:, goal_row] = 0.0
+            else:
+                for t in range(h):
+                    if occ[t, c]:
+                        continue
+                    if not occ[t, c + 1]:
+                        ln, vu = cell_size + out[2 * i, k + 1, t], pot[t, c + 1] + out[2 * i + 1, k + 1, t]
+                        cost = wl * ln + wv * vu
+                        if cost < x[0, t]:
+                            x[0, t], x[1, t], x[2, t] = cost, ln, vu
+                    for s, dr in ((0, -1), (1, 1)):
+                        if can_step(occ, t, c, dr, 1, corner_cutting):
+                            ln, vu = d + run[s, 1, t + dr], pot[t + dr, c + 1] + run[s, 2, t + dr]
+                            cost = wl * ln + wv * vu
+                            if cost < x[0, t]:
+                                x[0, t], x[1, t], x[2, t] = cost, ln, vu
+            for t in range(h):
+                out[2 * i, k, t] = x[1, t]
+                out[2 * i + 1, k, t] = x[2, t]
+            # runs inside column k (for column k - 1)
+            for s, dr in ((0, -1), (1, 1)):
+                t = 0 if dr == -1 else h - 1
+                while 0 <= t < h:
+                    run[s, 0, t], run[s, 1, t], run[s, 2, t] = x[0, t], x[1, t], x[2, t]
+                    u = t + dr
+                    if not occ[t, c] and 0 <= u < h and not occ[u, c]:
+                        ln, vu = cell_size + run[s, 1, u], pot[u, c] + run[s, 2, u]
+                        cost = wl * ln + wv * vu
+                        if cost < run[s, 0, t]:
+                            run[s, 0, t], run[s, 1, t], run[s, 2, t] = cost, ln, vu
+                    t -= dr
+    return out
+
+
 @numba.njit(cache=True, inline="always")
 def _margin(x):
     return PRUNE_MARGIN * max(1.0, abs(x))
@@ -531,6 +588,7 @@ def _monotone_steps(
     bounds,
     pmode,
     stair,
+    comps,
 ):
     """Advance the DP by at most ``n_steps`` columns.
 
@@ -538,7 +596,9 @@ def _monotone_steps(
     column whose labels, run sets and tree would exceed ``max_labels``
     labels held at once. Candidates that cannot lead to the front (see
     :func:`_hopeless`; ``bounds`` from :func:`_monotone_bounds`, ``pmode``
-    a ``P_*`` mode, ``stair`` the known monotone paths' staircase) are
+    a ``P_*`` mode, ``stair`` the known monotone paths' staircase, to which
+    the paths through each label along the completions of ``bounds`` and
+    of ``comps`` (from :func:`_monotone_tradeoffs`) are added) are
     dropped when made. Returns ``(tree, ci, cf, off, stair, status)`` (status
     DONE after the goal column, PAUSED, or OVER_BUDGET); the goal's labels
     are then ``off[goal_row] .. off[goal_row + 1]``, their ancestry in
@@ -583,6 +643,12 @@ def _monotone_steps(
                     if pmode == P_BOTH:
                         stair, n_stair = _stair_add(stair, n_stair, cf[a, LENGTH] + x1, cf[a, VUL] + x2)
                         stair, n_stair = _stair_add(stair, n_stair, cf[a, LENGTH] + y1, cf[a, VUL] + y2)
+                        for q in range(0, comps.shape[0], 2):
+                            z1 = comps[q, k - 1, t]
+                            if z1 != np.inf:
+                                stair, n_stair = _stair_add(
+                                    stair, n_stair, cf[a, LENGTH] + z1, cf[a, VUL] + comps[q + 1, k - 1, t]
+                                )
                     elif pmode == P_LEN:
                         stair, n_stair = _stair_add(stair, n_stair, cf[a, LENGTH] + x1, 0.0)
                     else:

@@ -85,8 +85,9 @@ from gapath.planners._exact_kernels import (
     _tolerant_front,
     _trace,
 )
-from gapath.planners._monotone_kernels import LENGTH as M_LENGTH
 from gapath.planners._monotone_kernels import (
+    B_LEN,
+    B_VUL,
     M_EIGHTHS,
     M_LINK,
     P_BOTH,
@@ -105,7 +106,9 @@ from gapath.planners._monotone_kernels import (
     _monotone_bounds,
     _monotone_init,
     _monotone_steps,
+    _monotone_tradeoffs,
 )
+from gapath.planners._monotone_kernels import LENGTH as M_LENGTH
 from gapath.planners._monotone_kernels import VUL as M_VUL
 
 if TYPE_CHECKING:
@@ -135,6 +138,11 @@ MAX_LABELS = 2**31 - 1024
 #: The monotone DP drops the labels that its goal bounds show cannot reach
 #: the front (False: every label is filtered, as the DP did before; tests).
 _MONOTONE_GOAL_BOUND = True
+
+#: Weights of length (scaled by the shortest monotone path's) against
+#: vulnerability (scaled likewise) of the completions whose paths, through
+#: every label, are known points below which the goal bound cuts.
+_TRADEOFF_WEIGHTS = np.array([0.1, 0.25, 0.5, 0.75, 0.9])
 
 #: Seconds of work between two returns of a resumable kernel (progress,
 #: Ctrl-C and the budget are handled between kernel calls).
@@ -399,6 +407,24 @@ def monotone_front(
             pmode = P_DEAD if use[2] else (P_BOTH if use[0] and use[1] else (P_LEN if use[0] else P_VUL))
         else:  # no label is dropped before the filters (the tests' reference)
             bounds, pmode = np.zeros((12, frame.n_cols, occ.shape[0])), P_DEAD
+        comps = np.empty((0, 1, 1))
+        if pmode == P_BOTH:
+            # completions trading length for vulnerability: more known paths
+            # for the goal bound from the first columns on
+            best_len, best_vul = bounds[B_LEN, 0, sr], bounds[B_VUL, 0, sr]
+            if np.isfinite(best_len):
+                comps = _monotone_tradeoffs(
+                    occ,
+                    pot,
+                    gr,
+                    frame.col0,
+                    frame.n_cols,
+                    cs,
+                    cc,
+                    _TRADEOFF_WEIGHTS,
+                    max(best_len, 1e-9),
+                    max(best_vul, 1e-9),
+                )
         stair = np.empty((2, 64))
         slices = _Slices(4, 1, 1 << 20)
         while True:
@@ -423,6 +449,7 @@ def monotone_front(
                 bounds,
                 pmode,
                 stair,
+                comps,
             )
             interrupt.check()
             now = time.perf_counter()
@@ -435,7 +462,7 @@ def monotone_front(
                 "labels_made": int(st[ST_MADE]),
                 "candidates": int(st[ST_CANDIDATES]),
                 "pruned": int(st[ST_PRUNED]),
-                "peak_bytes": int(st[ST_PEAK_BYTES] + bounds.nbytes + stair.nbytes),
+                "peak_bytes": int(st[ST_PEAK_BYTES] + bounds.nbytes + stair.nbytes + comps.nbytes),
                 "seconds": now - t0,
             }
             if status == OVER_BUDGET:
