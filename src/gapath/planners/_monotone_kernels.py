@@ -208,10 +208,14 @@ def _filter(oi, of, n, bi, bf, bk, order, m, use_len, use_vul, use_smooth, prima
                     break
             if covered:
                 continue
-        # j can cover a kept label only if their primary values tie
+        # j can cover a kept label only if their primary values tie: the
+        # kept labels are sorted, so only a tail of them
         if n > first and _le(bk[j], _key(oi, of, n - 1, primary)):
-            kept = first
-            for i in range(first, n):
+            tail = n - 1
+            while tail > first and _le(bk[j], _key(oi, of, tail - 1, primary)):
+                tail -= 1
+            kept = tail
+            for i in range(tail, n):
                 if not _covers(bi, bf, j, oi, of, i, use_len, use_vul, use_smooth, at_goal):
                     if kept != i:
                         for x in range(M_COLS):
@@ -423,11 +427,16 @@ def _last_le(s1, n, x):
 def _dominated(stair, n, f1, f2):
     """True if a point of the staircase ``stair[:, :n]`` dominates
     ``(f1, f2)`` with a clear margin in one coordinate."""
-    i = _last_le(stair[0], n, f1 - _margin(f1))
-    if i >= 0 and stair[1, i] <= f2:
-        return True
     i = _last_le(stair[0], n, f1)
-    return i >= 0 and stair[1, i] <= f2 - _margin(f2)
+    if i < 0:
+        return False
+    if stair[1, i] <= f2 - _margin(f2):
+        return True
+    # the last point clearly left of f1 (the staircase falls to the right)
+    x = f1 - _margin(f1)
+    while i >= 0 and stair[0, i] > x:
+        i -= 1
+    return i >= 0 and stair[1, i] <= f2
 
 
 @numba.njit(cache=True)
@@ -461,6 +470,25 @@ def _stair_add(stair, n, p1, p2):
     stair[0, start] = p1
     stair[1, start] = p2
     return stair, n + shift
+
+
+@numba.njit(cache=True)
+def _drop_hopeless(oi, of, lo, hi, bounds, r, k, t, pmode, stair, n_stair):
+    """Remove from labels ``lo .. hi - 1`` (one set, kept in order) those
+    :func:`_hopeless` finds; returns the new end. Checking the filtered set
+    drops the same labels as checking every candidate: a label covered by
+    a hopeless one is hopeless itself (its bound is not smaller)."""
+    kept = lo
+    for i in range(lo, hi):
+        if _hopeless(bounds, r, k, t, of[i, LENGTH], of[i, VUL], pmode, stair, n_stair):
+            continue
+        if kept != i:
+            for x in range(M_COLS):
+                oi[kept, x] = oi[i, x]
+            of[kept, LENGTH] = of[i, LENGTH]
+            of[kept, VUL] = of[i, VUL]
+        kept += 1
+    return kept
 
 
 @numba.njit(cache=True, inline="always")
@@ -631,7 +659,7 @@ def _monotone_steps(
         pruned = 0
         # the paths through the current labels along their best completions
         n_stair = st[ST_STAIR]
-        if pmode != P_DEAD:
+        if pmode != P_DEAD and (k < 16 or k % 8 == 1):
             for t in range(h):
                 x1 = bounds[B_EXIT + B_LEN, k - 1, t]
                 if off[t + 1] == off[t] or x1 == np.inf:
@@ -679,11 +707,6 @@ def _monotone_steps(
                     v += pot[t, c]
                     _put(bi, bf, bk, m, NORTH, ci[a, M_NS] + 1, ci[a, M_ND] + 1, e, v, a, cell_size, primary)
                     m += 1
-                    if _hopeless(
-                        bounds, B_UP, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair
-                    ):
-                        m -= 1
-                        pruned += 1
             for x in range(ulo[t + 1], uhi[t + 1]):
                 _put(
                     bi,
@@ -700,14 +723,15 @@ def _monotone_steps(
                     primary,
                 )
                 m += 1
-                if _hopeless(bounds, B_UP, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair):
-                    m -= 1
-                    pruned += 1
             made += m
             order = _sort(bk, bi, m, idx, tmp)
             ui = _grow(ui, nu + m)
             uf = _grow(uf, nu + m)
+            nu0 = nu
             nu = _filter(ui, uf, nu, bi, bf, bk, order, m, use_len, use_vul, use_smooth, primary, False)
+            kept = _drop_hopeless(ui, uf, nu0, nu, bounds, B_UP, k, t, pmode, stair, n_stair)
+            pruned += nu - kept
+            nu = kept
             uhi[t] = nu
             if st[ST_TREE] + nu > max_labels:
                 st[ST_HELD] = st[ST_TREE]
@@ -755,11 +779,6 @@ def _monotone_steps(
                                 primary,
                             )
                             m += 1
-                            if _hopeless(
-                                bounds, B_DOWN, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair
-                            ):
-                                m -= 1
-                                pruned += 1
                     for x in range(dn[prev]):
                         _put(
                             bi,
@@ -776,11 +795,6 @@ def _monotone_steps(
                             primary,
                         )
                         m += 1
-                        if _hopeless(
-                            bounds, B_DOWN, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair
-                        ):
-                            m -= 1
-                            pruned += 1
                     made += m
                     order = _sort(bk, bi, m, idx, tmp)
                     if m > di.shape[1]:
@@ -805,6 +819,11 @@ def _monotone_steps(
                         primary,
                         False,
                     )
+                    kept = _drop_hopeless(
+                        di[cur], df[cur], 0, dn[cur], bounds, B_DOWN, k, t, pmode, stair, n_stair
+                    )
+                    pruned += dn[cur] - kept
+                    dn[cur] = kept
             if occ[t, c] or (at_goal and t != goal_row):
                 continue
             # the labels of exit row t: horizontal arrival, diagonal arrivals
@@ -838,11 +857,6 @@ def _monotone_steps(
                         primary,
                     )
                     m += 1
-                    if _hopeless(
-                        bounds, B_EXIT, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair
-                    ):
-                        m -= 1
-                        pruned += 1
             for x in range(dn[cur]):
                 for q in range(M_COLS):
                     bi[m, q] = di[cur, x, q]
@@ -850,9 +864,6 @@ def _monotone_steps(
                 bf[m, VUL] = df[cur, x, VUL]
                 bk[m] = _key(bi, bf, m, primary)
                 m += 1
-                if _hopeless(bounds, B_EXIT, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair):
-                    m -= 1
-                    pruned += 1
             for a in range(off[t], off[t + 1]):
                 e = ci[a, M_EIGHTHS]
                 if ci[a, M_HEAD] != NO_HEADING:
@@ -872,9 +883,6 @@ def _monotone_steps(
                     primary,
                 )
                 m += 1
-                if _hopeless(bounds, B_EXIT, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair):
-                    m -= 1
-                    pruned += 1
             if ne:
                 for a in range(off[t + 1], off[t + 2]):
                     e = ci[a, M_EIGHTHS]
@@ -895,11 +903,6 @@ def _monotone_steps(
                         primary,
                     )
                     m += 1
-                    if _hopeless(
-                        bounds, B_EXIT, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair
-                    ):
-                        m -= 1
-                        pruned += 1
             for x in range(ulo[t], uhi[t]):
                 for q in range(M_COLS):
                     bi[m, q] = ui[x, q]
@@ -907,14 +910,15 @@ def _monotone_steps(
                 bf[m, VUL] = uf[x, VUL]
                 bk[m] = _key(bi, bf, m, primary)
                 m += 1
-                if _hopeless(bounds, B_EXIT, k, t, bf[m - 1, LENGTH], bf[m - 1, VUL], pmode, stair, n_stair):
-                    m -= 1
-                    pruned += 1
             made += m
             order = _sort(bk, bi, m, idx, tmp)
             ni = _grow(ni, nn + m)
             nf = _grow(nf, nn + m)
+            nn0 = nn
             nn = _filter(ni, nf, nn, bi, bf, bk, order, m, use_len, use_vul, use_smooth, primary, at_goal)
+            kept = _drop_hopeless(ni, nf, nn0, nn, bounds, B_EXIT, k, t, pmode, stair, n_stair)
+            pruned += nn - kept
+            nn = kept
             held = st[ST_TREE] + nn + nu + dn[0] + dn[1]
             if held > max_labels:
                 st[ST_HELD] = st[ST_TREE]

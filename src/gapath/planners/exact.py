@@ -142,7 +142,7 @@ _MONOTONE_GOAL_BOUND = True
 #: Weights of length (scaled by the shortest monotone path's) against
 #: vulnerability (scaled likewise) of the completions whose paths, through
 #: every label, are known points below which the goal bound cuts.
-_TRADEOFF_WEIGHTS = np.array([0.1, 0.25, 0.5, 0.75, 0.9])
+_TRADEOFF_WEIGHTS = np.array([0.05, 0.15, 0.3, 0.5, 0.7, 0.85, 0.95])
 
 #: Seconds of work between two returns of a resumable kernel (progress,
 #: Ctrl-C and the budget are handled between kernel calls).
