@@ -380,6 +380,14 @@ def monotone_front(
     paths back. Memory is therefore about a column of labels plus the
     ancestry of the live ones.
 
+    For (length, vulnerability) and single objectives other than
+    smoothness, a goal bound drops the labels that cannot reach the front:
+    backward single-objective DPs give lower bounds of every completion and
+    a few actual completions, the paths through the labels along those
+    completions are known points, and a label whose objectives plus the
+    bounds are dominated by a known point (by a relative margin far above
+    the tolerance) is dropped. The front is the same as without it.
+
     Examples
     --------
     >>> import numpy as np
@@ -411,8 +419,8 @@ def monotone_front(
         if pmode == P_BOTH:
             # completions trading length for vulnerability: more known paths
             # for the goal bound from the first columns on
-            best_len, best_vul = bounds[B_LEN, 0, sr], bounds[B_VUL, 0, sr]
-            if np.isfinite(best_len):
+            best_len, best_vul = bounds[B_LEN, 0].min(), bounds[B_VUL, 0].min()
+            if np.isfinite(best_len):  # else there is no monotone path at all
                 comps = _monotone_tradeoffs(
                     occ,
                     pot,
