@@ -344,8 +344,6 @@ def _monotone_columns(
     return li, lf, off, DONE, max_cand
 
 
-
-
 def reference_front(workspace, names):
     """``(F, smoothness)`` of the old monotone DP (lexicographically sorted),
     or None when there is no feasible monotone path."""
@@ -358,8 +356,21 @@ def reference_front(workspace, names):
     li, lf, off, n = _monotone_start(occ, pot, sr, frame.col0, cs)
     st = np.array([n, 1], np.int64)
     li, lf, off, status, _ = _monotone_columns(
-        occ, pot, gr, frame.col0, frame.n_cols, cs, cc, *use, primary, li, lf, off, st,
-        frame.n_cols + 1, 2**62,
+        occ,
+        pot,
+        gr,
+        frame.col0,
+        frame.n_cols,
+        cs,
+        cc,
+        *use,
+        primary,
+        li,
+        lf,
+        off,
+        st,
+        frame.n_cols + 1,
+        2**62,
     )
     assert status == DONE
     lo, hi = off[gr], off[gr + 1]
