@@ -63,9 +63,7 @@ from gapath.planners._boa_kernels import _boa_run, _smoothest
 from gapath.planners._exact_heuristics import _free_prepare
 from gapath.planners._exact_kernels import (
     DONE,
-    EIGHTHS,
     F_VUL,
-    LENGTH,
     MODE_CELL,
     MODE_HEADING,
     MODE_THREE,
@@ -75,9 +73,7 @@ from gapath.planners._exact_kernels import (
     OBJ_SMOOTH,
     OBJ_VUL,
     OVER_BUDGET,
-    PARENT,
     PAUSED,
-    ROW,
     S_EXPANDED,
     S_GENERATED,
     S_N,
@@ -86,13 +82,35 @@ from gapath.planners._exact_kernels import (
     S_SIZE,
     S_SOLS,
     TURNS,
-    VUL,
     _free_run,
-    _monotone_columns,
-    _monotone_start,
     _tolerant_front,
     _trace,
 )
+from gapath.planners._monotone_kernels import (
+    B_LEN,
+    B_VUL,
+    M_EIGHTHS,
+    M_LINK,
+    P_BOTH,
+    P_DEAD,
+    P_LEN,
+    P_VUL,
+    ST_CANDIDATES,
+    ST_HELD,
+    ST_K,
+    ST_MADE,
+    ST_PEAK,
+    ST_PEAK_BYTES,
+    ST_PRUNED,
+    T_PARENT,
+    T_ROW,
+    _monotone_bounds,
+    _monotone_init,
+    _monotone_steps,
+    _monotone_tradeoffs,
+)
+from gapath.planners._monotone_kernels import LENGTH as M_LENGTH
+from gapath.planners._monotone_kernels import VUL as M_VUL
 
 if TYPE_CHECKING:
     from gapath.front import PathFront
@@ -117,6 +135,15 @@ TOL = 1e-9
 
 #: Largest label budget: label rows are indexed by 32-bit integers.
 MAX_LABELS = 2**31 - 1024
+
+#: The monotone DP drops the labels that its goal bounds show cannot reach
+#: the front (False: every label is filtered, as the DP did before; tests).
+_MONOTONE_GOAL_BOUND = True
+
+#: Weights of length (scaled by the shortest monotone path's) against
+#: vulnerability (scaled likewise) of the completions whose paths, through
+#: every label, are known points below which the goal bound cuts.
+_TRADEOFF_WEIGHTS = np.array([0.05, 0.15, 0.3, 0.5, 0.7, 0.85, 0.95])
 
 #: Seconds of work between two returns of a resumable kernel (progress,
 #: Ctrl-C and the budget are handled between kernel calls).
@@ -330,21 +357,25 @@ def monotone_front(
         Any subset of ``"length"``, ``"vulnerability"``, ``"smoothness"``, in
         the column order wanted for ``F`` (default length, vulnerability).
     max_labels : int, optional
-        Label budget: the most labels held at once (those of the columns
-        done plus the candidates of the next one). None: no budget.
+        Label budget: the most labels held at once (the ancestry tree of the
+        current column's labels, plus the labels and vertical-run sets of
+        the column being built). None: no budget.
     progress : callable, optional
         Called about ten times a second, and once at the end, with a dict
-        ``phase="monotone"``, ``columns``, ``n_cols``, ``labels``,
-        ``seconds``. An exception it raises (e.g. KeyboardInterrupt) ends
-        the computation and propagates.
+        ``phase="monotone"``, ``columns``, ``n_cols``, ``labels`` (held
+        now), ``labels_peak``, ``labels_made``, ``candidates``,
+        ``peak_bytes``, ``seconds``. An exception it raises (e.g.
+        KeyboardInterrupt) ends the computation and propagates.
 
     Returns
     -------
     ExactFront
         One path per tolerance-equal Pareto-optimal objective vector, sorted
         lexicographically. Among tolerance-equal paths the smoothest one is
-        preferred. ``stats`` has ``columns``, ``labels``, ``peak_bytes``,
-        ``seconds``.
+        preferred. ``stats`` has ``columns``, ``labels`` (held at the end:
+        the ancestry of the front's paths), ``labels_peak`` (the most held
+        at once), ``labels_made`` (labels of all columns together),
+        ``candidates`` (labels filtered), ``peak_bytes``, ``seconds``.
 
     Raises
     ------
@@ -367,6 +398,22 @@ def monotone_front(
     charged with the turn between ``h_a`` and ``h_b`` (the most the next turn
     can differ by). This is exact for smoothness and keeps one state per row.
 
+    The vertical runs are built row by row (the non-dominated partial paths
+    going up, or down, at each row of the new column), so a label is not
+    extended to every row its run can reach; only the current column's
+    labels are held in full, and an ancestry tree (exit row and parent per
+    label) whose dead branches are freed as the DP advances gives the
+    paths back. Memory is therefore about a column of labels plus the
+    ancestry of the live ones.
+
+    For (length, vulnerability) and single objectives other than
+    smoothness, a goal bound drops the labels that cannot reach the front:
+    backward single-objective DPs give lower bounds of every completion and
+    a few actual completions, the paths through the labels along those
+    completions are known points, and a label whose objectives plus the
+    bounds are dominated by a known point (by a relative margin far above
+    the tolerance) is dropped. The front is the same as without it.
+
     Examples
     --------
     >>> import numpy as np
@@ -381,20 +428,42 @@ def monotone_front(
     names = _check_objectives(objectives)
     frame = Frame.of(workspace)
     (sr, _), (gr, _) = frame.start, frame.goal
-    primary = {"length": LENGTH, "vulnerability": VUL, "smoothness": 2}[names[0]]
+    primary = {"length": M_LENGTH, "vulnerability": M_VUL, "smoothness": 2}[names[0]]
     budget = _budget(max_labels)
     t0 = time.perf_counter()
     occ, pot = frame.occ, np.ascontiguousarray(frame.potential, dtype=np.float64)
     cs, cc = float(workspace.cell_size), bool(workspace.corner_cutting)
     use = ("length" in names, "vulnerability" in names, "smoothness" in names)
     with _DeferredInterrupt() as interrupt:
-        li, lf, off, n = _monotone_start(occ, pot, sr, frame.col0, cs)
-        st = np.array([n, 1], np.int64)
+        tree, ci, cf, off, st = _monotone_init(occ, pot, sr, frame.col0, cs)
+        if _MONOTONE_GOAL_BOUND:
+            bounds = _monotone_bounds(occ, pot, gr, frame.col0, frame.n_cols, cs, cc)
+            pmode = P_DEAD if use[2] else (P_BOTH if use[0] and use[1] else (P_LEN if use[0] else P_VUL))
+        else:  # no label is dropped before the filters (the tests' reference)
+            bounds, pmode = np.zeros((12, frame.n_cols, occ.shape[0])), P_DEAD
+        comps = np.empty((0, 1, 1))
+        if pmode == P_BOTH:
+            # completions trading length for vulnerability: more known paths
+            # for the goal bound from the first columns on
+            best_len, best_vul = bounds[B_LEN, 0].min(), bounds[B_VUL, 0].min()
+            if np.isfinite(best_len):  # else there is no monotone path at all
+                comps = _monotone_tradeoffs(
+                    occ,
+                    pot,
+                    gr,
+                    frame.col0,
+                    frame.n_cols,
+                    cs,
+                    cc,
+                    _TRADEOFF_WEIGHTS,
+                    max(best_len, 1e-9),
+                    max(best_vul, 1e-9),
+                )
+        stair = np.empty((2, 64))
         slices = _Slices(4, 1, 1 << 20)
-        peak = 0
         while True:
-            k0, t1 = st[1], time.perf_counter()
-            li, lf, off, status, n_cand = _monotone_columns(
+            k0, t1 = st[ST_K], time.perf_counter()
+            tree, ci, cf, off, stair, status = _monotone_steps(
                 occ,
                 pot,
                 gr,
@@ -404,30 +473,38 @@ def monotone_front(
                 cc,
                 *use,
                 primary,
-                li,
-                lf,
+                tree,
+                ci,
+                cf,
                 off,
                 st,
                 slices.n,
                 budget,
+                bounds,
+                pmode,
+                stair,
+                comps,
             )
             interrupt.check()
             now = time.perf_counter()
-            slices.update(st[1] - k0, now - t1)
-            peak = max(peak, li.nbytes + lf.nbytes + off.nbytes + n_cand * (li.itemsize * 6 + 16))
+            slices.update(st[ST_K] - k0, now - t1)
             stats = {
-                "columns": int(st[1]),
+                "columns": int(st[ST_K]),
                 "n_cols": int(frame.n_cols),
-                "labels": int(st[0]),
-                "peak_bytes": int(peak),
+                "labels": int(st[ST_HELD]),
+                "labels_peak": int(st[ST_PEAK]),
+                "labels_made": int(st[ST_MADE]),
+                "candidates": int(st[ST_CANDIDATES]),
+                "pruned": int(st[ST_PRUNED]),
+                "peak_bytes": int(st[ST_PEAK_BYTES] + bounds.nbytes + stair.nbytes + comps.nbytes),
                 "seconds": now - t0,
             }
             if status == OVER_BUDGET:
                 raise LabelBudgetError(
                     f"monotone DP stopped at the label budget max_labels={budget:,} "
-                    f"(--max-labels): {stats['labels']:,} labels stored and {int(n_cand):,} "
-                    f"candidates for the next column after {stats['columns']} of "
-                    f"{stats['n_cols']} columns ({stats['seconds']:.1f} s); no front (a partial "
+                    f"(--max-labels): {stats['labels']:,} labels held after {stats['columns']} of "
+                    f"{stats['n_cols']} columns and more needed for the next one "
+                    f"({stats['seconds']:.1f} s); no front (a partial "
                     f"DP is not a Pareto front). Raise the budget, or use a smaller map or fewer "
                     f"objectives",
                     {**stats, "max_labels": budget},
@@ -445,21 +522,21 @@ def monotone_front(
             f"corner_cutting={workspace.corner_cutting})"
         )
 
-    # back-pointers -> exit row of every column
+    # ancestry tree -> exit row of every column
     final = np.arange(lo, hi)
     exits = np.empty((len(final), frame.n_cols), np.int64)
-    idx = final
+    node = ci[final, M_LINK]
     for k in range(frame.n_cols - 1, -1, -1):
-        exits[:, k] = li[idx, ROW]
-        idx = li[idx, PARENT]
+        exits[:, k] = tree[node, T_ROW]
+        node = tree[node, T_PARENT]
     entries = np.empty_like(exits)
     entries[:, 0] = sr
     entries[:, 1:] = exits[:, :-1] + np.sign(exits[:, 1:] - exits[:, :-1])
 
     values = {
-        "length": lf[final, LENGTH],
-        "vulnerability": lf[final, VUL],
-        "smoothness": li[final, EIGHTHS] * QUARTER_PI,
+        "length": cf[final, M_LENGTH],
+        "vulnerability": cf[final, M_VUL],
+        "smoothness": ci[final, M_EIGHTHS] * QUARTER_PI,
     }
     F = np.column_stack([values[name] for name in names])
     order = np.lexsort(F.T[::-1])
