@@ -258,7 +258,7 @@ def multi_front(workspace, objectives, costmap=None, *, max_labels=None, progres
                 hfl[col] = _step_to_go(np.ascontiguousarray(table[0]), mask, w, goal)
         interrupt.check()
         t_heur = time.perf_counter() - t0
-        heads = np.full(n_cells, -1, np.int32)
+        heads = np.full(n_cells + 1, -1, np.int32)  # the goal's set last
         li, lg, lf, hid, sols, st = _k_init(
             sr * w + sc, layers, okind, ocol, cs, hs, hd, ht, hfl, hop, psum, timed, n_float
         )

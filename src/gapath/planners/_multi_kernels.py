@@ -22,7 +22,8 @@ Objective kinds (internal order: the primary objective first)
 States
     A state is a cell, or with ``timed`` (a step cost that depends on the
     step index) a (step count, cell) pair, index ``steps * n_cells + cell``:
-    two labels compare only when their future step costs are the same. The
+    two labels compare only when their future step costs are the same.
+    ``heads`` holds the head of each state's set, the goal's set last. The
     turn objective does not split states: a label with heading ``ha`` covers
     one with heading ``hb`` only after its turns are charged with the most
     the next turn can differ by (``_gap``).
@@ -262,15 +263,18 @@ def _state_covered(li, lg, heads, s, x, okind, ocol, cell_size, ties, smooth):
     """True if an expanded label of state ``s`` covers label ``x``: every
     completion of ``x`` is dominated by, or tolerance-equal to and (with
     ``ties``, smoothness not an objective) not smoother than, the same
-    completion of that label."""
+    completion of that label. The covering label moves to the front of the
+    set (the next labels tested are often alike)."""
     k = okind.shape[0]
     hx = li[x, HEAD]
+    prev = -1
     a = heads[s]
     while a >= 0:
         gap = _gap(li[a, HEAD], hx)
         ok = True
         strict = False
-        for j in range(k):
+        for jj in range(k):
+            j = jj + 1 if jj < k - 1 else 0  # the primary last: it rarely decides
             kind = okind[j]
             if kind == K_TURN:
                 ta = li[a, TURNS] + gap
@@ -289,22 +293,31 @@ def _state_covered(li, lg, heads, s, x, okind, ocol, cell_size, ties, smooth):
                 if not _eq(ga, gx):
                     strict = True
         if ok and (strict or smooth or not ties or li[a, TURNS] + gap <= li[x, TURNS]):
+            if prev >= 0:
+                li[prev, NEXT] = li[a, NEXT]
+                li[a, NEXT] = heads[s]
+                heads[s] = a
             return True
+        prev = a
         a = li[a, NEXT]
     return False
 
 
 @numba.njit(cache=True)
-def _goal_covered(li, lg, lf, goal_first, x, okind, ocol, cell_size, ties, smooth, to_go):
+def _goal_covered(li, lg, lf, heads, x, okind, ocol, cell_size, ties, smooth, to_go):
     """True if a solution covers the f-vector of ``x`` (its lower bound at
     the goal); ``to_go`` is a lower bound of the turns still to come (0 when
-    the turn heuristic is not computed)."""
+    the turn heuristic is not computed). The goal's set is headed by
+    ``heads[-1]``; the covering solution moves to its front."""
     k = okind.shape[0]
-    a = goal_first
+    g = heads.shape[0] - 1
+    prev = -1
+    a = heads[g]
     while a >= 0:
         ok = True
         strict = False
-        for j in range(k):
+        for jj in range(k):
+            j = jj + 1 if jj < k - 1 else 0
             kind = okind[j]
             fx = lf[x, j]
             ga = _g(li, lg, a, kind, ocol[j], cell_size)
@@ -321,7 +334,12 @@ def _goal_covered(li, lg, lf, goal_first, x, okind, ocol, cell_size, ties, smoot
                 if not _eq(ga, fx):
                     strict = True
         if ok and (strict or smooth or not ties or li[a, TURNS] <= li[x, TURNS] + to_go):
+            if prev >= 0:
+                li[prev, NEXT] = li[a, NEXT]
+                li[a, NEXT] = heads[g]
+                heads[g] = a
             return True
+        prev = a
         a = li[a, NEXT]
     return False
 
@@ -390,7 +408,6 @@ def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, t
     st[S_N] = 1
     st[S_SIZE] = 1
     st[S_GENERATED] = 1
-    st[S_GOAL_FIRST] = -1
     st[S_FREE] = -1
     st[S_SPAN] = 1
     return li, lg, lf, hid, sols, st
@@ -506,8 +523,9 @@ def _k_run(
             while li[x, NS] + li[x, ND] + 1 >= span:
                 span *= 2
             if span > st[S_SPAN]:
-                heads2 = np.full(span * n_cells, -1, np.int32)
-                heads2[: heads.shape[0]] = heads
+                heads2 = np.full(span * n_cells + 1, -1, np.int32)
+                heads2[: heads.shape[0] - 1] = heads[:-1]
+                heads2[-1] = heads[-1]  # the goal's set
                 heads = heads2
                 st[S_SPAN] = span
 
@@ -549,7 +567,6 @@ def _k_steps(
     n_sols = st[S_SOLS]
     n_expanded = st[S_EXPANDED]
     n_generated = st[S_GENERATED]
-    goal_first = st[S_GOAL_FIRST]
     free = st[S_FREE]
     n_free = st[S_N_FREE]
     span = st[S_SPAN]
@@ -589,14 +606,14 @@ def _k_steps(
             if use_ht:
                 hx = li[x, HEAD]
                 to_go = ht[c * 9 + (hx if hx >= 0 else 8)]
-            covered = _goal_covered(li, lg, lf, goal_first, x, okind, ocol, cell_size, ties, smooth, to_go)
+            covered = _goal_covered(li, lg, lf, heads, x, okind, ocol, cell_size, ties, smooth, to_go)
         if covered:
             li[x, NEXT] = free  # nothing refers to x: recycle its row
             free = x
             n_free += 1
             continue
         if c == goal:  # a solution: recorded, never expanded
-            goal_first = _insert(li, lg, goal_first, x, okind, ocol, cell_size, True)
+            heads[-1] = _insert(li, lg, heads[-1], x, okind, ocol, cell_size, True)
             sols[n_sols] = x
             n_sols += 1
             continue
@@ -631,7 +648,7 @@ def _k_steps(
             if cell != goal and _state_covered(li, lg, heads, s2, j, okind, ocol, cell_size, ties, smooth):
                 continue
             to_go = ht[cell * 9 + d] if use_ht else 0
-            if _goal_covered(li, lg, lf, goal_first, j, okind, ocol, cell_size, ties, smooth, to_go):
+            if _goal_covered(li, lg, lf, heads, j, okind, ocol, cell_size, ties, smooth, to_go):
                 continue
             if j == free:
                 free = li[j, NEXT]
@@ -646,7 +663,6 @@ def _k_steps(
     st[S_SOLS] = n_sols
     st[S_EXPANDED] = n_expanded
     st[S_GENERATED] = n_generated
-    st[S_GOAL_FIRST] = goal_first
     st[S_FREE] = free
     st[S_N_FREE] = n_free
     st[S_POPS] = pops0 + steps
