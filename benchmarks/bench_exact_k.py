@@ -50,7 +50,11 @@ def _run(ws, names, cm=None, search="auto", max_labels=None):
             "status": type(exc).__name__,
             "cpu_s": round(time.thread_time() - c0, 4),
             "wall_s": round(time.perf_counter() - t0, 4),
-            **{k: v for k, v in getattr(exc, "stats", {}).items() if k in ("expansions", "labels", "solutions")},
+            **{
+                k: v
+                for k, v in getattr(exc, "stats", {}).items()
+                if k in ("expansions", "labels", "solutions")
+            },
         }
     st = front.stats
     return {
@@ -109,7 +113,9 @@ def main():
     ap.add_argument("--part", choices=("mars", "three"), default="mars")
     ap.add_argument("--maps", type=int, default=3, help="mars: workspaces 0 .. maps-1 (after --first)")
     ap.add_argument("--first", type=int, default=0)
-    ap.add_argument("--sets", default="LER,LESR0,LESR", help="mars: comma-separated of " + ",".join(MARS_SETS))
+    ap.add_argument(
+        "--sets", default="LER,LESR0,LESR", help="mars: comma-separated of " + ",".join(MARS_SETS)
+    )
     ap.add_argument("--size", type=int, default=None, help="grid side (mars: 100, three: 64)")
     ap.add_argument("--queries", type=int, default=3, help="three: random maps (10 %% obstacles), seeds 0..")
     ap.add_argument("--max-labels", type=int, default=20_000_000, help="budget of the timed-solar runs")

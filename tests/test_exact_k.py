@@ -117,7 +117,16 @@ def brute_simple(ws, names, cm=None):
             if table is not None:
                 s2["solar"] = sums["solar"] + float(table[k if cm.solar_rate else 0, d])
             seen[r2, c2] = True
-            dfs(r2, c2, d, ns + (1 - d % 2), nd + d % 2, turns + (turn(head, d) if head >= 0 else 0), s2, k + 1)
+            dfs(
+                r2,
+                c2,
+                d,
+                ns + (1 - d % 2),
+                nd + d % 2,
+                turns + (turn(head, d) if head >= 0 else 0),
+                s2,
+                k + 1,
+            )
             seen[r2, c2] = False
 
     seen[sr, sc] = True
@@ -201,7 +210,8 @@ def brute_walks(ws, names, cm):
             if (r, c) == goal:
                 found += [vec(r, c, *lab[:3], lab[4]) for lab in labels]
         bound = tuple(
-            k * ws.cell_size if n == "length" else (min_step[k] if n == "solar" else (k + 1) * lo[n]) for n in names
+            k * ws.cell_size if n == "length" else (min_step[k] if n == "solar" else (k + 1) * lo[n])
+            for n in names
         )
         if any(_dominates(f, bound) for f in found):
             break
@@ -209,7 +219,7 @@ def brute_walks(ws, names, cm):
         for (r, c), labels in layer.items():
             if (r, c) == goal:
                 continue
-            for ns, nd, turns, head, sums in labels:
+            for ns, nd, _turns, _head, sums in labels:
                 for d in range(8):
                     r2, c2 = r + DR[d], c + DC[d]
                     if not (0 <= r2 < h and 0 <= c2 < w) or occ[r2, c2]:
@@ -284,7 +294,9 @@ def _check_values(ws, cm, front):
             if n in ("length", "vulnerability", "smoothness"):
                 assert F[i, j] == spec[n]
             elif n == "solar":
-                assert math.isclose(F[i, j], cm.evaluate_path(p, ["solar"])["solar"], rel_tol=1e-12, abs_tol=1e-12)
+                assert math.isclose(
+                    F[i, j], cm.evaluate_path(p, ["solar"])["solar"], rel_tol=1e-12, abs_tol=1e-12
+                )
             else:
                 mean = cm.evaluate_path(p, [n[:-4]])[n[:-4]]
                 assert math.isclose(F[i, j], mean * len(p), rel_tol=1e-12, abs_tol=1e-12)

@@ -119,7 +119,9 @@ def _check_costmap(workspace, costmap):
     if costmap is None:
         return
     if tuple(costmap.shape) != tuple(workspace.shape):
-        raise ConfigError(f"the costmap's grid {costmap.shape} differs from the workspace's {workspace.shape}")
+        raise ConfigError(
+            f"the costmap's grid {costmap.shape} differs from the workspace's {workspace.shape}"
+        )
 
 
 def path_objectives(workspace, path, objectives, costmap=None) -> dict[str, float]:
@@ -192,7 +194,9 @@ def path_objectives(workspace, path, objectives, costmap=None) -> dict[str, floa
     return out
 
 
-def multi_front(workspace, objectives, costmap=None, *, max_labels=None, progress=None, tie_break="smoothest"):
+def multi_front(
+    workspace, objectives, costmap=None, *, max_labels=None, progress=None, tie_break="smoothest"
+):
     """The k-objective exact free front (see :func:`gapath.planners.exact.free_front`)."""
     from gapath.planners import exact
     from gapath.planners._exact_kernels import _free_heuristics, _move_masks, _tolerant_front

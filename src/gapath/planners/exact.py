@@ -92,7 +92,6 @@ from gapath.planners._exact_kernels import (
     _tolerant_front,
     _trace,
 )
-
 from gapath.planners._multi import path_objectives
 
 if TYPE_CHECKING:
