@@ -111,6 +111,7 @@ from gapath.planners._monotone_kernels import (
 )
 from gapath.planners._monotone_kernels import LENGTH as M_LENGTH
 from gapath.planners._monotone_kernels import VUL as M_VUL
+from gapath.planners._multi import path_objectives
 
 if TYPE_CHECKING:
     from gapath.front import PathFront
@@ -124,6 +125,7 @@ __all__ = [
     "exact_path_front",
     "EXACT_MODES",
     "EXACT_OBJECTIVES",
+    "path_objectives",
 ]
 
 #: Objectives the exact planners can minimise (``interfering`` is a constraint:
@@ -557,6 +559,14 @@ def monotone_front(
 # free reference front (all feasible 8-connected paths)
 
 
+def _spec_objectives(objectives) -> bool:
+    """True if ``objectives`` names only SPEC metrics (the specialised
+    searches; errors are theirs to raise)."""
+    if isinstance(objectives, str):
+        objectives = [o.strip() for o in objectives.split(",") if o.strip()]
+    return all(isinstance(n, str) and n in OBJECTIVES for n in objectives)
+
+
 def _search_plan(names):
     """Internal objectives and mode for the requested ones (see _free_run)."""
     code = {"length": OBJ_LEN, "vulnerability": OBJ_VUL, "smoothness": OBJ_SMOOTH}
@@ -595,9 +605,11 @@ def free_front(
     workspace,
     objectives=("length", "vulnerability"),
     *,
+    costmap=None,
     max_labels=None,
     progress=None,
     tie_break="smoothest",
+    search="auto",
 ) -> ExactFront:
     """Exact Pareto front of all feasible 8-connected paths.
 
@@ -610,7 +622,8 @@ def free_front(
     the smallest one already expanded there (``g2_min``), an O(1) check. For
     three objectives it is NAMOA*-dr / EMOA* [2]_ [3]_: the same order makes
     the check two-dimensional, done on a (turns, vulnerability) staircase per
-    state.
+    state. Any other set of objectives (four or more, or costmap layers) is
+    solved by a k-objective NAMOA*-dr search (see Notes, "k objectives").
 
     Parameters
     ----------
@@ -618,7 +631,16 @@ def free_front(
         The map, start, goal, cell size and corner rule.
     objectives : sequence of str or comma-separated str, optional
         Any subset of ``"length"``, ``"vulnerability"``, ``"smoothness"``, in
-        the column order wanted for ``F`` (default length, vulnerability).
+        the column order wanted for ``F`` (default length, vulnerability);
+        with a ``costmap`` also ``"solar"`` and the summed cell layers
+        ``"<layer>_sum"`` (``"elevation_sum"``, ``"risk_sum"``, a user
+        layer's name + ``"_sum"``). The costmap's mean objectives
+        (``"elevation"``, ``"risk"``, a user layer's name: the GA's) are
+        refused: a mean is not additive along a path and has no exact
+        label-setting front; the exact front is over the sums.
+    costmap : Costmap, optional
+        The layers of ``"solar"`` and ``"<layer>_sum"`` objectives (its
+        ``solar_rate`` and ``solar_angle0``); same grid as ``workspace``.
     max_labels : int, optional
         Label budget: the most labels held at once (the rows of dropped
         labels are recycled, so this bounds the memory of the search, about
@@ -636,6 +658,11 @@ def free_front(
         the same ``F`` up to the tolerance, a little faster on maps with many
         exact ties, and ``smoothness`` is that of the returned path). Ignored
         when smoothness is an objective.
+    search : {"auto", "k"}, optional
+        ``"auto"`` (default): the specialised searches above for at most
+        three of length, vulnerability, smoothness, the k-objective search
+        otherwise; ``"k"``: the k-objective search always (the same front,
+        for comparison).
 
     Returns
     -------
@@ -652,8 +679,12 @@ def free_front(
     Raises
     ------
     ConfigError
-        If an objective is unknown, repeated or ``"interfering"``,
-        ``max_labels`` is not a positive integer or ``tie_break`` unknown.
+        If an objective is unknown, repeated or ``"interfering"``, a layer
+        objective comes without a costmap or is a mean (``"elevation"``: use
+        ``"elevation_sum"``), the costmap's grid differs, ``max_labels`` is
+        not a positive integer, ``tie_break`` or ``search`` unknown, or (with
+        ``"solar"`` at a non-zero ``solar_rate``) a label would take more
+        than twice as many steps as the grid has cells.
     NoPathError
         If no feasible path joins the start and the goal.
     LabelBudgetError
@@ -725,10 +756,38 @@ def free_front(
         representatives, hence the count, may differ from those of another
         exact method; compare fronts by hypervolume and coverage (SPEC).
 
+    k objectives
+        Labels leave the open list in lexicographic order of their whole
+        f-vector (the length first when it is an objective); each cell keeps
+        its expanded labels that no later one made redundant on the
+        objectives other than the first (NAMOA*-dr), the goal its solutions;
+        a label is checked against both when generated and when popped.
+        Heuristics: one backward Dijkstra pass per objective (length and
+        turns as above, each summed layer like the vulnerability, solar at
+        rate 0 over the per-direction step costs). Smoothness does not split
+        states (headings are charged as above); among tolerance-equal
+        vectors the smoothest path is kept (``tie_break``).
+
+    Solar
+        A step's solar cost depends on its index along the path when
+        ``solar_rate != 0``, so two labels at a cell with different step
+        counts face different future costs and neither may discard the
+        other: the state is then (step count, cell), which is exact. The
+        paths are then walks (a detour may shift later steps to cheaper
+        indices, so a Pareto-optimal path may revisit a cell) and the
+        search is larger; the heuristic is the sum of the cheapest step
+        cost of each index over the fewest steps to the goal (admissible and
+        consistent). With ``solar_rate == 0`` the cost depends on the
+        direction only, states are cells and paths are simple.
+
     Objective values are computed as in :mod:`gapath.objectives` (step
     counts, eighth turns, vulnerability summed from the start in path order),
     so ``F`` equals :func:`gapath.objectives.evaluate_path` on the returned
-    paths bit for bit.
+    paths bit for bit; layer sums and solar equal
+    :func:`path_objectives` (cells and steps summed in path order; the
+    solar costs of :meth:`gapath.costmap.Costmap.solar_table`) bit for bit,
+    and ``Costmap.evaluate_path`` (the mean times the number of cells; the
+    solar sum) up to the summation order.
 
     References
     ----------
@@ -755,6 +814,14 @@ def free_front(
     >>> front.paths[0].tolist()
     [[1, 0], [0, 1], [1, 2]]
     """
+    if search not in ("auto", "k"):
+        raise ConfigError(f"search must be 'auto' or 'k', got {search!r}")
+    if search == "k" or not _spec_objectives(objectives):
+        from gapath.planners._multi import multi_front
+
+        return multi_front(
+            workspace, objectives, costmap, max_labels=max_labels, progress=progress, tie_break=tie_break
+        )
     names, mode, P, Q = _free_plan(objectives)
     budget = MAX_LABELS if max_labels is None else _budget(max_labels)
     if tie_break not in ("smoothest", "none"):
@@ -939,15 +1006,7 @@ def _search_pass(
             "seconds": now - t0,
         }
         if status == OVER_BUDGET:
-            raise LabelBudgetError(
-                f"free search stopped at the label budget max_labels={budget:,} "
-                f"(--max-labels) after {stats['seconds']:.1f} s: {stats['labels']:,} labels "
-                f"held, {stats['expansions']:,} expanded, {stats['open']:,} on the open list, "
-                f"{stats['solutions']:,} solutions found so far; no front (a partial search is "
-                f"not a Pareto front). Raise the budget, or use a smaller map or fewer "
-                f"objectives",
-                {**stats, "max_labels": budget},
-            )
+            raise _free_budget_error(budget, stats)
         if progress is not None:
             progress({"phase": "free", **stats})
         if status == DONE:
@@ -962,6 +1021,19 @@ def _search_pass(
     if mode == MODE_CELL and ties:
         total["tie_edges"] = int(est[0])
     return li, lf, sols[: st[S_SOLS]], st, edges, int(est[0])
+
+
+def _free_budget_error(budget, stats) -> LabelBudgetError:
+    """The error of a free search (either kernel) stopped at the label budget."""
+    return LabelBudgetError(
+        f"free search stopped at the label budget max_labels={budget:,} "
+        f"(--max-labels) after {stats['seconds']:.1f} s: {stats['labels']:,} labels "
+        f"held, {stats['expansions']:,} expanded, {stats['open']:,} on the open list, "
+        f"{stats['solutions']:,} solutions found so far; no front (a partial search is "
+        f"not a Pareto front). Raise the budget, or use a smaller map or fewer "
+        f"objectives",
+        {**stats, "max_labels": budget},
+    )
 
 
 # ---------------------------------------------------------------------------
@@ -990,7 +1062,8 @@ def exact_path_front(
     mode : {"monotone", "free"}, default "monotone"
         Column-monotone paths (the GA's path set) or all 8-connected paths.
     **options
-        ``max_labels``, ``progress`` (see :func:`free_front`).
+        ``max_labels``, ``progress``; ``costmap``, ``tie_break``, ``search``
+        with ``mode="free"`` (see :func:`free_front`).
 
     Returns
     -------
@@ -1030,9 +1103,16 @@ def exact_front(
     Raises
     ------
     ConfigError
-        On an unknown mode (and see the two functions).
+        On an unknown mode, a ``costmap`` with ``mode="monotone"`` (and see
+        the two functions).
     """
     if mode == "monotone":
+        if options.get("costmap") is not None:
+            raise ConfigError(
+                "the exact monotone front has no costmap layers; use mode='free' (--mode free) "
+                "for layer objectives"
+            )
+        options.pop("costmap", None)
         return monotone_front(workspace, objectives, **options)
     if mode == "free":
         return free_front(workspace, objectives, **options)

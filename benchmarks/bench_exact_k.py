@@ -1,0 +1,131 @@
+"""k-objective exact fronts (``free_front`` with costmap layers, issue 15
+item 2): the Mars study's objectives in additive form on its 100x100 maps,
+and three objectives against the specialised (length, vulnerability,
+smoothness) search.
+
+Prints one JSON line per run: map, objectives, solver, CPU seconds (thread
+time of the call, after a warm-up call on a small map), wall seconds, front
+size, expansions, labels, peak bytes of the search arrays; ``status`` is
+``ok`` or the error (``LabelBudgetError`` when ``--max-labels`` is reached).
+
+    python benchmarks/bench_exact_k.py --part mars --maps 3
+    python benchmarks/bench_exact_k.py --part three --size 64 --queries 3
+
+Sets of the ``mars`` part (the study's workspaces and costmaps,
+:func:`gapath.studies.mars.study_workspace`):
+
+* ``LER``: length, elevation_sum, risk_sum;
+* ``LESR0``: length, elevation_sum, solar, risk_sum with ``solar_rate=0``
+  (the solar cost depends on the step direction only);
+* ``LESR``: the same at the study's ``solar_rate=1`` (the step index is part
+  of the state; under ``--max-labels``).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+
+import numpy as np
+
+from gapath import random_workspace
+from gapath.errors import GapathError
+from gapath.planners.exact import free_front
+
+MARS_SETS = {
+    "LER": (("length", "elevation_sum", "risk_sum"), 1.0),
+    "LESR0": (("length", "elevation_sum", "solar", "risk_sum"), 0.0),
+    "LESR": (("length", "elevation_sum", "solar", "risk_sum"), 1.0),
+}
+LVS = ("length", "vulnerability", "smoothness")
+
+
+def _run(ws, names, cm=None, search="auto", max_labels=None):
+    t0, c0 = time.perf_counter(), time.thread_time()
+    try:
+        front = free_front(ws, names, costmap=cm, search=search, max_labels=max_labels)
+    except GapathError as exc:
+        return {
+            "status": type(exc).__name__,
+            "cpu_s": round(time.thread_time() - c0, 4),
+            "wall_s": round(time.perf_counter() - t0, 4),
+            **{
+                k: v
+                for k, v in getattr(exc, "stats", {}).items()
+                if k in ("expansions", "labels", "solutions")
+            },
+        }
+    st = front.stats
+    return {
+        "status": "ok",
+        "cpu_s": round(time.thread_time() - c0, 4),
+        "wall_s": round(time.perf_counter() - t0, 4),
+        "front": len(front),
+        "expansions": st["expansions"],
+        "labels": st["labels"],
+        "peak_mb": round(st["peak_bytes"] / 2**20, 1),
+    }
+
+
+def _warm_up():
+    """Compile the kernels on tiny maps (a timed-solar front grows fast with
+    the map: 8x8 and a budget)."""
+    from gapath.studies.mars import study_workspace
+
+    for rate in (0.0, 1.0):
+        ws, cm = study_workspace(0, size=8, solar_rate=rate)
+        try:
+            free_front(ws, MARS_SETS["LESR0"][0], costmap=cm, max_labels=10**5)
+        except GapathError:
+            pass
+    ws = random_workspace((8, 8), 6, seed=0)
+    free_front(ws, LVS, search="k")
+    free_front(ws, LVS)
+
+
+def mars(args):
+    from gapath.studies.mars import study_workspace
+
+    for i in range(args.first, args.first + args.maps):
+        for key in args.sets.split(","):
+            names, rate = MARS_SETS[key]
+            ws, cm = study_workspace(i, size=args.size, solar_rate=rate)
+            budget = args.max_labels if key == "LESR" else None
+            rec = {"part": "mars", "map": ws.name, "set": key, "objectives": list(names), "solar_rate": rate}
+            rec.update(_run(ws, names, cm, max_labels=budget))
+            print(json.dumps(rec), flush=True)
+
+
+def three(args):
+    for q in range(args.queries):
+        n = args.size
+        ws = random_workspace((n, n), int(0.1 * n * n), seed=q)
+        for search in ("auto", "k"):
+            rec = {"part": "three", "map": ws.name, "objectives": list(LVS), "search": search}
+            rec["solver"] = "MODE_THREE" if search == "auto" else "k-objective"
+            rec.update(_run(ws, LVS, search=search, max_labels=args.max_labels))
+            print(json.dumps(rec), flush=True)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--part", choices=("mars", "three"), default="mars")
+    ap.add_argument("--maps", type=int, default=3, help="mars: workspaces 0 .. maps-1 (after --first)")
+    ap.add_argument("--first", type=int, default=0)
+    ap.add_argument(
+        "--sets", default="LER,LESR0,LESR", help="mars: comma-separated of " + ",".join(MARS_SETS)
+    )
+    ap.add_argument("--size", type=int, default=None, help="grid side (mars: 100, three: 64)")
+    ap.add_argument("--queries", type=int, default=3, help="three: random maps (10 %% obstacles), seeds 0..")
+    ap.add_argument("--max-labels", type=int, default=20_000_000, help="budget of the timed-solar runs")
+    args = ap.parse_args()
+    if args.size is None:
+        args.size = 100 if args.part == "mars" else 64
+    _warm_up()
+    (mars if args.part == "mars" else three)(args)
+
+
+if __name__ == "__main__":
+    np.seterr(all="ignore")
+    main()
