@@ -16,7 +16,9 @@ Per run one JSON line: map, query, encoding, seeding, exact front size and
 seconds, GA front size, ``hv_ratio`` (SPEC normalisation), ``coverage``
 (share of exact points matched within the tolerance), GA wall seconds,
 seconds per generation, the HV ratio after generations 1, 10, 25, 50, 100,
-200 (``hv_at_gen``), the generation and seconds at which it first reached
+200 (``hv_at_gen``; of the run's archive, the front ``solve`` returns, when
+it keeps one: ``refine`` re-routed paths per generation, ``--refine off``
+for the last population's front), the generation and seconds at which it first reached
 0.99 and 0.999, and the decode+evaluate throughput (paths per second
 over ``--pop * 5`` random genomes, cache cold). Wall-clock times on a shared
 machine: noisy.
@@ -91,7 +93,7 @@ class _Timed(HypervolumeRatioCallback):
         self.seconds.append(time.perf_counter() - self.t0)
 
 
-def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
+def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options, refine=None):
     problem = FreePathProblem(ws, objectives, encoding=encoding, **options)
     rate = throughput(problem, 5 * pop, seed)
     tracker = _Timed(ref)
@@ -106,6 +108,7 @@ def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
         seed_from=seed_from,
         callback=tracker,
         tiebreak="smoothness" if len(objectives) == 2 else None,
+        refine=refine,
     )
     front = res.front
     hist = tracker.history
@@ -124,6 +127,7 @@ def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
         pop=pop,
         gen=gen,
         seed=seed,
+        refine=res.settings.get("refine", False),
         ga_size=len(front),
         hv_ratio=hv_ratio(front.F, ref.F),
         coverage=coverage(front.F, ref.F),
@@ -170,6 +174,11 @@ def main(argv=None):
     ap.add_argument("--objectives", default="length,vulnerability")
     ap.add_argument("--n-via", type=int, default=None)
     ap.add_argument("--data", default=None)
+    ap.add_argument(
+        "--refine",
+        default=None,
+        help="re-routed archive paths per generation (default: solve's, pop // 2; 'off': no archive)",
+    )
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
     a = ap.parse_args(argv)
     if a.summary:
@@ -198,7 +207,8 @@ def main(argv=None):
                         exact_size=len(ref),
                         exact_seconds=exact_s,
                     )
-                    rec.update(run(ws, ref, objectives, enc, sf, a.pop, a.gen, a.seed, opts))
+                    refine = None if a.refine is None else (False if a.refine == "off" else int(a.refine))
+                    rec.update(run(ws, ref, objectives, enc, sf, a.pop, a.gen, a.seed, opts, refine))
                     line = json.dumps(rec)
                     print(line, flush=True)
                     if out:

@@ -671,3 +671,95 @@ def row_hash(X):
             x ^= x >> np.uint64(29)
         out[i] = np.int64(x)
     return out
+
+
+@numba.njit(cache=True)
+def reroute(
+    flat,
+    offsets,
+    pick,
+    i0,
+    i1,
+    genes,
+    occ,
+    extra,
+    corner_cutting,
+    lam_lo,
+    lam_hi,
+    t,
+    hlen,
+    hext,
+    pmin,
+    flen,
+    fext,
+):
+    """Paths made from others by re-routing one segment: row ``r`` takes
+    path ``pick[r]`` (cells ``flat[offsets[p]:offsets[p + 1]]``), replaces
+    its cells between positions ``i0[r] < i1[r]`` by the optimal path
+    between them under the weight gene ``genes[r]`` (the decoders' step
+    cost, neutral field) and cuts the loops the splice makes, so every
+    result is a simple path with the same ends. Returns ``(flat, offsets,
+    keys)`` as :func:`decode_via`."""
+    h, w = occ.shape
+    flat_occ = occ.ravel()
+    n = pick.shape[0]
+    state, g, came, heap, touched, mcache, buf = _scratch(h * w)
+    pos = np.full(h * w, -1, np.int64)
+    cur = np.empty(h * w, np.int64)
+    out = np.empty(max(16, n * (h + w)), np.int64)
+    out_off = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    dummy = np.zeros(1)
+    for r in range(n):
+        base = offsets[pick[r]]
+        m_old = offsets[pick[r] + 1] - base
+        p0 = min(max(i0[r], 0), m_old - 1)
+        p1 = min(max(i1[r], p0), m_old - 1)
+        m = 0
+        for j in range(p0 + 1):
+            m = _append(flat[base + j], cur, pos, m)
+        if p1 > p0:
+            a, b = _weights(genes[r], lam_lo, lam_hi)
+            u = flat[base + p0]
+            v = flat[base + p1]
+            cnt = _segment(
+                flat_occ,
+                h,
+                w,
+                extra,
+                u,
+                v,
+                a,
+                b,
+                corner_cutting,
+                dummy,
+                0,
+                0,
+                0.0,
+                1.0,
+                hlen,
+                hext,
+                v == t,
+                pmin,
+                flen,
+                fext,
+                state,
+                g,
+                came,
+                heap,
+                touched,
+                mcache,
+                buf,
+            )
+            if cnt == 0:  # cannot happen between cells of one path; keep the old cells
+                for j in range(p0 + 1, p1 + 1):
+                    m = _append(flat[base + j], cur, pos, m)
+            else:
+                for j in range(1, cnt):
+                    m = _append(buf[j], cur, pos, m)
+        for j in range(p1 + 1, m_old):
+            m = _append(flat[base + j], cur, pos, m)
+        for j in range(m):
+            pos[cur[j]] = -1
+        out = _store(cur, m, r, out, out_off, keys)
+    return out[: out_off[n]], out_off, keys
