@@ -156,3 +156,34 @@ def test_archive_needs_a_free_problem_and_refine_needs_free_paths():
         FreePathArchive(GridPathProblem(ws))
     with pytest.raises(ConfigError, match="refine"):
         solve(ws, paths="monotone", pop_size=10, n_gen=2, refine=5)
+
+
+@settings(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
+@given(data=st.data())
+def test_straightened_paths_are_simple_feasible_paths(data):
+    ws = data.draw(workspaces())
+    enc = FieldEncoding(ws, field_shape=(2, 2))
+    n = data.draw(st.integers(1, 6))
+    rng = np.random.default_rng(data.draw(st.integers(0, 2**31 - 1)))
+    flat, offsets, _ = enc.decode_flat(rng.random((n, enc.n_var)))
+    k = data.draw(st.integers(1, 12))
+    pick = rng.integers(0, n, k)
+    i0 = rng.integers(-2, 12, k)
+    i1 = i0 + rng.integers(-1, 14, k)
+    f2, o2, _ = enc.shortcut(flat, offsets, pick, i0, i1, rng.random(k) < 0.5)
+    P, L = enc.padded(f2, o2)
+    P0, L0 = enc.padded(flat, offsets)
+    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    M0 = evaluate_paths(P0, L0, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    for i in range(k):
+        check_path(ws, P[i, : L[i]])
+        # never longer: the one-bend path is a shortest path between its ends
+        assert M[i, 0] <= M0[pick[i], 0] + 1e-9
+
+
+def test_shortcut_share_setting():
+    ws = room(seed=2)
+    assert FreePathArchive(FreePathProblem(ws)).shortcut == 0.0
+    assert FreePathArchive(FreePathProblem(ws, OBJ3)).shortcut == 0.5
+    with pytest.raises(ConfigError, match="shortcut"):
+        FreePathArchive(FreePathProblem(ws), shortcut=1.5)

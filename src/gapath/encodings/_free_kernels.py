@@ -763,3 +763,83 @@ def reroute(
             pos[cur[j]] = -1
         out = _store(cur, m, r, out, out_off, keys)
     return out[: out_off[n]], out_off, keys
+
+
+@numba.njit(cache=True, inline="always")
+def _move_index(dr, dc):
+    """Index ``k`` of the move ``(dr, dc)`` in ``DR``/``DC`` (-1 if none)."""
+    for k in range(8):
+        if DR[k] == dr and DC[k] == dc:
+            return k
+    return -1
+
+
+@numba.njit(cache=True)
+def shortcut(flat, offsets, pick, i0, i1, diagonal_first, occ, corner_cutting):
+    """Paths made from others by straightening one segment: row ``r`` takes
+    path ``pick[r]`` and replaces its cells between positions ``i0[r] <
+    i1[r]`` by the octile path with one bend between them (the diagonal
+    steps first when ``diagonal_first[r]``, else the straight ones): as
+    short as a path between the two cells can be, with at most one turn.
+    Where that path meets an obstacle or cuts a corner the rule forbids,
+    the row keeps the original path. Loops the splice makes are cut.
+    Returns ``(flat, offsets, keys)`` as :func:`decode_via`."""
+    h, w = occ.shape
+    flat_occ = occ.ravel()
+    n = pick.shape[0]
+    pos = np.full(h * w, -1, np.int64)
+    cur = np.empty(h * w, np.int64)
+    seg = np.empty(h + w + 2, np.int64)
+    out = np.empty(max(16, n * (h + w)), np.int64)
+    out_off = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    for r in range(n):
+        base = offsets[pick[r]]
+        m_old = offsets[pick[r] + 1] - base
+        p0 = min(max(i0[r], 0), m_old - 1)
+        p1 = min(max(i1[r], p0), m_old - 1)
+        u = flat[base + p0]
+        v = flat[base + p1]
+        ur = u // w
+        uc = u - ur * w
+        dr = v // w - ur
+        dc = v - (v // w) * w - uc
+        sr = 1 if dr > 0 else (-1 if dr < 0 else 0)
+        sc = 1 if dc > 0 else (-1 if dc < 0 else 0)
+        nd = min(abs(dr), abs(dc))
+        ns = max(abs(dr), abs(dc)) - nd
+        kd = _move_index(sr, sc)
+        ks = _move_index(sr, 0) if abs(dr) > abs(dc) else _move_index(0, sc)
+        cnt = 0
+        ok = p1 > p0
+        rr = ur
+        cc = uc
+        for phase in range(2):
+            if not ok:
+                break
+            diag = (phase == 0) == diagonal_first[r]
+            steps = nd if diag else ns
+            k = kd if diag else ks
+            for _ in range(steps):
+                if not (move_mask(flat_occ, h, w, rr, cc, corner_cutting) >> k) & 1:
+                    ok = False
+                    break
+                rr += DR[k]
+                cc += DC[k]
+                seg[cnt] = rr * w + cc
+                cnt += 1
+        m = 0
+        for j in range(p0 + 1):
+            m = _append(flat[base + j], cur, pos, m)
+        if ok:
+            for j in range(cnt):
+                m = _append(seg[j], cur, pos, m)
+        else:
+            for j in range(p0 + 1, p1 + 1):
+                m = _append(flat[base + j], cur, pos, m)
+        for j in range(p1 + 1, m_old):
+            m = _append(flat[base + j], cur, pos, m)
+        for j in range(m):
+            pos[cur[j]] = -1
+        out = _store(cur, m, r, out, out_off, keys)
+    return out[: out_off[n]], out_off, keys

@@ -352,6 +352,40 @@ class FreeEncoding:
             self._fext,
         )
 
+    def shortcut(self, flat, offsets, pick, i0, i1, diagonal_first):
+        """Paths made by straightening one segment of given paths: as
+        :meth:`reroute`, but the cells between positions ``i0[r] < i1[r]``
+        become the octile path with one bend between their ends (diagonal
+        steps first where ``diagonal_first[r]``), the shortest path between
+        them with at most one turn, when it is free and obeys the corner
+        rule (else the row keeps its path).
+
+        Returns
+        -------
+        flat, offsets, keys : as :meth:`decode_flat`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from gapath import Workspace
+        >>> enc = FieldEncoding(Workspace(np.zeros((3, 3), bool)))
+        >>> flat = np.array([6, 3, 4, 1, 2]); off = np.array([0, 5])
+        >>> f2, o2, _ = enc.shortcut(flat, off, [0], [0], [4], [True])
+        >>> f2.tolist()
+        [6, 4, 2]
+        """
+        i = lambda a: np.ascontiguousarray(a, np.int64)  # noqa: E731
+        return K.shortcut(
+            i(flat),
+            i(offsets),
+            i(pick),
+            i(i0),
+            i(i1),
+            np.ascontiguousarray(diagonal_first, np.bool_),
+            self._occ,
+            self._cc,
+        )
+
     def _flat_paths(self, paths):
         h, w = self.shape
         cells, lengths = [], []

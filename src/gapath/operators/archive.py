@@ -76,7 +76,7 @@ class FreePathArchive(Callback):
     """
 
     def __init__(
-        self, problem, n_refine: int = 100, seed: int = 1, segment=(0.05, 0.5), lam_range=LAM_RANGE
+        self, problem, n_refine: int = 100, seed: int = 1, segment=(0.05, 0.5), lam_range=LAM_RANGE, shortcut=None
     ):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
@@ -103,6 +103,15 @@ class FreePathArchive(Callback):
         if not (np.isfinite(lam_lo) and np.isfinite(lam_hi) and lam_lo < lam_hi):
             raise ConfigError(f"lam_range must be two finite numbers lo < hi, got {lam_range!r}")
         self.lam_range = (lam_lo, lam_hi)
+        if shortcut is None:
+            shortcut = 0.5 if "smoothness" in problem.objectives else 0.0
+        try:
+            shortcut = float(shortcut)
+        except (TypeError, ValueError):
+            raise ConfigError(f"shortcut must be a share in [0, 1], got {shortcut!r}") from None
+        if not 0.0 <= shortcut <= 1.0:
+            raise ConfigError(f"shortcut must be a share in [0, 1], got {shortcut!r}")
+        self.shortcut = shortcut
         self.rng = np.random.default_rng(seed)
         self.n_eval = 0
         enc = problem.encoding
@@ -140,9 +149,13 @@ class FreePathArchive(Callback):
         self._merge(flat, offsets, keys, X, np.ones(len(X), bool))
 
     def refine(self, n: int) -> None:
-        """Re-route one random segment of ``n`` randomly picked archived
-        paths, each under a random weight gene, and archive the results."""
+        """Change one random segment of ``n`` randomly picked archived paths
+        and archive the results: a share ``shortcut`` of them straightened
+        (:meth:`~gapath.encodings.free.FreeEncoding.shortcut`), the others
+        re-routed under a random weight gene
+        (:meth:`~gapath.encodings.free.FreeEncoding.reroute`)."""
         rng = self.rng
+        enc = self.problem.encoding
         pick = rng.integers(0, len(self), n)
         m = np.diff(self._offsets)[pick]
         lo, hi = self.segment
@@ -150,9 +163,22 @@ class FreePathArchive(Callback):
         span = np.minimum(span, m - 1)
         i0 = np.floor(rng.random(n) * (m - span)).astype(np.int64)
         genes = rng.random(n)
-        flat, offsets, keys = self.problem.encoding.reroute(
-            self._flat, self._offsets, pick, i0, i0 + span, genes, self.lam_range
-        )
+        n_short = int(round(self.shortcut * n))
+        parts = []
+        if n_short:
+            s = slice(0, n_short)
+            parts.append(
+                enc.shortcut(self._flat, self._offsets, pick[s], i0[s], i0[s] + span[s], genes[s] < 0.5)
+            )
+        if n_short < n:
+            s = slice(n_short, n)
+            parts.append(
+                enc.reroute(self._flat, self._offsets, pick[s], i0[s], i0[s] + span[s], genes[s], self.lam_range)
+            )
+        flat, offsets, keys = parts[0]
+        for f2, o2, k2 in parts[1:]:
+            flat, offsets = enc.concat_flat(flat, offsets, f2, o2)
+            keys = np.concatenate([keys, k2])
         self.n_eval += n
         self._merge(flat, offsets, keys, np.full((n, self._X.shape[1]), np.nan), np.zeros(n, bool))
 
