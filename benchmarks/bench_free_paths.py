@@ -166,6 +166,9 @@ def main(argv=None):
     ap.add_argument("--summary", metavar="JSONL", help="print a Markdown table of a results file and exit")
     ap.add_argument("--maps", default=",".join(MAPS))
     ap.add_argument("--queries", type=int, default=1)
+    ap.add_argument(
+        "--only", default=None, help="comma-separated indices among the --queries longest (e.g. 3,4)"
+    )
     ap.add_argument("--encodings", default="via,field")
     ap.add_argument("--seed-from", default="weighted,none")
     ap.add_argument("--pop", type=int, default=200)
@@ -189,6 +192,8 @@ def main(argv=None):
     options = {} if a.n_via is None else {"n_via": a.n_via}
     for name in a.maps.split(","):
         for q, sc in enumerate(long_queries(folder, name, a.queries)):
+            if a.only is not None and q not in {int(i) for i in a.only.split(",")}:
+                continue
             ws = load_movingai(folder / f"{name}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
             t0 = time.perf_counter()
             objectives = tuple(a.objectives.split(","))

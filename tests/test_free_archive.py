@@ -43,7 +43,8 @@ def test_rerouted_paths_are_simple_feasible_paths(data):
     i0 = rng.integers(-2, 12, k)
     i1 = i0 + rng.integers(-1, 14, k)
     lam = data.draw(st.sampled_from([None, (-3.0, 12.0), (0.0, 1.0)]))
-    f2, o2, keys = enc.reroute(flat, offsets, pick, i0, i1, rng.random(k), lam)
+    turns = rng.random(k) if data.draw(st.booleans()) else None
+    f2, o2, keys = enc.reroute(flat, offsets, pick, i0, i1, rng.random(k), lam, turns)
     P, L = enc.padded(f2, o2)
     assert len(L) == k
     for i in range(k):
@@ -184,6 +185,23 @@ def test_straightened_paths_are_simple_feasible_paths(data):
 def test_shortcut_share_setting():
     ws = room(seed=2)
     assert FreePathArchive(FreePathProblem(ws)).shortcut == 0.0
-    assert FreePathArchive(FreePathProblem(ws, OBJ3)).shortcut == 0.5
+    assert FreePathArchive(FreePathProblem(ws, OBJ3)).shortcut == 0.25
     with pytest.raises(ConfigError, match="shortcut"):
         FreePathArchive(FreePathProblem(ws), shortcut=1.5)
+
+
+def test_turn_weighted_reroute_of_a_whole_path_is_no_less_smooth_than_plain():
+    """With a heavy turn weight the (cell, move) search of a whole path
+    finds a path with no more turns than the plain weighted search."""
+    for seed in range(4):
+        ws = room(seed=seed)
+        enc = FieldEncoding(ws)
+        flat, off, _ = enc.decode_flat(np.full((1, enc.n_var), 0.5))
+        args = (flat, off, np.zeros(2, np.int64), np.zeros(2), np.full(2, 10**6), np.array([0.0, 0.0]))
+        plain = enc.padded(*enc.reroute(*args)[:2])
+        turny = enc.padded(*enc.reroute(*args, turn_genes=np.array([1.0, 1.0]))[:2])
+        Mp = evaluate_paths(*plain, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+        Mt = evaluate_paths(*turny, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+        assert (Mt[:, 2] <= Mp[:, 2] + 1e-9).all()
+        for i in range(2):
+            check_path(ws, turny[0][i, : turny[1][i]])

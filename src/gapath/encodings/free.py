@@ -303,7 +303,7 @@ class FreeEncoding:
         """Flat paths ``a`` followed by flat paths ``b``."""
         return np.concatenate([flat_a, flat_b]), np.concatenate([off_a, off_b[1:] + off_a[-1]])
 
-    def reroute(self, flat, offsets, pick, i0, i1, genes, lam_range=None):
+    def reroute(self, flat, offsets, pick, i0, i1, genes, lam_range=None, turn_genes=None, turn_range=(-2.0, 2.0)):
         """Paths made by re-routing one segment of given paths.
 
         Row ``r`` takes path ``pick[r]`` of the flat paths ``(flat,
@@ -314,7 +314,11 @@ class FreeEncoding:
         loops the splice makes: every result is a simple path from the start
         to the goal that obeys the corner rule. Positions are clipped to the
         path. ``lam_range`` (default the encoding's) maps the weight genes
-        to ``log10(b / a)`` as in the module docstring.
+        to ``log10(b / a)`` as in the module docstring. With ``turn_genes``
+        (one per row in [0, 1]) the searches run over (cell, last move)
+        states and also weigh turns: ``c`` per radian of turn, ``log10(c /
+        a)`` spread over ``turn_range`` by the gene, the turns where the
+        segment meets the rest of the path included.
 
         Returns
         -------
@@ -332,6 +336,23 @@ class FreeEncoding:
         """
         i = lambda a: np.ascontiguousarray(a, np.int64)  # noqa: E731
         lo, hi = self.lam_range if lam_range is None else (float(v) for v in lam_range)
+        if turn_genes is not None:
+            return K.reroute_turns(
+                i(flat),
+                i(offsets),
+                i(pick),
+                i(i0),
+                i(i1),
+                np.ascontiguousarray(genes, np.float64),
+                np.ascontiguousarray(turn_genes, np.float64),
+                self._occ,
+                self._extra,
+                self._cc,
+                lo,
+                hi,
+                float(turn_range[0]),
+                float(turn_range[1]),
+            )
         return K.reroute(
             i(flat),
             i(offsets),

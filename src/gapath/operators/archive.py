@@ -103,8 +103,10 @@ class FreePathArchive(Callback):
         if not (np.isfinite(lam_lo) and np.isfinite(lam_hi) and lam_lo < lam_hi):
             raise ConfigError(f"lam_range must be two finite numbers lo < hi, got {lam_range!r}")
         self.lam_range = (lam_lo, lam_hi)
+        #: with smoothness as an objective the re-routing searches weigh turns
+        self.turns = "smoothness" in problem.objectives
         if shortcut is None:
-            shortcut = 0.5 if "smoothness" in problem.objectives else 0.0
+            shortcut = 0.25 if self.turns else 0.0
         try:
             shortcut = float(shortcut)
         except (TypeError, ValueError):
@@ -172,8 +174,11 @@ class FreePathArchive(Callback):
             )
         if n_short < n:
             s = slice(n_short, n)
+            turns = rng.random(n - n_short) if self.turns else None
             parts.append(
-                enc.reroute(self._flat, self._offsets, pick[s], i0[s], i0[s] + span[s], genes[s], self.lam_range)
+                enc.reroute(
+                    self._flat, self._offsets, pick[s], i0[s], i0[s] + span[s], genes[s], self.lam_range, turns
+                )
             )
         flat, offsets, keys = parts[0]
         for f2, o2, k2 in parts[1:]:
