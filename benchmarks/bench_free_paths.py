@@ -83,20 +83,25 @@ def throughput(problem, n: int, seed: int) -> float:
 class _Timed(HypervolumeRatioCallback):
     """The HV ratio every generation, with the wall time since the start."""
 
-    def __init__(self, reference):
+    def __init__(self, reference, progress=None, label=None):
         super().__init__(reference)
         self.t0 = time.perf_counter()
         self.seconds = []
+        self.progress, self.label = progress, label
 
     def notify(self, algorithm):
         super().notify(algorithm)
         self.seconds.append(time.perf_counter() - self.t0)
+        g, _, h = self.history[-1]
+        if self.progress and (g in (1, 10, 25, 50, 100, 150, 200, 500) or g % 20 == 0):
+            with open(self.progress, "a") as f:  # partial figures of a run that may not finish
+                f.write(json.dumps(dict(self.label or {}, gen=g, hv_ratio=h, seconds=self.seconds[-1])) + "\n")
 
 
-def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options, refine=None):
+def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options, refine=None, progress=None, label=None):
     problem = FreePathProblem(ws, objectives, encoding=encoding, **options)
     rate = throughput(problem, 5 * pop, seed)
-    tracker = _Timed(ref)
+    tracker = _Timed(ref, progress, label)
     res = solve(
         ws,
         objectives=objectives,
@@ -182,6 +187,7 @@ def main(argv=None):
         default=None,
         help="re-routed archive paths per generation (default: solve's, pop // 2; 'off': no archive)",
     )
+    ap.add_argument("--progress", default=None, help="append the HV ratio every 20 generations to this file")
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
     a = ap.parse_args(argv)
     if a.summary:
@@ -213,7 +219,12 @@ def main(argv=None):
                         exact_seconds=exact_s,
                     )
                     refine = None if a.refine is None else (False if a.refine == "off" else int(a.refine))
-                    rec.update(run(ws, ref, objectives, enc, sf, a.pop, a.gen, a.seed, opts, refine))
+                    rec.update(
+                        run(
+                            ws, ref, objectives, enc, sf, a.pop, a.gen, a.seed, opts, refine,
+                            a.progress, dict(map=name, query=q, exact_size=len(ref)),
+                        )
+                    )
                     line = json.dumps(rec)
                     print(line, flush=True)
                     if out:
