@@ -107,6 +107,8 @@ def test_solve_free_returns_the_archive_deterministically():
     np.testing.assert_array_equal(a.F, b.F)
     assert [x.tolist() for x in a.paths] == [x.tolist() for x in b.paths]
     assert runs[0].settings["refine"] == 10
+    three = solve(ws, objectives=OBJ3, paths="free", pop_size=10, n_gen=2, seed=5, tiebreak=None)
+    assert three.settings["refine"] == 20
     assert runs[0].n_eval > runs[0].pymoo_result.algorithm.evaluator.n_eval
     arch = run_archive(runs[0].pymoo_result.algorithm)
     np.testing.assert_array_equal(arch.F, a.F)

@@ -112,7 +112,9 @@ def solve(
         non-dominated path it meets and re-routes a segment of ``refine``
         archived paths per generation
         (:class:`gapath.operators.archive.FreePathArchive`); the front is
-        the archive's. Default ``pop_size // 2``; 0 keeps the archive
+        the archive's. Default ``pop_size // 2`` with two objectives,
+        ``2 * pop_size`` with three or more (docs/results/free_paths.md);
+        0 keeps the archive
         without re-routing; ``False``: no archive (the last population's
         front, as for monotone paths).
     paths : ``"monotone"`` (default: Ahmed & Deb's column-monotone paths) or
@@ -200,7 +202,10 @@ def solve(
     if paths == "free" and refine is not False:
         from gapath.operators.archive import FreePathArchive
 
-        n_refine = pop_size // 2 if refine is None or refine is True else refine
+        if refine is None or refine is True:  # the fronts outgrow the population with 3+ objectives
+            n_refine = pop_size // 2 if problem.n_obj <= 2 else 2 * pop_size
+        else:
+            n_refine = refine
         archive = FreePathArchive(problem, n_refine=n_refine, seed=seed)
     elif refine not in (None, False):
         raise ConfigError(f"refine applies to free paths only (paths='free'), got paths={paths!r}")
