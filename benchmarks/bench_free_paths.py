@@ -95,10 +95,14 @@ class _Timed(HypervolumeRatioCallback):
         g, _, h = self.history[-1]
         if self.progress and (g in (1, 10, 25, 50, 100, 150, 200, 500) or g % 20 == 0):
             with open(self.progress, "a") as f:  # partial figures of a run that may not finish
-                f.write(json.dumps(dict(self.label or {}, gen=g, hv_ratio=h, seconds=self.seconds[-1])) + "\n")
+                f.write(
+                    json.dumps(dict(self.label or {}, gen=g, hv_ratio=h, seconds=self.seconds[-1])) + "\n"
+                )
 
 
-def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options, refine=None, progress=None, label=None):
+def run(
+    ws, ref, objectives, encoding, seed_from, pop, gen, seed, options, refine=None, progress=None, label=None
+):
     problem = FreePathProblem(ws, objectives, encoding=encoding, **options)
     rate = throughput(problem, 5 * pop, seed)
     tracker = _Timed(ref, progress, label)
@@ -221,8 +225,18 @@ def main(argv=None):
                     refine = None if a.refine is None else (False if a.refine == "off" else int(a.refine))
                     rec.update(
                         run(
-                            ws, ref, objectives, enc, sf, a.pop, a.gen, a.seed, opts, refine,
-                            a.progress, dict(map=name, query=q, exact_size=len(ref)),
+                            ws,
+                            ref,
+                            objectives,
+                            enc,
+                            sf,
+                            a.pop,
+                            a.gen,
+                            a.seed,
+                            opts,
+                            refine,
+                            a.progress,
+                            dict(map=name, query=q, exact_size=len(ref)),
                         )
                     )
                     line = json.dumps(rec)

@@ -8,6 +8,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 from pymoo.algorithms.moo.nsga2 import NSGA2
 from pymoo.optimize import minimize
+from test_free_paths import TOL, check_path, dominates, room, workspaces
 
 from gapath.algorithms import FastNSGA2
 from gapath.convergence import HypervolumeRatioCallback
@@ -21,7 +22,6 @@ from gapath.operators.sampling.free_sampling import FreeSampling
 from gapath.planners.exact import free_front
 from gapath.problems import FreePathProblem, GridPathProblem
 from gapath.solver import solve
-from test_free_paths import TOL, check_path, dominates, room, workspaces
 
 OBJ3 = ("length", "vulnerability", "smoothness")
 

@@ -856,7 +856,9 @@ def _eighths(k1, k2):
 
 
 @numba.njit(cache=True)
-def _turn_segment(occ, h, w, extra, s, kin, t, kout, a, b, c, corner_cutting, state, g, came, heap, touched, buf):
+def _turn_segment(
+    occ, h, w, extra, s, kin, t, kout, a, b, c, corner_cutting, state, g, came, heap, touched, buf
+):
     """A* from cell ``s`` (entered by move ``kin``, 8: none) to cell ``t``
     (left by move ``kout``, 8: none) over (cell, last move) states: a step
     into ``v`` by move ``k`` after move ``k0`` costs ``a * STEP[k] + b *
@@ -939,7 +941,9 @@ def _turn_segment(occ, h, w, extra, s, kin, t, kout, a, b, c, corner_cutting, st
 
 
 @numba.njit(cache=True)
-def reroute_turns(flat, offsets, pick, i0, i1, genes, tgenes, occ, extra, corner_cutting, lam_lo, lam_hi, tau_lo, tau_hi):
+def reroute_turns(
+    flat, offsets, pick, i0, i1, genes, tgenes, occ, extra, corner_cutting, lam_lo, lam_hi, tau_lo, tau_hi
+):
     """:func:`reroute` with turns weighed too: the segment search
     (:func:`_turn_segment`) adds ``c * angle`` per turn, ``c / a = 10 **
     (tau_lo + (tau_hi - tau_lo) * tgenes[r])``, including the turns where
@@ -983,7 +987,26 @@ def reroute_turns(flat, offsets, pick, i0, i1, genes, tgenes, occ, extra, corner
             a, b = _weights(genes[r], lam_lo, lam_hi)
             x = min(max(tgenes[r], 0.0), 1.0)
             c = a * 10.0 ** (tau_lo + (tau_hi - tau_lo) * x)
-            cnt = _turn_segment(flat_occ, h, w, extra, u, kin, v, kout, a, b, c, corner_cutting, state, g, came, heap, touched, buf)
+            cnt = _turn_segment(
+                flat_occ,
+                h,
+                w,
+                extra,
+                u,
+                kin,
+                v,
+                kout,
+                a,
+                b,
+                c,
+                corner_cutting,
+                state,
+                g,
+                came,
+                heap,
+                touched,
+                buf,
+            )
         if cnt == 0:
             for j in range(p0 + 1, p1 + 1):
                 m = _append(flat[base + j], cur, pos, m)

@@ -303,7 +303,9 @@ class FreeEncoding:
         """Flat paths ``a`` followed by flat paths ``b``."""
         return np.concatenate([flat_a, flat_b]), np.concatenate([off_a, off_b[1:] + off_a[-1]])
 
-    def reroute(self, flat, offsets, pick, i0, i1, genes, lam_range=None, turn_genes=None, turn_range=(-2.0, 2.0)):
+    def reroute(
+        self, flat, offsets, pick, i0, i1, genes, lam_range=None, turn_genes=None, turn_range=(-2.0, 2.0)
+    ):
         """Paths made by re-routing one segment of given paths.
 
         Row ``r`` takes path ``pick[r]`` of the flat paths ``(flat,

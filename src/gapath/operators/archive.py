@@ -76,7 +76,13 @@ class FreePathArchive(Callback):
     """
 
     def __init__(
-        self, problem, n_refine: int = 100, seed: int = 1, segment=(0.05, 0.5), lam_range=LAM_RANGE, shortcut=None
+        self,
+        problem,
+        n_refine: int = 100,
+        seed: int = 1,
+        segment=(0.05, 0.5),
+        lam_range=LAM_RANGE,
+        shortcut=None,
     ):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
@@ -177,7 +183,14 @@ class FreePathArchive(Callback):
             turns = rng.random(n - n_short) if self.turns else None
             parts.append(
                 enc.reroute(
-                    self._flat, self._offsets, pick[s], i0[s], i0[s] + span[s], genes[s], self.lam_range, turns
+                    self._flat,
+                    self._offsets,
+                    pick[s],
+                    i0[s],
+                    i0[s] + span[s],
+                    genes[s],
+                    self.lam_range,
+                    turns,
                 )
             )
         flat, offsets, keys = parts[0]
