@@ -16,7 +16,9 @@ Per run one JSON line: map, query, encoding, seeding, exact front size and
 seconds, GA front size, ``hv_ratio`` (SPEC normalisation), ``coverage``
 (share of exact points matched within the tolerance), GA wall seconds,
 seconds per generation, the HV ratio after generations 1, 10, 25, 50, 100,
-200 (``hv_at_gen``), the generation and seconds at which it first reached
+200 (``hv_at_gen``; of the run's archive, the front ``solve`` returns, when
+it keeps one: ``refine`` re-routed paths per generation, ``--refine off``
+for the last population's front), the generation and seconds at which it first reached
 0.99 and 0.999, and the decode+evaluate throughput (paths per second
 over ``--pop * 5`` random genomes, cache cold). Wall-clock times on a shared
 machine: noisy.
@@ -81,20 +83,29 @@ def throughput(problem, n: int, seed: int) -> float:
 class _Timed(HypervolumeRatioCallback):
     """The HV ratio every generation, with the wall time since the start."""
 
-    def __init__(self, reference):
+    def __init__(self, reference, progress=None, label=None):
         super().__init__(reference)
         self.t0 = time.perf_counter()
         self.seconds = []
+        self.progress, self.label = progress, label
 
     def notify(self, algorithm):
         super().notify(algorithm)
         self.seconds.append(time.perf_counter() - self.t0)
+        g, _, h = self.history[-1]
+        if self.progress and (g in (1, 10, 25, 50, 100, 150, 200, 500) or g % 20 == 0):
+            with open(self.progress, "a") as f:  # partial figures of a run that may not finish
+                f.write(
+                    json.dumps(dict(self.label or {}, gen=g, hv_ratio=h, seconds=self.seconds[-1])) + "\n"
+                )
 
 
-def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
+def run(
+    ws, ref, objectives, encoding, seed_from, pop, gen, seed, options, refine=None, progress=None, label=None
+):
     problem = FreePathProblem(ws, objectives, encoding=encoding, **options)
     rate = throughput(problem, 5 * pop, seed)
-    tracker = _Timed(ref)
+    tracker = _Timed(ref, progress, label)
     res = solve(
         ws,
         objectives=objectives,
@@ -106,6 +117,7 @@ def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
         seed_from=seed_from,
         callback=tracker,
         tiebreak="smoothness" if len(objectives) == 2 else None,
+        refine=refine,
     )
     front = res.front
     hist = tracker.history
@@ -124,6 +136,7 @@ def run(ws, ref, objectives, encoding, seed_from, pop, gen, seed, options):
         pop=pop,
         gen=gen,
         seed=seed,
+        refine=res.settings.get("refine", False),
         ga_size=len(front),
         hv_ratio=hv_ratio(front.F, ref.F),
         coverage=coverage(front.F, ref.F),
@@ -162,6 +175,9 @@ def main(argv=None):
     ap.add_argument("--summary", metavar="JSONL", help="print a Markdown table of a results file and exit")
     ap.add_argument("--maps", default=",".join(MAPS))
     ap.add_argument("--queries", type=int, default=1)
+    ap.add_argument(
+        "--only", default=None, help="comma-separated indices among the --queries longest (e.g. 3,4)"
+    )
     ap.add_argument("--encodings", default="via,field")
     ap.add_argument("--seed-from", default="weighted,none")
     ap.add_argument("--pop", type=int, default=200)
@@ -170,6 +186,12 @@ def main(argv=None):
     ap.add_argument("--objectives", default="length,vulnerability")
     ap.add_argument("--n-via", type=int, default=None)
     ap.add_argument("--data", default=None)
+    ap.add_argument(
+        "--refine",
+        default=None,
+        help="re-routed archive paths per generation (default: solve's, pop // 2; 'off': no archive)",
+    )
+    ap.add_argument("--progress", default=None, help="append the HV ratio every 20 generations to this file")
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
     a = ap.parse_args(argv)
     if a.summary:
@@ -180,6 +202,8 @@ def main(argv=None):
     options = {} if a.n_via is None else {"n_via": a.n_via}
     for name in a.maps.split(","):
         for q, sc in enumerate(long_queries(folder, name, a.queries)):
+            if a.only is not None and q not in {int(i) for i in a.only.split(",")}:
+                continue
             ws = load_movingai(folder / f"{name}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
             t0 = time.perf_counter()
             objectives = tuple(a.objectives.split(","))
@@ -198,7 +222,23 @@ def main(argv=None):
                         exact_size=len(ref),
                         exact_seconds=exact_s,
                     )
-                    rec.update(run(ws, ref, objectives, enc, sf, a.pop, a.gen, a.seed, opts))
+                    refine = None if a.refine is None else (False if a.refine == "off" else int(a.refine))
+                    rec.update(
+                        run(
+                            ws,
+                            ref,
+                            objectives,
+                            enc,
+                            sf,
+                            a.pop,
+                            a.gen,
+                            a.seed,
+                            opts,
+                            refine,
+                            a.progress,
+                            dict(map=name, query=q, exact_size=len(ref)),
+                        )
+                    )
                     line = json.dumps(rec)
                     print(line, flush=True)
                     if out:

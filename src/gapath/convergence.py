@@ -20,6 +20,7 @@ from gapath._convergence_kernels import dominated_by
 from gapath.callbacks import population_arrays
 from gapath.errors import ConfigError
 from gapath.metrics import TOL, hypervolume, nondominated, normalisation_bounds
+from gapath.operators.archive import run_archive
 
 __all__ = ["HypervolumeRatioCallback", "plot_convergence"]
 
@@ -31,7 +32,12 @@ def _population_front(algorithm, problem) -> np.ndarray:
     """The feasible, non-dominated (SPEC tolerance), unpenalised objective
     vectors of the algorithm's current population (read with
     :func:`gapath.callbacks.population_arrays`: no pymoo ``Population`` is
-    built from :class:`gapath.algorithms.FastNSGA2`)."""
+    built from :class:`gapath.algorithms.FastNSGA2`), or of the run's
+    :class:`gapath.operators.archive.FreePathArchive` when it has one (the
+    front :func:`gapath.solver.solve` returns)."""
+    archive = run_archive(algorithm) if problem is None else None
+    if archive is not None:
+        return archive.F
     A = population_arrays(algorithm)
     if A is None or len(A) == 0:
         return np.zeros((0, 0))

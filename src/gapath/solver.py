@@ -30,7 +30,8 @@ class SolveResult:
     front : the feasible non-dominated paths (:class:`gapath.front.PathFront`).
     settings : the run's settings (JSON-serialisable).
     seconds : wall time of the optimisation.
-    n_eval : evaluations made.
+    n_eval : evaluations made (with free paths, the re-routed paths of
+        the archive included).
     n_gen : generations completed.
     interrupted : True when the run was stopped (Ctrl-C) and ``front`` is
         that of the last complete generation.
@@ -87,6 +88,7 @@ def solve(
     pm_prob_var=None,
     adaptive_penalty=None,
     repair=None,
+    refine=None,
 ) -> SolveResult:
     """Run Ahmed & Deb's NSGA-II on ``workspace`` and return its front.
 
@@ -107,6 +109,15 @@ def solve(
     adaptive_penalty : with ``constraints="adaptive"``, the keyword
         arguments of :class:`gapath.constraints.AdaptivePenalty` (a dict;
         ``maximum`` defaults to ``penalty``).
+    refine : free paths only: the run keeps an external archive of every
+        non-dominated path it meets and re-routes a segment of ``refine``
+        archived paths per generation
+        (:class:`gapath.operators.archive.FreePathArchive`); the front is
+        the archive's. Default ``pop_size // 2`` with two objectives,
+        ``2 * pop_size`` with three or more (docs/results/free_paths.md);
+        0 keeps the archive
+        without re-routing; ``False``: no archive (the last population's
+        front, as for monotone paths).
     paths : ``"monotone"`` (default: Ahmed & Deb's column-monotone paths) or
         ``"free"`` (any simple 8-connected path); seeds from
         :class:`gapath.operators.sampling.free_sampling.FreeSampling` for
@@ -205,8 +216,19 @@ def solve(
     if pm_prob_var is not None:
         extra["pm_prob_var"] = pm_prob_var
     algorithm = ENGINES[engine](pop_size, tiebreak=tiebreak, sbx_eta=sbx_eta, sampling=sampling, **extra)
+    archive = None
+    if paths == "free" and refine is not False:
+        from gapath.operators.archive import FreePathArchive
+
+        if refine is None or refine is True:  # the fronts outgrow the population with 3+ objectives
+            n_refine = pop_size // 2 if problem.n_obj <= 2 else 2 * pop_size
+        else:
+            n_refine = refine
+        archive = FreePathArchive(problem, n_refine=n_refine, seed=seed)
+    elif refine not in (None, False):
+        raise ConfigError(f"refine applies to free paths only (paths='free'), got paths={paths!r}")
     bar = ProgressBar(n_gen, disable=not progress)
-    callbacks = Callbacks(bar, callback)
+    callbacks = Callbacks(archive, bar, callback)
 
     settings = dict(
         **workspace.describe(),
@@ -230,6 +252,8 @@ def solve(
         settings["pm_prob_var"] = pm_prob_var
     if "repair" in extra:
         settings["repair"] = repair if isinstance(repair, str) else repr(extra["repair"])
+    if archive is not None:
+        settings["refine"] = archive.n_refine
     t0 = time.perf_counter()
     interrupted = False
     res = None
@@ -246,13 +270,16 @@ def solve(
     A = population_arrays(algorithm)
     X = np.empty((0, problem.n_var)) if A is None or len(A) == 0 else A.X
     front = path_front(problem, X)
+    if archive is not None:
+        archive.add(X)
+        front = archive.front()
     return SolveResult(
         workspace,
         problem,
         front,
         settings,
         seconds,
-        int(algorithm.evaluator.n_eval),
+        int(algorithm.evaluator.n_eval) + (0 if archive is None else archive.n_eval),
         bar.last_gen,
         interrupted,
         res,

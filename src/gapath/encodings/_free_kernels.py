@@ -671,3 +671,351 @@ def row_hash(X):
             x ^= x >> np.uint64(29)
         out[i] = np.int64(x)
     return out
+
+
+@numba.njit(cache=True)
+def reroute(
+    flat,
+    offsets,
+    pick,
+    i0,
+    i1,
+    genes,
+    occ,
+    extra,
+    corner_cutting,
+    lam_lo,
+    lam_hi,
+    t,
+    hlen,
+    hext,
+    pmin,
+    flen,
+    fext,
+):
+    """Paths made from others by re-routing one segment: row ``r`` takes
+    path ``pick[r]`` (cells ``flat[offsets[p]:offsets[p + 1]]``), replaces
+    its cells between positions ``i0[r] < i1[r]`` by the optimal path
+    between them under the weight gene ``genes[r]`` (the decoders' step
+    cost, neutral field) and cuts the loops the splice makes, so every
+    result is a simple path with the same ends. Returns ``(flat, offsets,
+    keys)`` as :func:`decode_via`."""
+    h, w = occ.shape
+    flat_occ = occ.ravel()
+    n = pick.shape[0]
+    state, g, came, heap, touched, mcache, buf = _scratch(h * w)
+    pos = np.full(h * w, -1, np.int64)
+    cur = np.empty(h * w, np.int64)
+    out = np.empty(max(16, n * (h + w)), np.int64)
+    out_off = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    dummy = np.zeros(1)
+    for r in range(n):
+        base = offsets[pick[r]]
+        m_old = offsets[pick[r] + 1] - base
+        p0 = min(max(i0[r], 0), m_old - 1)
+        p1 = min(max(i1[r], p0), m_old - 1)
+        m = 0
+        for j in range(p0 + 1):
+            m = _append(flat[base + j], cur, pos, m)
+        if p1 > p0:
+            a, b = _weights(genes[r], lam_lo, lam_hi)
+            u = flat[base + p0]
+            v = flat[base + p1]
+            cnt = _segment(
+                flat_occ,
+                h,
+                w,
+                extra,
+                u,
+                v,
+                a,
+                b,
+                corner_cutting,
+                dummy,
+                0,
+                0,
+                0.0,
+                1.0,
+                hlen,
+                hext,
+                v == t,
+                pmin,
+                flen,
+                fext,
+                state,
+                g,
+                came,
+                heap,
+                touched,
+                mcache,
+                buf,
+            )
+            if cnt == 0:  # cannot happen between cells of one path; keep the old cells
+                for j in range(p0 + 1, p1 + 1):
+                    m = _append(flat[base + j], cur, pos, m)
+            else:
+                for j in range(1, cnt):
+                    m = _append(buf[j], cur, pos, m)
+        for j in range(p1 + 1, m_old):
+            m = _append(flat[base + j], cur, pos, m)
+        for j in range(m):
+            pos[cur[j]] = -1
+        out = _store(cur, m, r, out, out_off, keys)
+    return out[: out_off[n]], out_off, keys
+
+
+@numba.njit(cache=True, inline="always")
+def _move_index(dr, dc):
+    """Index ``k`` of the move ``(dr, dc)`` in ``DR``/``DC`` (-1 if none)."""
+    for k in range(8):
+        if DR[k] == dr and DC[k] == dc:
+            return k
+    return -1
+
+
+@numba.njit(cache=True)
+def shortcut(flat, offsets, pick, i0, i1, diagonal_first, occ, corner_cutting):
+    """Paths made from others by straightening one segment: row ``r`` takes
+    path ``pick[r]`` and replaces its cells between positions ``i0[r] <
+    i1[r]`` by the octile path with one bend between them (the diagonal
+    steps first when ``diagonal_first[r]``, else the straight ones): as
+    short as a path between the two cells can be, with at most one turn.
+    Where that path meets an obstacle or cuts a corner the rule forbids,
+    the row keeps the original path. Loops the splice makes are cut.
+    Returns ``(flat, offsets, keys)`` as :func:`decode_via`."""
+    h, w = occ.shape
+    flat_occ = occ.ravel()
+    n = pick.shape[0]
+    pos = np.full(h * w, -1, np.int64)
+    cur = np.empty(h * w, np.int64)
+    seg = np.empty(h + w + 2, np.int64)
+    out = np.empty(max(16, n * (h + w)), np.int64)
+    out_off = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    for r in range(n):
+        base = offsets[pick[r]]
+        m_old = offsets[pick[r] + 1] - base
+        p0 = min(max(i0[r], 0), m_old - 1)
+        p1 = min(max(i1[r], p0), m_old - 1)
+        u = flat[base + p0]
+        v = flat[base + p1]
+        ur = u // w
+        uc = u - ur * w
+        dr = v // w - ur
+        dc = v - (v // w) * w - uc
+        sr = 1 if dr > 0 else (-1 if dr < 0 else 0)
+        sc = 1 if dc > 0 else (-1 if dc < 0 else 0)
+        nd = min(abs(dr), abs(dc))
+        ns = max(abs(dr), abs(dc)) - nd
+        kd = _move_index(sr, sc)
+        ks = _move_index(sr, 0) if abs(dr) > abs(dc) else _move_index(0, sc)
+        cnt = 0
+        ok = p1 > p0
+        rr = ur
+        cc = uc
+        for phase in range(2):
+            if not ok:
+                break
+            diag = (phase == 0) == diagonal_first[r]
+            steps = nd if diag else ns
+            k = kd if diag else ks
+            for _ in range(steps):
+                if not (move_mask(flat_occ, h, w, rr, cc, corner_cutting) >> k) & 1:
+                    ok = False
+                    break
+                rr += DR[k]
+                cc += DC[k]
+                seg[cnt] = rr * w + cc
+                cnt += 1
+        m = 0
+        for j in range(p0 + 1):
+            m = _append(flat[base + j], cur, pos, m)
+        if ok:
+            for j in range(cnt):
+                m = _append(seg[j], cur, pos, m)
+        else:
+            for j in range(p0 + 1, p1 + 1):
+                m = _append(flat[base + j], cur, pos, m)
+        for j in range(p1 + 1, m_old):
+            m = _append(flat[base + j], cur, pos, m)
+        for j in range(m):
+            pos[cur[j]] = -1
+        out = _store(cur, m, r, out, out_off, keys)
+    return out[: out_off[n]], out_off, keys
+
+
+@numba.njit(cache=True, inline="always")
+def _eighths(k1, k2):
+    """Turn between moves ``k1`` and ``k2`` in eighths of a full turn (0 when
+    either is 8, no move)."""
+    if k1 == 8 or k2 == 8:
+        return 0
+    d = abs(k1 - k2)
+    return min(d, 8 - d)
+
+
+@numba.njit(cache=True)
+def _turn_segment(
+    occ, h, w, extra, s, kin, t, kout, a, b, c, corner_cutting, state, g, came, heap, touched, buf
+):
+    """A* from cell ``s`` (entered by move ``kin``, 8: none) to cell ``t``
+    (left by move ``kout``, 8: none) over (cell, last move) states: a step
+    into ``v`` by move ``k`` after move ``k0`` costs ``a * STEP[k] + b *
+    extra[v] + c * pi/4 * eighths(k0, k)``, plus the turn onto ``kout`` on
+    the step into ``t``. Heuristic ``a`` times the octile distance
+    (consistent). Writes the cells ``s .. t`` into ``buf`` (a cell may
+    repeat: the caller cuts loops); returns their number, 0 if unreachable.
+    Scratch arrays of ``9 * H * W`` states (``state`` zero on entry and on
+    return)."""
+    eighth = math.pi / 4.0
+    tr = t // w
+    tc = t - tr * w
+    s_id = s * 9 + kin
+    g[s_id] = 0.0
+    came[s_id] = 8
+    touched[0] = s_id
+    n_touched = 1
+    sr = s // w
+    hs = a * octile(sr, s - sr * w, tr, tc)
+    size, held = open_push(heap, state, 0, NOT_HELD, hs, hs, s_id)
+    goal = -1
+    while True:
+        x, size, held = open_pop(heap, state, size, held)
+        if x < 0:
+            break
+        state[x] = _CLOSED
+        u = x // 9
+        k0 = x - u * 9
+        if u == t:
+            goal = x
+            break
+        ur = u // w
+        uc = u - ur * w
+        moves = move_mask(occ, h, w, ur, uc, corner_cutting)
+        gu = g[x]
+        for k in range(8):
+            if not (moves >> k) & 1:
+                continue
+            vr = ur + DR[k]
+            vc = uc + DC[k]
+            v = vr * w + vc
+            y = v * 9 + k
+            sy = state[y]
+            if sy == _CLOSED:
+                continue
+            ng = gu + a * STEP[k] + b * extra[v] + c * eighth * _eighths(k0, k)
+            if v == t:
+                ng += c * eighth * _eighths(k, kout)
+            if sy != _UNSEEN and ng >= g[y]:
+                continue
+            g[y] = ng
+            came[y] = k0
+            hv = a * octile(vr, vc, tr, tc)
+            if sy == _UNSEEN:
+                touched[n_touched] = y
+                n_touched += 1
+                size, held = open_push(heap, state, size, held, ng + hv, hv, y)
+            else:
+                held = open_decrease(heap, state, held, ng + hv, hv, y)
+    for i in range(n_touched):
+        state[touched[i]] = _UNSEEN
+    if goal < 0:
+        return 0
+    m = 0
+    x = goal
+    while True:
+        u = x // 9
+        buf[m] = u
+        m += 1
+        if x == s_id:
+            break
+        k = x - u * 9
+        prev = u - DR[k] * w - DC[k]
+        x = prev * 9 + came[x]
+    for i in range(m // 2):
+        tmp = buf[i]
+        buf[i] = buf[m - 1 - i]
+        buf[m - 1 - i] = tmp
+    return m
+
+
+@numba.njit(cache=True)
+def reroute_turns(
+    flat, offsets, pick, i0, i1, genes, tgenes, occ, extra, corner_cutting, lam_lo, lam_hi, tau_lo, tau_hi
+):
+    """:func:`reroute` with turns weighed too: the segment search
+    (:func:`_turn_segment`) adds ``c * angle`` per turn, ``c / a = 10 **
+    (tau_lo + (tau_hi - tau_lo) * tgenes[r])``, including the turns where
+    the segment meets the rest of the path. Returns ``(flat, offsets,
+    keys)``."""
+    h, w = occ.shape
+    flat_occ = occ.ravel()
+    n = pick.shape[0]
+    ns = 9 * h * w
+    state = np.zeros(ns, np.int64)
+    g = np.empty(ns)
+    came = np.empty(ns, np.uint8)
+    heap = np.empty(3 * ns)
+    touched = np.empty(ns, np.int64)
+    buf = np.empty(ns, np.int64)
+    pos = np.full(h * w, -1, np.int64)
+    cur = np.empty(h * w, np.int64)
+    out = np.empty(max(16, n * (h + w)), np.int64)
+    out_off = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    for r in range(n):
+        base = offsets[pick[r]]
+        m_old = offsets[pick[r] + 1] - base
+        p0 = min(max(i0[r], 0), m_old - 1)
+        p1 = min(max(i1[r], p0), m_old - 1)
+        m = 0
+        for j in range(p0 + 1):
+            m = _append(flat[base + j], cur, pos, m)
+        cnt = 0
+        if p1 > p0:
+            u = flat[base + p0]
+            v = flat[base + p1]
+            kin = 8
+            if p0 > 0:
+                q = flat[base + p0 - 1]
+                kin = _move_index(u // w - q // w, (u - (u // w) * w) - (q - (q // w) * w))
+            kout = 8
+            if p1 < m_old - 1:
+                q = flat[base + p1 + 1]
+                kout = _move_index(q // w - v // w, (q - (q // w) * w) - (v - (v // w) * w))
+            a, b = _weights(genes[r], lam_lo, lam_hi)
+            x = min(max(tgenes[r], 0.0), 1.0)
+            c = a * 10.0 ** (tau_lo + (tau_hi - tau_lo) * x)
+            cnt = _turn_segment(
+                flat_occ,
+                h,
+                w,
+                extra,
+                u,
+                kin,
+                v,
+                kout,
+                a,
+                b,
+                c,
+                corner_cutting,
+                state,
+                g,
+                came,
+                heap,
+                touched,
+                buf,
+            )
+        if cnt == 0:
+            for j in range(p0 + 1, p1 + 1):
+                m = _append(flat[base + j], cur, pos, m)
+        else:
+            for j in range(1, cnt):
+                m = _append(buf[j], cur, pos, m)
+        for j in range(p1 + 1, m_old):
+            m = _append(flat[base + j], cur, pos, m)
+        for j in range(m):
+            pos[cur[j]] = -1
+        out = _store(cur, m, r, out, out_off, keys)
+    return out[: out_off[n]], out_off, keys

@@ -287,6 +287,128 @@ class FreeEncoding:
         P, L = K.to_padded(flat, offsets, self.shape[1])
         return [P[i, : L[i]].copy() for i in range(len(L))]
 
+    def padded(self, flat, offsets) -> tuple[np.ndarray, np.ndarray]:
+        """Flat paths ``(flat, offsets)`` as padded ``(N, L, 2)`` cells and
+        lengths ``(N,)`` (what :meth:`decode` returns)."""
+        return K.to_padded(np.asarray(flat, np.int64), np.asarray(offsets, np.int64), self.shape[1])
+
+    @staticmethod
+    def take_flat(flat, offsets, idx) -> tuple[np.ndarray, np.ndarray]:
+        """The flat paths ``idx`` (an integer array) of ``(flat, offsets)``."""
+        idx = np.ascontiguousarray(idx, np.int64)
+        return K.gather(flat, offsets, flat, offsets, np.zeros(len(idx), np.int64), idx)
+
+    @staticmethod
+    def concat_flat(flat_a, off_a, flat_b, off_b) -> tuple[np.ndarray, np.ndarray]:
+        """Flat paths ``a`` followed by flat paths ``b``."""
+        return np.concatenate([flat_a, flat_b]), np.concatenate([off_a, off_b[1:] + off_a[-1]])
+
+    def reroute(
+        self, flat, offsets, pick, i0, i1, genes, lam_range=None, turn_genes=None, turn_range=(-2.0, 2.0)
+    ):
+        """Paths made by re-routing one segment of given paths.
+
+        Row ``r`` takes path ``pick[r]`` of the flat paths ``(flat,
+        offsets)`` (row-major cell indices, as :meth:`decode_flat` returns
+        them), replaces its cells between positions ``i0[r] < i1[r]`` by the
+        optimal path between those two cells under the weight gene
+        ``genes[r]`` (the step cost of :meth:`weighted_paths`) and cuts the
+        loops the splice makes: every result is a simple path from the start
+        to the goal that obeys the corner rule. Positions are clipped to the
+        path. ``lam_range`` (default the encoding's) maps the weight genes
+        to ``log10(b / a)`` as in the module docstring. With ``turn_genes``
+        (one per row in [0, 1]) the searches run over (cell, last move)
+        states and also weigh turns: ``c`` per radian of turn, ``log10(c /
+        a)`` spread over ``turn_range`` by the gene, the turns where the
+        segment meets the rest of the path included.
+
+        Returns
+        -------
+        flat, offsets, keys : as :meth:`decode_flat`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from gapath import Workspace
+        >>> enc = FieldEncoding(Workspace(np.zeros((4, 4), bool)))
+        >>> flat, off, _ = enc.decode_flat(np.full((1, enc.n_var), 0.5))
+        >>> f2, o2, _ = enc.reroute(flat, off, np.array([0]), np.array([0]), np.array([99]), np.array([0.0]))
+        >>> (f2[0], f2[-1]) == (flat[0], flat[-1])
+        True
+        """
+        i = lambda a: np.ascontiguousarray(a, np.int64)  # noqa: E731
+        lo, hi = self.lam_range if lam_range is None else (float(v) for v in lam_range)
+        if turn_genes is not None:
+            return K.reroute_turns(
+                i(flat),
+                i(offsets),
+                i(pick),
+                i(i0),
+                i(i1),
+                np.ascontiguousarray(genes, np.float64),
+                np.ascontiguousarray(turn_genes, np.float64),
+                self._occ,
+                self._extra,
+                self._cc,
+                lo,
+                hi,
+                float(turn_range[0]),
+                float(turn_range[1]),
+            )
+        return K.reroute(
+            i(flat),
+            i(offsets),
+            i(pick),
+            i(i0),
+            i(i1),
+            np.ascontiguousarray(genes, np.float64),
+            self._occ,
+            self._extra,
+            self._cc,
+            lo,
+            hi,
+            self._t,
+            self._hlen,
+            self._hext,
+            self._pmin,
+            self._flen,
+            self._fext,
+        )
+
+    def shortcut(self, flat, offsets, pick, i0, i1, diagonal_first):
+        """Paths made by straightening one segment of given paths: as
+        :meth:`reroute`, but the cells between positions ``i0[r] < i1[r]``
+        become the octile path with one bend between their ends (diagonal
+        steps first where ``diagonal_first[r]``), the shortest path between
+        them with at most one turn, when it is free and obeys the corner
+        rule (else the row keeps its path).
+
+        Returns
+        -------
+        flat, offsets, keys : as :meth:`decode_flat`.
+
+        Examples
+        --------
+        >>> import numpy as np
+        >>> from gapath import Workspace
+        >>> enc = FieldEncoding(Workspace(np.zeros((3, 3), bool)))
+        >>> flat = np.array([6, 3, 4, 1, 2]); off = np.array([0, 5])
+        >>> f2, o2, _ = enc.shortcut(flat, off, [0], [0], [4], [True])
+        >>> f2.tolist()
+        [6, 4, 2]
+        """
+        i = lambda a: np.ascontiguousarray(a, np.int64)  # noqa: E731
+        return K.shortcut(
+            i(flat),
+            i(offsets),
+            i(pick),
+            i(i0),
+            i(i1),
+            np.ascontiguousarray(diagonal_first, np.bool_),
+            self._occ,
+            self._cc,
+        )
+
     def _flat_paths(self, paths):
         h, w = self.shape
         cells, lengths = [], []

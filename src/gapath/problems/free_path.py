@@ -136,7 +136,12 @@ class FreePathProblem(Problem):
         """All per-path metrics ``(N, 4)`` in :data:`gapath.objectives.OBJECTIVES`
         order, unpenalised, computed by :func:`gapath.objectives.evaluate_paths`
         on the decoded paths; with layer objectives ``(N, 4 + k)``."""
-        P, L = self.encoding.decode(X)
+        return self.path_metrics(*self.encoding.decode(X))
+
+    def path_metrics(self, P, L) -> np.ndarray:
+        """:meth:`metrics` of padded paths ``P`` (N, L, 2) with lengths ``L``
+        (N,) (e.g. paths that no genome decodes to, such as the re-routed
+        paths of :class:`gapath.operators.archive.FreePathArchive`)."""
         ws = self.workspace
         M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
         if self._layer_stack is not None:

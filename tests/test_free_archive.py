@@ -1,0 +1,209 @@
+"""The free-path archive and its segment re-routing (issue 14)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from pymoo.algorithms.moo.nsga2 import NSGA2
+from pymoo.optimize import minimize
+from test_free_paths import TOL, check_path, dominates, room, workspaces
+
+from gapath.algorithms import FastNSGA2
+from gapath.convergence import HypervolumeRatioCallback
+from gapath.encodings.free import FieldEncoding, ViaPointEncoding
+from gapath.errors import ConfigError
+from gapath.front import path_front
+from gapath.metrics import nondominated
+from gapath.objectives import evaluate_paths, pad_paths
+from gapath.operators.archive import FreePathArchive, run_archive
+from gapath.operators.sampling.free_sampling import FreeSampling
+from gapath.planners.exact import free_front
+from gapath.problems import FreePathProblem, GridPathProblem
+from gapath.solver import solve
+
+OBJ3 = ("length", "vulnerability", "smoothness")
+
+
+@settings(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
+@given(data=st.data())
+def test_rerouted_paths_are_simple_feasible_paths(data):
+    ws = data.draw(workspaces())
+    enc = (
+        ViaPointEncoding(ws, n_via=data.draw(st.integers(0, 3)))
+        if data.draw(st.booleans())
+        else FieldEncoding(ws, field_shape=(2, 2))
+    )
+    n = data.draw(st.integers(1, 6))
+    rng = np.random.default_rng(data.draw(st.integers(0, 2**31 - 1)))
+    flat, offsets, _ = enc.decode_flat(rng.random((n, enc.n_var)))
+    k = data.draw(st.integers(1, 12))
+    pick = rng.integers(0, n, k)
+    i0 = rng.integers(-2, 12, k)
+    i1 = i0 + rng.integers(-1, 14, k)
+    lam = data.draw(st.sampled_from([None, (-3.0, 12.0), (0.0, 1.0)]))
+    turns = rng.random(k) if data.draw(st.booleans()) else None
+    f2, o2, keys = enc.reroute(flat, offsets, pick, i0, i1, rng.random(k), lam, turns)
+    P, L = enc.padded(f2, o2)
+    assert len(L) == k
+    for i in range(k):
+        check_path(ws, P[i, : L[i]])
+    assert (keys[:, 0] == L).all()
+
+
+def test_rerouting_a_whole_path_gives_the_weighted_path():
+    ws = room(seed=3)
+    enc = FieldEncoding(ws)
+    genes = np.array([0.0, 0.5, 1.0])
+    flat, offsets, _ = enc.decode_flat(np.full((1, enc.n_var), 0.5))
+    f2, o2, _ = enc.reroute(flat, offsets, np.zeros(3, np.int64), np.zeros(3), np.full(3, 10**6), genes)
+    P, L = enc.padded(f2, o2)
+    for i, want in enumerate(enc.weighted_paths(genes)):
+        np.testing.assert_array_equal(P[i, : L[i]], want)
+
+
+@pytest.mark.parametrize("objectives", [("length", "vulnerability"), OBJ3])
+@pytest.mark.parametrize("seed", [1, 2])
+def test_archive_front_is_valid_non_dominated_and_never_beats_exact(objectives, seed):
+    ws = room(seed=seed, corner_cutting=bool(seed % 2))
+    p = FreePathProblem(ws, objectives)
+    archive = FreePathArchive(p, n_refine=20, seed=seed)
+    minimize(p, FastNSGA2(20, sampling=FreeSampling("none")), ("n_gen", 8), seed=seed, callback=archive)
+    front = archive.front()
+    assert len(front) > 0
+    for path in front.paths:
+        check_path(ws, path)
+    # objectives recomputed from the paths
+    P, L = pad_paths(front.paths)
+    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    np.testing.assert_allclose(front.metrics, M, rtol=0, atol=0)
+    np.testing.assert_allclose(front.F, p.objective_values(M), rtol=0, atol=0)
+    assert len(nondominated(front.F, tol=TOL)) == len(front)
+    for f in front.F:
+        assert not any(dominates(f, r) for r in free_front(ws, objectives).F)
+
+
+def test_archive_holds_the_population_front():
+    """Nothing the population's front holds is missing from (or dominating)
+    the archive: it has seen every offspring."""
+    ws = room(seed=4)
+    p = FreePathProblem(ws, OBJ3)
+    archive = FreePathArchive(p, n_refine=0)
+    res = minimize(p, FastNSGA2(16, sampling=FreeSampling("none")), ("n_gen", 10), seed=3, callback=archive)
+    pop_front = path_front(p, res.pop.get("X"))
+    A = archive.front()
+    assert A.X.shape == (len(A), p.n_var)  # no re-routing: every path has its genome
+    np.testing.assert_array_equal(A.F, path_front(p, A.X).F)
+    for f in pop_front.F:
+        assert not any(dominates(f, a) for a in A.F)
+        assert any(np.allclose(f, a, rtol=TOL, atol=0) or dominates(a, f) for a in A.F)
+
+
+def test_solve_free_returns_the_archive_deterministically():
+    ws = room(seed=6)
+    runs = [solve(ws, paths="free", pop_size=20, n_gen=6, seed=5) for _ in range(2)]
+    a, b = (r.front for r in runs)
+    np.testing.assert_array_equal(a.F, b.F)
+    assert [x.tolist() for x in a.paths] == [x.tolist() for x in b.paths]
+    assert runs[0].settings["refine"] == 10
+    three = solve(ws, objectives=OBJ3, paths="free", pop_size=10, n_gen=2, seed=5, tiebreak=None)
+    assert three.settings["refine"] == 20
+    assert runs[0].n_eval > runs[0].pymoo_result.algorithm.evaluator.n_eval
+    arch = run_archive(runs[0].pymoo_result.algorithm)
+    np.testing.assert_array_equal(arch.F, a.F)
+    plain = solve(ws, paths="free", pop_size=20, n_gen=6, seed=5, refine=False)
+    assert plain.front.X.shape[1] == plain.problem.n_var
+    assert "refine" not in plain.settings
+    for f in plain.front.F:  # the archive front is at least as good
+        assert not any(dominates(f, x) for x in a.F)
+
+
+def test_convergence_callback_reads_the_archive():
+    ws = room(seed=7)
+    cb = HypervolumeRatioCallback(free_front(ws))
+    r = solve(ws, paths="free", pop_size=20, n_gen=5, seed=2, callback=cb)
+    from gapath.metrics import hv_ratio
+
+    assert cb.history[-1][2] == pytest.approx(hv_ratio(r.front.F, free_front(ws).F), abs=1e-12)
+
+
+def test_stock_pymoo_algorithm_with_archive():
+    ws = room(seed=8)
+    p = FreePathProblem(ws)
+    archive = FreePathArchive(p, n_refine=5)
+    minimize(p, NSGA2(12), ("n_gen", 4), seed=1, callback=archive)
+    assert len(archive) > 0
+    for path in archive.paths():
+        check_path(ws, path)
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(n_refine=-1), "n_refine"),
+        (dict(n_refine="x"), "n_refine"),
+        (dict(segment=(0.5, 0.1)), "segment"),
+        (dict(segment=3), "segment"),
+        (dict(lam_range=(2, 1)), "lam_range"),
+    ],
+)
+def test_bad_archive_settings(kwargs, match):
+    with pytest.raises(ConfigError, match=match):
+        FreePathArchive(FreePathProblem(room(seed=1)), **kwargs)
+
+
+def test_archive_needs_a_free_problem_and_refine_needs_free_paths():
+    ws = room(seed=1)
+    with pytest.raises(ConfigError, match="FreePathProblem"):
+        FreePathArchive(GridPathProblem(ws))
+    with pytest.raises(ConfigError, match="refine"):
+        solve(ws, paths="monotone", pop_size=10, n_gen=2, refine=5)
+
+
+@settings(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
+@given(data=st.data())
+def test_straightened_paths_are_simple_feasible_paths(data):
+    ws = data.draw(workspaces())
+    enc = FieldEncoding(ws, field_shape=(2, 2))
+    n = data.draw(st.integers(1, 6))
+    rng = np.random.default_rng(data.draw(st.integers(0, 2**31 - 1)))
+    flat, offsets, _ = enc.decode_flat(rng.random((n, enc.n_var)))
+    k = data.draw(st.integers(1, 12))
+    pick = rng.integers(0, n, k)
+    i0 = rng.integers(-2, 12, k)
+    i1 = i0 + rng.integers(-1, 14, k)
+    f2, o2, _ = enc.shortcut(flat, offsets, pick, i0, i1, rng.random(k) < 0.5)
+    P, L = enc.padded(f2, o2)
+    P0, L0 = enc.padded(flat, offsets)
+    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    M0 = evaluate_paths(P0, L0, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    for i in range(k):
+        check_path(ws, P[i, : L[i]])
+        # never longer: the one-bend path is a shortest path between its ends
+        assert M[i, 0] <= M0[pick[i], 0] + 1e-9
+
+
+def test_shortcut_share_setting():
+    ws = room(seed=2)
+    assert FreePathArchive(FreePathProblem(ws)).shortcut == 0.0
+    assert FreePathArchive(FreePathProblem(ws, OBJ3)).shortcut == 0.25
+    with pytest.raises(ConfigError, match="shortcut"):
+        FreePathArchive(FreePathProblem(ws), shortcut=1.5)
+
+
+def test_turn_weighted_reroute_of_a_whole_path_is_no_less_smooth_than_plain():
+    """With a heavy turn weight the (cell, move) search of a whole path
+    finds a path with no more turns than the plain weighted search."""
+    for seed in range(4):
+        ws = room(seed=seed)
+        enc = FieldEncoding(ws)
+        flat, off, _ = enc.decode_flat(np.full((1, enc.n_var), 0.5))
+        args = (flat, off, np.zeros(2, np.int64), np.zeros(2), np.full(2, 10**6), np.array([0.0, 0.0]))
+        plain = enc.padded(*enc.reroute(*args)[:2])
+        turny = enc.padded(*enc.reroute(*args, turn_genes=np.array([1.0, 1.0]))[:2])
+        Mp = evaluate_paths(*plain, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+        Mt = evaluate_paths(*turny, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+        assert (Mt[:, 2] <= Mp[:, 2] + 1e-9).all()
+        for i in range(2):
+            check_path(ws, turny[0][i, : turny[1][i]])
