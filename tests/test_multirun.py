@@ -45,6 +45,20 @@ def test_merge_rejects_mixed_objectives(ws):
         multirun(ws, runs=0)
 
 
+def test_merged_genomes_are_the_genomes_of_their_paths_or_none(ws):
+    a = solve(ws, pop_size=20, n_gen=3).front
+    b = solve(ws, pop_size=20, n_gen=3, seed=2).front
+    both = merge_fronts([a, b])
+    assert both.X.shape == (len(both.F), a.X.shape[1]) and a.X.shape[1] > 0
+    rows = {tuple(x): tuple(map(tuple, p)) for f in (a, b) for x, p in zip(f.X, f.paths)}
+    for x, p in zip(both.X, both.paths):
+        assert rows[tuple(x)] == tuple(map(tuple, p))
+    # a front without genomes (a free-path archive's) makes the merged front genome-free
+    bare = type(b)(b.objectives, b.F, b.metrics, np.zeros((len(b.F), 0)), b.paths)
+    merged = merge_fronts([a, bare])
+    assert merged.X.shape == (len(merged.F), 0)
+
+
 def test_objective_modes():
     assert objective_mode(("length",)) == dict(constraints="constraint", sbx_eta=2.0, tiebreak="smoothness")
     assert objective_mode("length,vulnerability")["constraints"] == "penalty"

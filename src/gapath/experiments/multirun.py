@@ -108,10 +108,13 @@ def merge_fronts(fronts: Iterable[PathFront]) -> PathFront:
             raise ConfigError(f"cannot merge fronts over {objectives} and {f.objectives}")
     F = np.concatenate([f.F.reshape(-1, len(objectives)) for f in fronts])
     metrics = np.concatenate([f.metrics.reshape(-1, 4) for f in fronts])
-    n_var = max((f.X.shape[1] for f in fronts if f.X.ndim == 2), default=0)
-    X = np.concatenate(
-        [f.X.reshape(len(f.F), -1) if f.X.size else np.zeros((len(f.F), n_var)) for f in fronts]
-    )
+    # genomes only when every non-empty front has them (a free-path archive's
+    # refined paths have none): never rows that are not the genomes of their paths
+    given = [f for f in fronts if len(f.F)]
+    if given and all(f.X.ndim == 2 and f.X.shape[1] > 0 for f in given):
+        X = np.concatenate([f.X for f in given])
+    else:
+        X = np.zeros((len(F), 0))
     paths = [p for f in fronts for p in f.paths]
     keep = select_front(F, metrics)
     return PathFront(objectives, F[keep], metrics[keep], X[keep], [paths[i] for i in keep])

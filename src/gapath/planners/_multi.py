@@ -199,7 +199,8 @@ def multi_front(
 ):
     """The k-objective exact free front (see :func:`gapath.planners.exact.free_front`)."""
     from gapath.planners import exact
-    from gapath.planners._exact_kernels import _free_heuristics, _move_masks, _tolerant_front
+    from gapath.planners._exact_heuristics import _free_heuristics, _move_masks
+    from gapath.planners._exact_kernels import _tolerant_front
 
     names, spec = parse_objectives(objectives, costmap)
     _check_costmap(workspace, costmap)
