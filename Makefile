@@ -7,7 +7,7 @@ VENV   := .venv
 BIN    := $(VENV)/bin
 PIP    := $(BIN)/python -m pip install --disable-pip-version-check -q -c constraints.txt
 
-.PHONY: demo test lint bench docs wheel clean
+.PHONY: demo test lint bench docs wheel clean clean-cache
 
 $(BIN)/python:
 	$(PYTHON) -c 'import sys; assert sys.version_info[:2] == (3, 11), "gapath needs Python 3.11, found " + sys.version' 
@@ -61,5 +61,9 @@ wheel: $(VENV)/.dev-installed
 docs: $(VENV)/.docs-installed
 	$(BIN)/python -m sphinx -W --keep-going -q -b html docs docs/_build/html
 
-clean:
+# numba's cache does not follow calls across modules: clear it after a branch switch or merge
+clean-cache:
+	find src -name '*.nbi' -delete -o -name '*.nbc' -delete
+
+clean: clean-cache
 	rm -rf $(VENV) gapath-demo .pytest_cache build dist docs/_build docs/api docs/notebooks
