@@ -181,6 +181,13 @@ def build_parser() -> argparse.ArgumentParser:
         help="path set: any simple 8-connected path (free) or Ahmed & Deb's "
         "column-monotone paths (monotone) (default: %(default)s)",
     )
+    p.add_argument(
+        "--refine",
+        default="auto",
+        help="free paths: archived paths re-routed per generation, auto (pop/2 with two "
+        "objectives, 2 x pop with more), an integer >= 0, or off (no archive: the last "
+        "population's front) (default: %(default)s)",
+    )
     p.set_defaults(func=_solve)
 
     d = sub.add_parser("demo", help="the bundled scenario with Ahmed & Deb's settings")
@@ -246,6 +253,24 @@ def _print_quality(extra: dict) -> None:
         )
 
 
+def _refine(args):
+    """``--refine`` as ``solve``'s keyword: None (auto), False (off) or an integer."""
+    text = str(getattr(args, "refine", "auto")).strip().lower()
+    if text == "auto":
+        return None
+    if getattr(args, "paths", "monotone") != "free":
+        raise ConfigError(f"--refine {text} needs --paths free (the archive keeps free paths)")
+    if text == "off":
+        return False
+    try:
+        n = int(text)
+    except ValueError:
+        n = -1
+    if n < 0:
+        raise ConfigError(f"--refine must be auto, off or an integer >= 0, got {args.refine!r}")
+    return n
+
+
 def _run(args, workspace) -> int:
     from gapath.results import write_result
     from gapath.solver import solve
@@ -264,6 +289,7 @@ def _run(args, workspace) -> int:
         progress=not args.quiet,
         paths=getattr(args, "paths", "monotone"),
         repair=args.repair,
+        refine=_refine(args),
     )
     if args.constraints == "adaptive" and args.engine == "pymoo":
         raise ConfigError(

@@ -68,10 +68,10 @@ def parse_objectives(objectives, costmap) -> tuple[tuple[str, ...], list[tuple[i
     """
     if isinstance(objectives, str):
         objectives = [o.strip() for o in objectives.split(",") if o.strip()]
-    names = tuple(objectives)
+    names: tuple[str, ...] = tuple(objectives)
     if not names:
         raise ConfigError("at least one objective is needed")
-    out = []
+    out: list[tuple[int, str | None]] = []
     for n in names:
         if not isinstance(n, str):
             raise ConfigError(f"objective names must be strings, got {n!r}")

@@ -29,6 +29,7 @@ Modes (:data:`REPAIRS` names them):
 from __future__ import annotations
 
 import zlib
+from typing import Any
 
 import numpy as np
 from pymoo.core.repair import Repair
@@ -106,7 +107,7 @@ class FeasibleStepRepair(Repair):
         if not 0.0 <= share <= 1.0:
             raise ConfigError(f"FeasibleStepRepair: share must be in [0, 1], got {share!r}")
         self.mode, self.share = mode, share
-        self._allowed = {}  # id(frame) -> (frame, table)
+        self._allowed: dict[int, tuple[Any, np.ndarray]] = {}  # id(frame) -> (frame, table)
 
     def allowed(self, frame) -> np.ndarray:
         """``(n_cols, H)`` bool: the exit rows the repair may choose per
