@@ -8,6 +8,7 @@ from gapath.front import path_front
 from gapath.generators import random_workspace
 from gapath.objectives import evaluate_path
 from gapath.problems import GridPathProblem
+from gapath.problems.grid_path import GenomeWarning
 
 
 @pytest.fixture(scope="module")
@@ -137,7 +138,8 @@ def test_stock_nsga2_with_default_float_operators(ws):
     from pymoo.algorithms.moo.nsga2 import NSGA2
 
     p = GridPathProblem(ws)
-    res = minimize(p, NSGA2(pop_size=20), ("n_gen", 5), seed=1)
+    with pytest.warns(GenomeWarning, match="non-integral genes"):  # the float operators are named
+        res = minimize(p, NSGA2(pop_size=20), ("n_gen", 5), seed=1)
     for path in p.decode(res.X):
         assert ws.is_valid_path(path)
 
