@@ -13,11 +13,11 @@ a few dyadic values whose sums are exact).
 
 from __future__ import annotations
 
-import heapq
 import math
 
 import numpy as np
 import pytest
+from test_exact_free import martins_front
 
 from gapath import Workspace
 from gapath.errors import NoPathError
@@ -26,7 +26,6 @@ from gapath.planners.exact import free_front
 
 TOL = 1e-9
 LV = ("length", "vulnerability")
-MOVES = [(0, 1), (-1, 1), (-1, 0), (-1, -1), (0, -1), (1, -1), (1, 0), (1, 1)]
 
 
 def _close(a, b):
@@ -36,38 +35,12 @@ def _close(a, b):
 
 def three_objective_set(ws: Workspace) -> np.ndarray:
     """(length, vulnerability, eighths) of the exact Pareto set of the
-    feasible paths: label setting over (cell, incoming heading) states with
-    exact dominance and no heuristic, every non-dominated label kept."""
-    occ, pot = ws.occ, ws.potential
-    h, w = ws.shape
-    labels: dict = {}  # state -> list of vectors
-    heap = [((0.0, float(pot[ws.start]), 0), ws.start, -1, 0, 0)]
-    labels[(ws.start, -1)] = [heap[0][0]]
-    while heap:
-        v, cell, head, ns, nd = heapq.heappop(heap)
-        state = ("goal",) if cell == ws.goal else (cell, head)
-        if v not in labels.get(state, ()):
-            continue  # dropped since it was pushed
-        if cell == ws.goal:
-            continue
-        r, c = cell
-        for d, (dr, dc) in enumerate(MOVES):
-            r2, c2 = r + dr, c + dc
-            if not (0 <= r2 < h and 0 <= c2 < w) or occ[r2, c2]:
-                continue
-            diagonal = dr != 0 and dc != 0
-            if diagonal and not ws.corner_cutting and (occ[r2, c] or occ[r, c2]):
-                continue
-            ns2, nd2 = ns + (not diagonal), nd + diagonal
-            t = 0 if head < 0 else min(abs(d - head), 8 - abs(d - head))
-            v2 = ((ns2 + math.sqrt(2.0) * nd2) * ws.cell_size, v[1] + pot[r2, c2], v[2] + t)
-            s2 = ("goal",) if (r2, c2) == ws.goal else ((r2, c2), d)
-            old = labels.get(s2, [])
-            if any(all(x <= y for x, y in zip(a, v2)) for a in old):
-                continue
-            labels[s2] = [a for a in old if not all(x <= y for x, y in zip(v2, a))] + [v2]
-            heapq.heappush(heap, (v2, (r2, c2), d, ns2, nd2))
-    return np.array(labels.get(("goal",), []), float).reshape(-1, 3)
+    feasible paths: Martins' label setting of ``test_exact_free`` (exact
+    dominance, no heuristic, (cell, incoming heading) states), turns counted
+    in eighths."""
+    G = martins_front(ws)
+    G[:, 2] = np.rint(G[:, 2] / (math.pi / 4))
+    return G
 
 
 def _case(seed: int) -> Workspace:
