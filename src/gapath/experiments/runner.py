@@ -199,6 +199,7 @@ def _solve_kwargs(run: dict) -> dict:
         sbx_eta=s["sbx_eta"],
         seed_from=s["seed_from"],
         paths=s.get("paths", "monotone"),
+        repair=s.get("repair", "edge"),
         engine=engine,
     )
 

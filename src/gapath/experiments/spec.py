@@ -23,6 +23,7 @@ or in a YAML / TOML file (:func:`load_spec`)::
       n_gen: 500
       seed_from: none                 # weighted (default) | exact | none
       paths: monotone                 # monotone (default) | free (any simple 8-connected path)
+      repair: feasible-local          # edge (default) | feasible-local | feasible-reach | ... (fast, monotone)
     grid:                             # axes of the grid: setting -> list of values
       pop_size: [100, 200]
     seeds: {start: 1, count: 100}     # or a list [1, 2, 3], or a count (seeds 1..count)
@@ -47,9 +48,13 @@ Settings (keys of ``settings`` and ``grid``) are those of
 ``pop_size``, ``n_gen``, ``tiebreak`` (``smoothness`` or ``none``),
 ``sbx_eta``, ``seed_from`` and ``paths`` (``monotone``, Ahmed & Deb's
 column-monotone paths, or ``free``; every encoding of the spec must describe
-that path set). Missing ones take solve's defaults (``paths`` is recorded
-only when given, so the keys of runs stored before it existed stay the
-same), and the
+that path set), and ``repair`` (a name of
+:data:`gapath.operators.repair.feasible.REPAIRS`: ``edge``, Ahmed & Deb's
+edge-fixing alone, or a feasibility-preserving repair such as
+``feasible-local``; only with the ``fast`` engine and monotone paths).
+Missing ones take solve's defaults (``paths`` is recorded only when given,
+and ``repair`` only when it is not ``edge``, so the keys of runs stored
+before they existed stay the same), and the
 objective mode's defaults (``constraints``, ``sbx_eta``) are resolved, so
 every run records every value it ran with. Map generators accept ``start``,
 ``goal`` and ``corner_cutting`` too. Engines are :func:`gapath.solver.solve`'s
@@ -93,6 +98,7 @@ from gapath.errors import ConfigError, GapathError
 from gapath.generators import default_workspace, dense_workspace, random_workspace
 from gapath.loaders import load_map
 from gapath.objectives import check_objective_names
+from gapath.operators.repair.feasible import REPAIRS
 from gapath.solver import objective_mode
 
 __all__ = [
@@ -138,7 +144,7 @@ SETTINGS = dict(
 #: Settings a spec may give that :data:`SETTINGS` does not fill in when they
 #: are absent (so that the keys of runs stored before they existed stay the
 #: same), with their meaning when absent.
-OPTIONAL_SETTINGS = dict(paths="monotone")
+OPTIONAL_SETTINGS = dict(paths="monotone", repair="edge")
 
 #: Per-experiment options and their defaults.
 OPTIONS = dict(stop_at_first_feasible=False, record_first_feasible=False, reference=None)
@@ -507,6 +513,7 @@ def _setting(name: str, value, where: _Where, key: str):
         "tiebreak": ("smoothness", None),
         "seed_from": ("weighted", "exact", "none"),
         "paths": ("monotone", "free"),
+        "repair": tuple(REPAIRS),
     }[name]
     if name == "tiebreak" and value == "none":
         value = None
@@ -534,11 +541,32 @@ def _check_paths(encodings, settings, axes, where: _Where) -> None:
             )
 
 
+def _check_repair(engines, settings, axes, where: _Where) -> None:
+    """A repair other than ``edge`` runs only with the ``fast`` engine on
+    monotone paths (what :func:`gapath.solver.solve` accepts)."""
+
+    repairs = set(axes.get("repair", [settings.get("repair", OPTIONAL_SETTINGS["repair"])])) - {"edge"}
+    if not repairs:
+        return
+    key = "grid.repair" if "repair" in axes else "settings.repair"
+    name = sorted(repairs)[0]
+    others = [e for e in engines if e != "fast"]
+    if others:
+        raise where.error(key, f"repair {name!r} needs the fast engine, but the spec runs {others[0]!r}")
+    path_sets = set(axes.get("paths", [settings.get("paths", OPTIONAL_SETTINGS["paths"])]))
+    if path_sets - {"monotone"}:
+        raise where.error(key, f"repair {name!r} needs monotone paths, but the spec runs free paths")
+
+
 def _complete_settings(settings: dict) -> dict:
-    """solve's defaults filled in, the objective mode resolved."""
+    """solve's defaults filled in, the objective mode resolved; ``repair:
+    edge`` (the default) left out, so such a run keeps the key of a run
+    without the setting."""
 
     s = {k: (list(v) if isinstance(v, tuple) else v) for k, v in SETTINGS.items()}
     s.update(settings)
+    if s.get("repair") == OPTIONAL_SETTINGS["repair"]:
+        del s["repair"]
     mode = objective_mode(s["objectives"], s["constraints"], s["sbx_eta"], s["tiebreak"])
     s["constraints"], s["sbx_eta"] = mode["constraints"], float(mode["sbx_eta"])
     return s
@@ -672,6 +700,8 @@ class ExperimentSpec:
         settings = _mapping(self.settings, where, "settings")
         _unknown(settings, tuple(SETTINGS) + tuple(OPTIONAL_SETTINGS), where, "settings", "setting")
         settings = {k: _setting(k, v, where, f"settings.{k}") for k, v in settings.items()}
+        if settings.get("repair") == OPTIONAL_SETTINGS["repair"]:  # the default: not recorded
+            del settings["repair"]
         grid = _mapping(self.grid, where, "grid")
         _unknown(grid, tuple(SETTINGS) + tuple(OPTIONAL_SETTINGS), where, "grid", "setting")
         axes = {}
@@ -680,6 +710,7 @@ class ExperimentSpec:
                 raise where.error(f"grid.{k}", f"expected a non-empty list of values, got {values!r}")
             axes[k] = [_setting(k, v, where, f"grid.{k}[{i}]") for i, v in enumerate(values)]
         _check_paths(encodings, settings, axes, where)
+        _check_repair(engines, settings, axes, where)
         options = _mapping(self.options, where, "options")
         _unknown(options, tuple(OPTIONS), where, "options", "option")
         opts = dict(OPTIONS)

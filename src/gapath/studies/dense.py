@@ -210,6 +210,7 @@ def table1_spec(
     name: str = "dense-table1",
     seed_from: str = "none",
     map_seed: int | str = MAP_SEED,
+    repair: str | None = None,
 ) -> ExperimentSpec:
     """The Table 1 experiment: ``grids x p0s`` rows, each one map
     ``dense_workspace(grid, p0, map_seed)`` solved by ``runs`` seeded GA runs
@@ -218,11 +219,17 @@ def table1_spec(
     unseeded initial population (``seed_from="none"``, the paper's protocol;
     ``"weighted"`` etc. give the planner-seeded variant, reported beside it).
     ``map_seed="run"``: a new map for every run (map seed = run seed).
+    ``repair``: a name of :data:`gapath.operators.repair.feasible.REPAIRS`
+    (e.g. ``"feasible-local"``, a GA change, not the paper's method); None or
+    ``"edge"``: Ahmed & Deb's edge-fixing alone, and the runs' keys are
+    those of a spec without the setting.
 
     Raises
     ------
     ValueError
         If ``map_seed`` is neither a non-negative integer nor ``"run"``.
+    ConfigError
+        On an unknown ``repair``, or a repair with ``engine="pymoo"``.
 
     Examples
     --------
@@ -233,6 +240,8 @@ def table1_spec(
     [(1, 1), (1, 2), (1, 3)]
     >>> [r["map"]["dense"]["seed"] for r in table1_spec((8,), (0.5,), 2, map_seed="run").runs()]
     ['run', 'run']
+    >>> table1_spec((8,), (0.5,), 1, repair="feasible-local").runs()[0]["settings"]["repair"]
+    'feasible-local'
     """
     mseed = _map_seed(map_seed)
     maps = [{"dense": {"n": int(n), "p0": float(p0), "seed": mseed}} for n in grids for p0 in p0s]
@@ -240,14 +249,27 @@ def table1_spec(
     return ExperimentSpec(
         name=name,
         description="Ahmed & Deb 2013, Table 1: dense random obstacles, stop at the first "
-        f"feasible path; {per} (gapath.studies.dense).",
+        f"feasible path; {per}{_repair_text(repair)} (gapath.studies.dense).",
         maps=maps,
         encodings=["integer"],
         engines=[engine],
-        settings=dict(objectives="length,vulnerability", pop_size=pop_size, n_gen=n_gen, seed_from=seed_from),
+        settings=_table1_settings(pop_size, n_gen, seed_from, repair),
         seeds={"start": first_seed, "count": runs},
         options={"stop_at_first_feasible": True},
     )
+
+
+def _table1_settings(pop_size, n_gen, seed_from, repair) -> dict:
+    """The settings of a Table 1 spec; ``repair`` only when it is one (so
+    the runs without it keep their keys)."""
+    settings = dict(objectives="length,vulnerability", pop_size=pop_size, n_gen=n_gen, seed_from=seed_from)
+    if repair not in (None, "edge"):
+        settings["repair"] = repair
+    return settings
+
+
+def _repair_text(repair) -> str:
+    return "" if repair in (None, "edge") else f"; with the repair {repair} (a GA change, not the paper's)"
 
 
 def large_spec(
@@ -298,18 +320,22 @@ def walk_table1_spec(
     engine: str = "fast",
     first_seed: int = 1,
     name: str = "dense-table1-walk",
+    repair: str | None = None,
 ) -> ExperimentSpec:
     """:func:`table1_spec` on the maps of the ``"walk"`` generator
     (:func:`walk_workspace`, map seed ``map_seed``): the maps are written as
     text grids into ``maps_dir`` (``walk-<n>x<n>-p<p0>-s<seed>.txt``, start
     ``S`` bottom-left, goal ``G`` top-right) and the spec names those files,
-    so the store records each map's sha256.
+    so the store records each map's sha256. ``repair`` as in
+    :func:`table1_spec`.
 
     Raises
     ------
     ValueError
         If ``map_seed`` is not a non-negative integer (a new walk map per run
         is not offered: the files are written per map).
+    ConfigError
+        On an unknown ``repair``, or a repair with ``engine="pymoo"``.
 
     Examples
     --------
@@ -336,11 +362,12 @@ def walk_table1_spec(
     return ExperimentSpec(
         name=name,
         description="Ahmed & Deb 2013, Table 1, on maps whose kept free path is a goal-biased "
-        f"8-connected walk (gapath.studies.dense.walk_workspace), map seed {mseed}.",
+        f"8-connected walk (gapath.studies.dense.walk_workspace), map seed {mseed}"
+        f"{_repair_text(repair)}.",
         maps=maps,
         encodings=["integer"],
         engines=[engine],
-        settings=dict(objectives="length,vulnerability", pop_size=pop_size, n_gen=n_gen, seed_from="none"),
+        settings=_table1_settings(pop_size, n_gen, "none", repair),
         seeds={"start": first_seed, "count": runs},
         options={"stop_at_first_feasible": True},
     )
@@ -550,7 +577,24 @@ def _rows(store_dir) -> list[dict]:
                 "engine": conf["engine"],
             }
         )
+        if "repair" in conf["settings"]:
+            out[-1]["repair"] = conf["settings"]["repair"]
     return out
+
+
+def _first_generations(store_dir) -> dict:
+    """``{(grid, p0): (initial %, largest generation)}`` over the successful
+    runs of a store: the % whose first feasible path was in the initial
+    population (pymoo's generation 1) and the latest first feasible
+    generation."""
+
+    store = ResultStore(store_dir)
+    gens: dict = {}
+    for r in store.results(_widened_spec(store).runs()):
+        if r.get("status") == "ok" and r["indicators"]["feasible"]:
+            d = _dense_args(r["run"]["map"])
+            gens.setdefault((d["n"], d["p0"]), []).append(int(r["indicators"]["first_feasible_gen"]))
+    return {k: (100.0 * sum(g == 1 for g in v) / len(v), max(v)) for k, v in gens.items()}
 
 
 def unsuccessful_runs(store_dir) -> dict:
@@ -665,10 +709,12 @@ def dense_report(
     walk_dirs=(),
     from_csv=None,
     map_stats_seeds: int | None = None,
+    repair_dirs=(),
+    repair_csv=None,
 ) -> dict:
     """Write ``<basename>.md``, ``.csv`` and ``.png`` into ``results_dir``:
     our Table 1 beside the paper's, its rows on other maps, and the larger
-    grids.
+    grids; with repair rows also ``<basename>_repair.csv``.
 
     Parameters
     ----------
@@ -693,12 +739,24 @@ def dense_report(
         lists of unsuccessful runs and the cost of its runs are not in it.
     map_stats_seeds : map seeds 1..k of the maps section (default: the
         columns rows' map seeds, and the walk rows').
+    repair_dirs : stores of :func:`table1_spec` / :func:`walk_table1_spec`
+        with a ``repair``, named as :func:`repair_store_name` names them:
+        the section "With the feasibility-preserving repair" and the goal's
+        bullets with the repair.
+    repair_csv : a ``dense_repair.csv`` written earlier: its rows for every
+        (generator, repair, map seed) that no store of ``repair_dirs`` holds.
 
     Returns
     -------
     dict with the rows of every part (``table1``, ``other_maps``,
-    ``per_run``, ``large``, ``large_per_run``), the ``unsuccessful`` runs of
-    the main table and the ``files`` written.
+    ``per_run``, ``large``, ``large_per_run``, ``repair``), the
+    ``unsuccessful`` runs of the main table and the ``files`` written.
+
+    Raises
+    ------
+    ConfigError
+        If ``from_csv`` or ``repair_csv`` cannot be read or is not such a
+        file.
 
     Examples
     --------
@@ -714,6 +772,7 @@ def dense_report(
 
     results_dir = Path(results_dir)
     csv_rows = read_dense_csv(from_csv) if from_csv is not None else None
+    repair_rows = _repair_parts(repair_dirs, repair_csv)
     walk = {map_seed_of(d): _with_paper(_rows(d)) for d in walk_dirs if _exists(d)}
     if csv_rows is not None:
         (t1, main_seed, seeded, others, per_run, large, large_seed, large_per_run, walk) = _csv_parts(
@@ -798,8 +857,11 @@ def _runs_text(counts) -> str | None:
     return str(counts[0]) if len(counts) == 1 else f"{counts[0]} to {counts[-1]}"
 
 
-def _commands(main_seed, t1, others, per_run, seeded, large, walk, from_csv) -> dict:
-    """The ``gapath experiment dense`` commands behind the report's rows."""
+def _commands(
+    main_seed, t1, others, per_run, seeded, large, walk, from_csv, repair=(), repair_csv=None
+) -> dict:
+    """The ``gapath experiment dense`` commands behind the report's rows
+    (``repair``: the repair rows; ``repair_csv``: where they are kept)."""
     seeds = (
         [main_seed, *sorted(m for m in others if isinstance(m, int))] if isinstance(main_seed, int) else []
     )
@@ -817,7 +879,23 @@ def _commands(main_seed, t1, others, per_run, seeded, large, walk, from_csv) -> 
         f"--runs {wruns} --out DIR"
     )
     last = (wcmd if walk else cols) + (f" --from-csv {from_csv}" if from_csv is not None else "")
-    return {"columns": cols, "walk": wcmd, "last": last}
+    src = f" --from-csv {from_csv}" if from_csv is not None else ""
+    rcmds: dict = {}
+    for name in dict.fromkeys(r["repair"] for r in repair):
+        rcmds[name] = {"csv": repair_csv}
+        for gen, part in REPAIR_PARTS.items():
+            rows = [r for r in repair if r["repair"] == name and r["part"] == part]
+            if rows:
+                rseeds = sorted({r["map_seed"] for r in rows})
+                rcmds[name][gen] = (
+                    f"gapath experiment dense --repair {name}"
+                    + (" --generator walk" if gen == "walk" else "")
+                    + f" --map-seeds {_seed_arg(rseeds)} --runs {_runs_text([r['runs'] for r in rows])}"
+                    + f" --out DIR{src}"
+                )
+        last = rcmds[name].get("walk") or rcmds[name]["columns"]
+        last += f" --repair-csv {repair_csv}" if repair_csv else ""
+    return {"columns": cols, "walk": wcmd, "last": last, "repair": rcmds}
 
 
 def walk_lines(walk: dict, t1: list[dict], *, command: str) -> list[str]:
@@ -926,6 +1004,8 @@ def _write_report(
     map_stats_seeds,
     from_csv,
     walk_dirs,
+    repair_rows,
+    repair_dirs,
     **_,
 ) -> dict:
     """The files of :func:`dense_report` from its parts' rows."""
@@ -1034,7 +1114,10 @@ def _write_report(
                 if row.get("seeded_success_pct") is None
                 else f"{_f(row['seeded_success_pct'], 3)}, {_f(row['seeded_median_generations'])}"
             )
-    commands = _commands(main_seed, t1, others, per_run, seeded, large, walk, from_csv)
+    repair_file = results_dir / f"{basename}_repair.csv"
+    commands = _commands(
+        main_seed, t1, others, per_run, seeded, large, walk, from_csv, repair_rows, repair_file
+    )
     regen_cols = (
         f"Regenerate: `{commands['columns']}`"
         + (f" (rewritten here from `{from_csv}` by `{commands['last']}`)" if csv_rows is not None else "")
@@ -1064,9 +1147,7 @@ def _write_report(
         "walk": _runs_text([r["runs"] for rows in walk.values() for r in rows]),
     }
     text += headline_lines(
-        parts_flat,
-        commands=commands,
-        runs=runs_of,
+        parts_flat, commands=commands, runs=runs_of, extra=repair_goal_bullets(repair_rows)
     )
     stat_seeds = {
         "columns": sorted(m for m in [main_seed, *others] if isinstance(m, int)),
@@ -1079,6 +1160,8 @@ def _write_report(
     stats = [r for g, seeds in stat_seeds.items() if seeds for r in map_stats(g, grids, p0s, seeds)]
     text += map_stats_lines(stats, command=commands["last"])
     text += walk_lines(walk, t1, command=commands["walk"])
+    for name, cmd in commands["repair"].items():
+        text += repair_lines([r for r in repair_rows if r["repair"] == name], parts_flat, command=cmd)
     text += [
         f"## Map {main_seed}: one map per row (the columns generator)" if single else "## Table 1",
         "",
@@ -1287,6 +1370,7 @@ def _write_report(
         if large_per_run:
             timing["large-per-run-maps"] = large_per_run_dir
     timing.update({f"table1-walk-map{m}": d for m, d in _walk_dirs_by_seed(walk_dirs).items()})
+    timing.update({Path(d).name: d for d in repair_dirs if _exists(d)})
     lines = [] if csv_rows is None else ["- the columns runs: " + _NOT_IN_CSV]
     for part, d in timing.items():
         t = _timing(d)
@@ -1313,6 +1397,9 @@ def _write_report(
     ):
         atomic_write(results_dir / f"{basename}{suffix}", data)
         files.append(results_dir / f"{basename}{suffix}")
+    if repair_rows:
+        atomic_write(repair_file, _repair_csv_text(repair_rows))
+        files.append(repair_file)
     return {
         "table1": t1,
         "other_maps": others,
@@ -1320,8 +1407,24 @@ def _write_report(
         "large": large,
         "large_per_run": large_per_run,
         "unsuccessful": misses,
+        "repair": repair_rows,
         "files": files,
     }
+
+
+def _repair_csv_text(rows) -> str:
+    """``dense_repair.csv``: the repair rows, full precision."""
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(REPAIR_CSV_COLUMNS)
+    for r in rows:
+        w.writerow(
+            [
+                "" if r.get(c) is None else (repr(r[c]) if isinstance(r[c], float) else r[c])
+                for c in REPAIR_CSV_COLUMNS
+            ]
+        )
+    return buf.getvalue()
 
 
 def _saved_spec(store_dir) -> dict:
@@ -1444,12 +1547,22 @@ def _plot(rows, per_run=(), others=None, walk=None):
 #: Points of success within which a row "reproduces" the paper (headline).
 MATCH_POINTS = 10.0
 
-_INT_COLS = {"grid", "runs", "failed", "pop_size", "n_gen", "seeded_runs", "paper_obstacles"}
+_INT_COLS = {
+    "grid",
+    "runs",
+    "failed",
+    "pop_size",
+    "n_gen",
+    "seeded_runs",
+    "paper_obstacles",
+    "generations_max",
+}
 
 
-def read_dense_csv(path) -> list[dict]:
-    """The rows of a ``dense.csv`` written by :func:`dense_report`, numbers
-    parsed (empty cells None; ``map_seed`` an int, ``"run"`` or None).
+def read_dense_csv(path, flag: str = "--from-csv") -> list[dict]:
+    """The rows of a ``dense.csv`` (or ``dense_repair.csv``) written by
+    :func:`dense_report`, numbers parsed (empty cells None; ``map_seed`` an
+    int, ``"run"`` or None). ``flag`` names the file in messages.
 
     Raises
     ------
@@ -1461,17 +1574,17 @@ def read_dense_csv(path) -> list[dict]:
     try:
         text = path.read_text()
     except OSError as exc:
-        raise ConfigError(f"--from-csv: cannot read {str(path)!r}: {exc.strerror}") from None
+        raise ConfigError(f"{flag}: cannot read {str(path)!r}: {exc.strerror}") from None
     reader = csv.DictReader(io.StringIO(text))
     if "part" not in (reader.fieldnames or ()):
-        raise ConfigError(f"--from-csv: {str(path)!r} is not a dense.csv (no 'part' column)")
+        raise ConfigError(f"{flag}: {str(path)!r} is not a dense.csv (no 'part' column)")
     out = []
     for raw in reader:
         row = {}
         for k, v in raw.items():
             if v in ("", None):
                 row[k] = None
-            elif k in ("part", "engine"):
+            elif k in ("part", "engine", "repair"):
                 row[k] = v
             elif k == "map_seed":
                 row[k] = v if v == "run" else int(v)
@@ -1575,14 +1688,15 @@ def _goal_counts(dist, gen) -> dict:
     }
 
 
-def headline_lines(parts: list[dict], *, commands: dict, runs: dict) -> list[str]:
+def headline_lines(parts: list[dict], *, commands: dict, runs: dict, extra=()) -> list[str]:
     """The headline sections of ``dense.md`` from CSV-shaped rows (see
     :func:`distribution_rows`): success per row as median [min, max] over
     the maps of each generator beside the paper, map 1 and the new map per
     run as columns, a verdict per row and the goal's counts.
 
     ``commands``: ``{"columns": ..., "last": ...}``, the command that
-    produced the columns rows and the one that regenerates the page; ``runs``: GA runs per row and map of each.
+    produced the columns rows and the one that regenerates the page; ``runs``: GA runs per row and map of each;
+    ``extra``: further goal bullets (e.g. :func:`repair_goal_bullets`).
 
     Examples
     --------
@@ -1711,6 +1825,7 @@ def headline_lines(parts: list[dict], *, commands: dict, runs: dict) -> list[str
             )
             + (f"Not reproduced, BELOW: {_list(below)}." if below else "")
         )
+    said += list(extra)
     if has_per_run:
         pr = [d for d in dist if d["per_run"] is not None and d["paper_success_pct"] is not None]
         ok = sum(d["per_run"] >= d["paper_success_pct"] for d in pr)
@@ -1868,6 +1983,356 @@ def map_stats_lines(stats: list[dict], *, command: str) -> list[str]:
 
 
 # ---------------------------------------------------------------------------
+# Table 1 with a feasibility-preserving repair (issue 17 §1-2: a GA change)
+# ---------------------------------------------------------------------------
+
+#: The report parts of the repair rows, per generator (``dense_repair.csv``).
+REPAIR_PARTS = {"columns": "table1-repair", "walk": "table1-walk-repair"}
+
+_REPAIR_STORE = re.compile(r"^table1-(walk-)?map(\d+)-(.+)$")
+
+#: The columns of ``dense_repair.csv``.
+REPAIR_CSV_COLUMNS = [
+    "part",
+    "repair",
+    "map_seed",
+    "grid",
+    "p0",
+    "runs",
+    "failed",
+    "obstacles_mean",
+    "paper_obstacles",
+    "success_pct",
+    "paper_success_pct",
+    "median_generations",
+    "generations_q1",
+    "generations_q3",
+    "generations_max",
+    "initial_pct",
+    "paper_median_generations",
+    "mean_min_path_length",
+    "paper_mean_min_path_length",
+    "best_min_path_length",
+    "pop_size",
+    "n_gen",
+    "engine",
+]
+
+
+def check_repair(repair, engine: str = "fast") -> str | None:
+    """``repair`` as the study runs it: None for Ahmed & Deb's edge-fixing
+    alone (None or ``"edge"``), else a name of
+    :data:`gapath.operators.repair.feasible.REPAIRS`.
+
+    Raises
+    ------
+    ConfigError
+        On an unknown name, or a repair with an engine other than ``fast``.
+
+    Examples
+    --------
+    >>> check_repair("edge"), check_repair("feasible-local")
+    (None, 'feasible-local')
+    """
+
+    from gapath.operators.repair.feasible import REPAIRS
+
+    if repair in (None, "edge"):
+        return None
+    if repair not in REPAIRS:
+        raise ConfigError(f"--repair: expected one of {', '.join(REPAIRS)}, got {repair!r}")
+    if engine != "fast":
+        raise ConfigError(f"--repair {repair} needs --engine fast (got --engine {engine})")
+    return str(repair)
+
+
+def repair_store_name(generator: str, map_seed: int, repair: str) -> str:
+    """The store of the Table 1 rows with ``repair`` on the maps of
+    ``generator`` and ``map_seed`` (under ``gapath experiment dense --out``).
+
+    Examples
+    --------
+    >>> repair_store_name("columns", 3, "feasible-local"), repair_store_name("walk", 1, "feasible-reach")
+    ('table1-map3-feasible-local', 'table1-walk-map1-feasible-reach')
+    """
+    return f"table1-{'walk-' if generator == 'walk' else ''}map{int(map_seed)}-{repair}"
+
+
+def repair_dirs(out, repair: str | None = None) -> list[Path]:
+    """The repair stores under ``out`` (of ``repair``, or of every repair),
+    columns first, by map seed."""
+
+    from gapath.operators.repair.feasible import REPAIRS
+
+    found = []
+    for p in Path(out).glob("table1-*map*-*"):
+        m = _REPAIR_STORE.match(p.name)
+        if m and m[3] in REPAIRS and m[3] != "edge" and (repair is None or m[3] == repair):
+            found.append((bool(m[1]), int(m[2]), m[3], p))
+    return [p for *_, p in sorted(found)]
+
+
+def _repair_store_rows(store_dir) -> list[dict]:
+    """The CSV-shaped rows of one repair store."""
+    m = _REPAIR_STORE.match(Path(store_dir).name)
+    generator = "walk" if m and m[1] else "columns"
+    shares = _first_generations(store_dir)
+    out = []
+    for r in _with_paper(_rows(store_dir)):
+        initial, latest = shares.get((r["grid"], r["p0"]), (None, None))
+        out.append(
+            dict(
+                r,
+                part=REPAIR_PARTS[generator],
+                map_seed=map_seed_of(store_dir),
+                initial_pct=initial,
+                generations_max=latest,
+            )
+        )
+    return out
+
+
+def read_repair_csv(path) -> list[dict]:
+    """The rows of a ``dense_repair.csv`` written by :func:`dense_report`.
+
+    Raises
+    ------
+    ConfigError
+        If the file is missing or holds no repair rows.
+    """
+
+    rows = read_dense_csv(path, flag="--repair-csv")
+    if not rows or any(r["part"] not in REPAIR_PARTS.values() or not r.get("repair") for r in rows):
+        raise ConfigError(f"--repair-csv: {str(path)!r} is not a dense_repair.csv (expected repair rows)")
+    return rows
+
+
+def _repair_parts(dirs, repair_csv) -> list[dict]:
+    """The repair rows of :func:`dense_report`: from the stores, and from
+    ``repair_csv`` for each (part, repair, map seed) no store holds."""
+
+    rows = [r for d in dirs if _exists(d) for r in _repair_store_rows(d)]
+    have = {(r["part"], r.get("repair"), r["map_seed"]) for r in rows}
+    if repair_csv is not None:
+        rows += [
+            r for r in read_repair_csv(repair_csv) if (r["part"], r["repair"], r["map_seed"]) not in have
+        ]
+    return sorted(
+        rows, key=lambda r: (r["repair"], r["part"] != "table1-repair", r["map_seed"], r["grid"], r["p0"])
+    )
+
+
+def _repair_dist(rows, name) -> list[dict]:
+    """:func:`distribution_rows` of one repair's rows (``columns`` and
+    ``walk`` their generators' maps)."""
+
+    as_penalty = {"table1-repair": "table1-other-map", "table1-walk-repair": "table1-walk"}
+    return distribution_rows([dict(r, part=as_penalty[r["part"]]) for r in rows if r["repair"] == name])
+
+
+def _initial_share(rows) -> tuple:
+    """(% of the successful runs of ``rows`` whose first feasible path was in
+    the initial population, successful runs)."""
+    succ = [(r["runs"] * r["success_pct"] / 100.0, r.get("initial_pct")) for r in rows if r["success_pct"]]
+    total = sum(n for n, v in succ if v is not None)
+    return (sum(n * v for n, v in succ if v is not None) / total if total else None), round(total)
+
+
+def repair_goal_bullets(rows: list[dict]) -> list[str]:
+    """The headline's goal bullets with a repair: per repair and generator,
+    whether every map is at or above the paper in every row.
+
+    Examples
+    --------
+    >>> rows = [{"part": "table1-repair", "repair": "feasible-local", "map_seed": 1, "grid": 32,
+    ...          "p0": 0.5, "success_pct": 100.0, "runs": 10, "initial_pct": 80.0}]
+    >>> print(repair_goal_bullets(rows)[0][:89])
+    - **columns generator with the repair `feasible-local`**: goal met with the repair (every
+    """
+
+    out = []
+    for name in dict.fromkeys(r["repair"] for r in rows):
+        dist = _repair_dist(rows, name)
+        for gen, part in REPAIR_PARTS.items():
+            if not any(d[gen] for d in dist):
+                continue
+            g = _goal_counts(dist, gen)
+            share, n = _initial_share([r for r in rows if r["repair"] == name and r["part"] == part])
+            out.append(
+                f"- **{gen} generator with the repair `{name}`**: goal "
+                f"{'met' if g['every'] == g['rows'] else 'NOT met'} with the repair (every map at or "
+                f"above the paper in {g['every']} of {g['rows']} rows; {g['maps_ok']} of {g['maps']} "
+                "(row, map) pairs). A GA change, not Ahmed & Deb's method"
+                + (
+                    f": {_f(share, 3)} % of the {n} successful runs had their first feasible path in "
+                    "the initial population, so there the repair, not evolution, found it"
+                    if share is not None
+                    else ""
+                )
+                + ' (see "With the feasibility-preserving repair").'
+            )
+    return out
+
+
+def _gen_spread(rows) -> str:
+    """Median [min, max] over maps of each map's median first feasible
+    generation, and the latest run's."""
+    meds = [r.get("median_generations") for r in rows]
+    text = _spread(meds)
+    latest = [r.get("generations_max") for r in rows if r.get("generations_max") is not None]
+    return text + (f"; latest {_f(max(latest))}" if latest else "")
+
+
+def repair_lines(rows: list[dict], penalty_parts: list[dict], *, command: dict) -> list[str]:
+    """The section of ``dense.md`` on the Table 1 rows run with a repair:
+    per row, the success over maps of each generator with the repair beside
+    the penalty protocol's and the paper's, and the first feasible
+    generation.
+
+    ``command``: ``{"columns": ..., "walk": ..., "csv": ...}``, the
+    commands behind the rows (``csv``: the file the rows are kept in).
+
+    Examples
+    --------
+    >>> rows = [{"part": "table1-walk-repair", "repair": "feasible-local", "map_seed": 1, "grid": 8,
+    ...          "p0": 0.5, "success_pct": 100.0, "runs": 10, "initial_pct": 100.0,
+    ...          "median_generations": 1.0, "generations_max": 1}]
+    >>> text = "\\n".join(repair_lines(rows, [], command={"walk": "w"}))
+    >>> "| 8x8 | 0.5 | 100 | - | - | - | - | - | 100 [100, 100] | 1 of 1 | 1 [1, 1]; latest 1; 100 % in 1 |" in text
+    True
+    """
+
+    from gapath.operators.repair.feasible import REPAIRS
+
+    if not rows:
+        return []
+    penalty = {(d["grid"], d["p0"]): d for d in distribution_rows(penalty_parts)}
+    text = [
+        "## With the feasibility-preserving repair",
+        "",
+        "Regenerate: "
+        + ", then ".join(
+            f"`{command[g]}` ({g} maps)" for g in ("columns", "walk") if command.get(g) is not None
+        )
+        + (
+            f"; without the stores, the same with `--repair-csv {command['csv']}` (the rows are kept in "
+            f"`{command['csv']}`)"
+            if command.get("csv")
+            else ""
+        )
+        + ".",
+        "",
+    ]
+    for name in dict.fromkeys(r["repair"] for r in rows):
+        mine = [r for r in rows if r["repair"] == name]
+        dist = _repair_dist(rows, name)
+        kw = REPAIRS.get(name) or {}
+        seeds = {
+            g: sorted({r["map_seed"] for r in mine if r["part"] == p}, key=str)
+            for g, p in REPAIR_PARTS.items()
+        }
+        runs = _runs_text([r["runs"] for r in mine])
+        head = ["grid", "p0", "paper %"]
+        for g in ("columns", "walk"):
+            head += [
+                f"{g}, penalty only: median [min, max]",
+                f"{g} + repair: median [min, max]",
+                f"{g} + repair: maps at or above the paper",
+                f"{g} + repair: first feasible gen., median [min, max] over maps; latest; "
+                "% of the successful runs in gen. 1",
+            ]
+        body = []
+        for d in dist:
+            k = (d["grid"], d["p0"])
+            paper = d["paper_success_pct"]
+            line = [f"{k[0]}x{k[0]}", f"{k[1]:g}", _f(paper, 3)]
+            for g, part in REPAIR_PARTS.items():
+                rr = [r for r in mine if r["part"] == part and (r["grid"], round(r["p0"], 3)) == k]
+                pen = penalty.get(k, {}).get(g) or {}
+                vals = list(d[g].values())
+                line += [
+                    _spread(pen.values()) if pen else "-",
+                    _spread(vals) if vals else "-",
+                    f"{sum(paper is not None and v >= paper for v in vals)} of {len(vals)}" if vals else "-",
+                    f"{_gen_spread(rr)}; {_f(_initial_share(rr)[0], 3)} % in 1" if rr else "-",
+                ]
+            body.append(line)
+        said = []
+        for g, part in REPAIR_PARTS.items():
+            rr = [r for r in mine if r["part"] == part]
+            if not rr:
+                continue
+            goal = _goal_counts(dist, g)
+            share, n = _initial_share(rr)
+            med1 = sum(
+                1
+                for d in dist
+                if d[g]
+                and (
+                    m := _median_range(
+                        r.get("median_generations")
+                        for r in rr
+                        if (r["grid"], round(r["p0"], 3)) == (d["grid"], d["p0"])
+                    )[0]
+                )
+                is not None
+                and m <= 1
+            )
+            latest = max(
+                (r for r in rr if r.get("generations_max") is not None),
+                key=lambda r: r["generations_max"],
+                default=None,
+            )
+            said.append(
+                f"- **{g}**: every map at or above the paper in {goal['every']} of {goal['rows']} rows "
+                f"(goal {'met' if goal['every'] == goal['rows'] else 'NOT met'} with the repair), the "
+                f"median over maps in {goal['median']} of {goal['rows']}. "
+                + (
+                    f"{_f(share, 3)} % of the {n} successful runs found their first feasible path in the "
+                    "initial population (pymoo's generation 1, before any selection or variation): for "
+                    "those the repair, not evolution, found the path. "
+                    if share is not None
+                    else ""
+                )
+                + f"The median over maps of the median first feasible generation is 1 in {med1} of "
+                f"{goal['rows']} rows"
+                + (
+                    f"; the latest first feasible path came in generation {latest['generations_max']} "
+                    f"({latest['grid']}x{latest['grid']} p0 {latest['p0']:g}, map {latest['map_seed']})."
+                    if latest
+                    else "."
+                )
+            )
+        mode = f"`FeasibleStepRepair(mode={kw.get('mode')!r}, share={kw.get('share', 1.0):g})`"
+        text += [
+            f"### `{name}`",
+            "",
+            f"Protocol (stated before the runs): the Table 1 rows of the penalty protocol above "
+            "(integer encoding, objectives length and vulnerability with gapath's penalty 1000, "
+            "population 200, at most 500 generations, stop at the first feasible path, "
+            f'all-random initial population, `seed_from="none"`), with `repair="{name}"` ({mode}, '
+            "`gapath.operators.repair.feasible`): every new genome, the initial population's "
+            "included, is edge-fixed as in the paper and then every column step that touches an "
+            "obstacle is moved to the nearest exit row from which it is free, written back into "
+            f"the genes. {runs} GA runs per row and map (GA seeds 1, 2, ...), map seeds "
+            + "; ".join(f"{g} {_seed_text(v)}" for g, v in seeds.items() if v)
+            + ". The repair is a GA change, as issue 17 allows (§2: feasibility-preserving "
+            "variation), not Ahmed & Deb's method: the penalty-only rows above stay the "
+            "reproduction of the paper. It builds feasible paths from the random genomes by "
+            "itself wherever the nearest free exit rows lead to the goal, so on Table 1 it "
+            "measures the repair more than evolution (`docs/results/penalty.md`, the repair "
+            "section). Generations as in pymoo (1 = the initial population); per map the median "
+            "over its successful runs, then median [min, max] over maps and the latest run's.",
+            "",
+            markdown_table(head, body),
+            "",
+            *said,
+            "",
+        ]
+    return text
+
+
+# ---------------------------------------------------------------------------
 # the study (gapath experiment dense)
 # ---------------------------------------------------------------------------
 
@@ -1903,6 +2368,8 @@ def run(
     retry_failed: bool = True,
     generator: str = "columns",
     from_csv=None,
+    repair: str | None = None,
+    repair_csv=None,
 ) -> dict:
     """Run the dense-obstacle study into the stores under ``out`` (resumably)
     and write its report (what ``gapath experiment dense`` does).
@@ -1940,6 +2407,17 @@ def run(
     from_csv : a ``dense.csv`` written earlier: the ``"columns"`` rows of the
         report come from it instead of the stores (when the stores are gone;
         the lists of unsuccessful runs and the cost then are not reported).
+    repair : a name of :data:`gapath.operators.repair.feasible.REPAIRS`
+        other than ``"edge"`` (e.g. ``"feasible-local"``; a GA change, not
+        the paper's method): only the Table 1 rows run, with that repair, on
+        the maps of ``generator`` and ``map_seeds``, one store per map seed
+        (:func:`repair_store_name`: ``out/table1-map<S>-<repair>``,
+        ``out/table1-walk-map<S>-<repair>``), and the report puts them
+        beside the penalty rows (their stores under ``out``, or
+        ``from_csv``). Every invocation reports the repair stores it finds
+        under ``out``.
+    repair_csv : a ``dense_repair.csv`` written earlier: the repair rows no
+        store under ``out`` holds come from it.
 
     Returns
     -------
@@ -1957,8 +2435,13 @@ def run(
     """
     import time
 
+    from gapath.experiments.spec import resolve_engine
+
     if generator not in GENERATORS:
         raise ConfigError(f"generator: expected one of {', '.join(GENERATORS)}, got {generator!r}")
+    repair = check_repair(repair, resolve_engine(engine))
+    if repair_csv is not None:
+        read_repair_csv(repair_csv)  # fail before the runs, not after
     grids = tuple(grids) if grids else (QUICK["grids"] if quick else (8, 16, 32))
     p0s = tuple(p0s) if p0s else (QUICK["p0s"] if quick else P0S)
     runs = runs or (QUICK["runs"] if quick else 100)
@@ -1969,6 +2452,24 @@ def run(
         large_runs = QUICK["large_runs"] if quick else 10
     out = Path(out)
     sfx = "-quick" if quick else ""
+    run_kw = dict(workers=workers, scheduler=scheduler, progress=progress, retry_failed=retry_failed)
+    if repair is not None:
+        return _run_repair(
+            out,
+            grids,
+            p0s,
+            runs,
+            n_gen,
+            map_seeds,
+            sfx,
+            generator=generator,
+            repair=repair,
+            engine=engine,
+            results=Path(results) if results else (out if quick else Path("docs/results")),
+            from_csv=from_csv,
+            repair_csv=repair_csv,
+            run_kw=run_kw,
+        )
     if generator == "walk":
         return _run_walk(
             out,
@@ -1981,7 +2482,8 @@ def run(
             engine=engine,
             results=Path(results) if results else (out if quick else Path("docs/results")),
             from_csv=from_csv,
-            run_kw=dict(workers=workers, scheduler=scheduler, progress=progress, retry_failed=retry_failed),
+            repair_csv=repair_csv,
+            run_kw=run_kw,
         )
     jobs = [
         (
@@ -2071,25 +2573,55 @@ def run(
         large_per_run_dir=out / "large-per-run-maps" if large_runs > 0 else None,
         wall_seconds=wall,
         workers=workers,
+        repair_dirs=repair_dirs(out),
+        repair_csv=repair_csv,
     )
     return {**rep, "failed": failed, "wall_seconds": wall}
 
 
-def _run_walk(out, grids, p0s, runs, n_gen, map_seeds, sfx, *, engine, results, from_csv, run_kw) -> dict:
-    """``run(generator="walk")``: the Table 1 rows on walk maps, one store per
-    map seed, then the report with both generators."""
-    import time
+def _penalty_report_kw(out, from_csv, what: str) -> dict:
+    """The :func:`dense_report` arguments of the columns generator's
+    penalty rows beside which ``what`` reports: their stores under ``out``,
+    or ``from_csv``.
+
+    Raises
+    ------
+    ConfigError
+        If there are neither, or ``from_csv`` is not a dense.csv (before any
+        run).
+    """
 
     cols = sorted(
         (int(m[1]), p) for p in out.glob("table1-map*") if (m := re.fullmatch(r"table1-map(\d+)", p.name))
     )
     if from_csv is None and not cols:
         raise ConfigError(
-            f"--generator walk reports beside the columns generator's rows: none in {str(out)!r}; "
+            f"{what} reports beside the columns generator's rows: none in {str(out)!r}; "
             "run `gapath experiment dense` with the same --out first, or give --from-csv"
         )
     if from_csv is not None:
         read_dense_csv(from_csv)  # fail before the runs, not after
+        return {"table1_dir": None, "from_csv": from_csv}
+    main = dict(cols).get(MAP_SEED, cols[0][1])
+    main_seed = MAP_SEED if MAP_SEED in dict(cols) else cols[0][0]
+    return dict(
+        table1_dir=main,
+        large_dir=out / f"large-map{main_seed}",
+        seeded_dir=out / f"table1-map{main_seed}-seeded",
+        other_map_dirs=[p for _, p in cols if p != main],
+        per_run_dir=out / "table1-per-run-maps",
+        large_per_run_dir=out / "large-per-run-maps",
+    )
+
+
+def _run_walk(
+    out, grids, p0s, runs, n_gen, map_seeds, sfx, *, engine, results, from_csv, repair_csv, run_kw
+) -> dict:
+    """``run(generator="walk")``: the Table 1 rows on walk maps, one store per
+    map seed, then the report with both generators."""
+    import time
+
+    report_kw = _penalty_report_kw(out, from_csv, "--generator walk")
     wall, failed, walk_dirs = {}, 0, []
     for m in map_seeds:
         name = f"table1-walk-map{m}"
@@ -2109,19 +2641,62 @@ def _run_walk(out, grids, p0s, runs, n_gen, map_seeds, sfx, *, engine, results, 
         if r.ran:
             wall[name] = time.perf_counter() - t0
         walk_dirs.append(out / name)
-    main = dict(cols).get(MAP_SEED, cols[0][1] if cols else None)
-    main_seed = MAP_SEED if MAP_SEED in dict(cols) else (cols[0][0] if cols else None)
     rep = dense_report(
-        None if from_csv else main,
-        results,
-        None if from_csv else out / f"large-map{main_seed}",
-        seeded_dir=None if from_csv else out / f"table1-map{main_seed}-seeded",
-        other_map_dirs=[] if from_csv else [p for _, p in cols if p != main],
-        per_run_dir=None if from_csv else out / "table1-per-run-maps",
-        large_per_run_dir=None if from_csv else out / "large-per-run-maps",
+        results_dir=results,
         walk_dirs=walk_dirs,
-        from_csv=from_csv,
         wall_seconds=wall,
         workers=run_kw.get("workers"),
+        repair_dirs=repair_dirs(out),
+        repair_csv=repair_csv,
+        **report_kw,
+    )
+    return {**rep, "failed": failed, "wall_seconds": wall}
+
+
+def _run_repair(
+    out,
+    grids,
+    p0s,
+    runs,
+    n_gen,
+    map_seeds,
+    sfx,
+    *,
+    generator,
+    repair,
+    engine,
+    results,
+    from_csv,
+    repair_csv,
+    run_kw,
+) -> dict:
+    """``run(repair=...)``: the Table 1 rows with the repair on the maps of
+    ``generator``, one store per map seed, then the report with the penalty
+    rows and every repair store under ``out``."""
+    import time
+
+    report_kw = _penalty_report_kw(out, from_csv, "--repair")
+    wall, failed = {}, 0
+    for m in map_seeds:
+        name = repair_store_name(generator, m, repair)
+        common = dict(n_gen=n_gen, engine=engine, name=f"dense-{name}{sfx}", repair=repair)
+        if generator == "walk":
+            spec = walk_table1_spec(out / "walk-maps", grids, p0s, runs, map_seed=m, **common)
+        else:
+            spec = table1_spec(grids, p0s, runs, map_seed=m, **common)
+        t0 = time.perf_counter()
+        r = run_experiment(spec, out / name, **run_kw)
+        failed += r.failed
+        if r.ran:
+            wall[name] = time.perf_counter() - t0
+    walk_dirs = sorted(p for p in out.glob("table1-walk-map*") if re.fullmatch(r"table1-walk-map\d+", p.name))
+    rep = dense_report(
+        results_dir=results,
+        walk_dirs=walk_dirs,
+        wall_seconds=wall,
+        workers=run_kw.get("workers"),
+        repair_dirs=repair_dirs(out),
+        repair_csv=repair_csv,
+        **report_kw,
     )
     return {**rep, "failed": failed, "wall_seconds": wall}

@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 from gapath.experiments.spec import ENGINE_ALIASES, ENGINES
+from gapath.operators.repair.feasible import REPAIRS
 from gapath.studies import dense as _study
 from gapath.studies.dense import GENERATORS, MAP_SEED, QUICK
 
@@ -75,6 +76,24 @@ def register(subparsers) -> None:
         help="take the columns generator's rows from a dense.csv written earlier instead of "
         "their stores (with --generator walk: e.g. docs/results/dense.csv)",
     )
+    p.add_argument(
+        "--repair",
+        choices=tuple(REPAIRS),
+        default="edge",
+        help="repair of new genomes: edge (default: Ahmed & Deb's edge-fixing alone, the paper's "
+        "protocol) or a feasibility-preserving repair (feasible-local: every column step on an "
+        "obstacle moved to the nearest free exit row; a GA change, --engine fast only): runs the "
+        "Table 1 rows only with it (DIR/table1-map<S>-<repair>, DIR/table1-walk-map<S>-<repair> "
+        "with --generator walk) and reports them beside the penalty rows (their stores in DIR, "
+        "or --from-csv)",
+    )
+    p.add_argument(
+        "--repair-csv",
+        default=None,
+        metavar="FILE",
+        help="take the repair rows that no store in DIR holds from a dense_repair.csv written "
+        "earlier (e.g. docs/results/dense_repair.csv)",
+    )
     add_executor_options(p)
     p.set_defaults(func=run)
 
@@ -100,6 +119,8 @@ def run(args) -> int:
             retry_failed=args.retry_failed,
             generator=args.generator,
             from_csv=args.from_csv,
+            repair=args.repair,
+            repair_csv=args.repair_csv,
         )
     except KeyboardInterrupt:
         print(f"interrupted: finished runs are kept in {args.out}; run the same command to resume")
