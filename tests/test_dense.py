@@ -337,3 +337,140 @@ def test_cli_generator_walk_rejects_a_missing_csv_before_running(tmp_path, capsy
     args[-1] = str(tmp_path / "bad.csv")
     assert main([*args, "--out", str(out), "--workers", "0", "--quiet"]) == 2
     assert "is not a dense.csv" in capsys.readouterr().err
+
+
+# --- Table 1 with the feasibility-preserving repair (issue 17 §1-2) ----------
+
+
+def test_table1_spec_without_repair_keeps_its_run_keys():
+    from gapath.experiments.spec import canonical_json, run_key
+
+    plain = dense.table1_spec(grids=(8,), p0s=(0.5,), runs=2)
+    edge = dense.table1_spec(grids=(8,), p0s=(0.5,), runs=2, repair="edge")
+    fixed = dense.table1_spec(grids=(8,), p0s=(0.5,), runs=2, repair="feasible-local")
+    for a, b, c in zip(plain.runs(), edge.runs(), fixed.runs()):
+        assert "repair" not in canonical_json(a) and canonical_json(a) == canonical_json(b)
+        assert c["settings"]["repair"] == "feasible-local" and run_key(c) != run_key(a)
+    assert "repair" not in plain.to_dict()["settings"] == edge.to_dict()["settings"]
+
+
+def _stored(store_dir):
+    store = ResultStore(store_dir)
+    return store.results(store.spec().runs())
+
+
+def _quick_repair(out, csv, *extra):
+    args = ["experiment", "dense", "--quick", "--repair", "feasible-local", "--grids", "32", "--p0", "0.6"]
+    args += ["--runs", "3", "--from-csv", str(csv), "--out", str(out), "--workers", "0", "--quiet", *extra]
+    return main(args)
+
+
+def test_cli_repair_reaches_the_runs_and_the_report(tmp_path):
+
+    src = _synthetic_csv(tmp_path / "in.csv")
+    out = tmp_path / "s"
+    assert _quick_repair(out, src) == 0
+    assert _quick_repair(out, src, "--generator", "walk") == 0
+    maps = {
+        "table1-map1-feasible-local": dense_workspace(32, 0.6, 1),
+        "table1-walk-map1-feasible-local": dense.walk_workspace(32, 0.6, 1),
+    }
+    assert sorted(p.name for p in dense.repair_dirs(out)) == sorted(maps)
+    for name, ws in maps.items():
+        results = _stored(out / name)
+        assert [r["seed"] for r in results] == [1, 2, 3]
+        for r in results:
+            assert r["settings"]["repair"] == "feasible-local" and r["indicators"]["feasible"]
+            for path in r["front"]["paths"]:  # the stored paths avoid every obstacle
+                cells = np.asarray(path)
+                assert not ws.occ[cells[:, 0], cells[:, 1]].any()
+        # the repair, not evolution: some runs hold a feasible path in the
+        # initial population, where the unrepaired GA with the same seeds has none
+        first = [r["indicators"]["first_feasible_gen"] for r in results]
+        assert 1 in first
+        for r in results:
+            plain = solve(ws, pop_size=200, n_gen=1, seed=r["seed"], seed_from="none")
+            assert len(plain.front) == 0
+            fixed = solve(
+                ws, pop_size=200, n_gen=1, seed=r["seed"], seed_from="none", repair="feasible-local"
+            )
+            assert (len(fixed.front) > 0) == (r["indicators"]["first_feasible_gen"] == 1)
+    md = (out / "dense.md").read_text()
+    assert "## With the feasibility-preserving repair" in md
+    assert "- **columns generator with the repair `feasible-local`**: goal " in md
+    assert "- **walk generator with the repair `feasible-local`**: goal " in md
+    assert "--repair feasible-local --generator walk --map-seeds 1 --runs 3 --out DIR" in md
+    assert "the repair, not evolution, found" in md
+    rows = dense.read_repair_csv(out / "dense_repair.csv")
+    assert {(r["part"], r["map_seed"], r["grid"], r["p0"]) for r in rows} == {
+        ("table1-repair", 1, 32, 0.6),
+        ("table1-walk-repair", 1, 32, 0.6),
+    }
+    for r in rows:
+        stored = _stored(
+            out / dense.repair_store_name("walk" if "walk" in r["part"] else "columns", 1, r["repair"])
+        )
+        assert r["success_pct"] == 100 * sum(x["indicators"]["feasible"] for x in stored) / len(stored)
+        first = [x["indicators"]["first_feasible_gen"] for x in stored]
+        assert r["initial_pct"] == pytest.approx(100 * first.count(1) / len(first))
+        assert r["generations_max"] == max(first)
+    # the page again without the stores: the repair rows from dense_repair.csv
+    kept = (out / "dense_repair.csv").read_text()
+    rep = dense.dense_report(None, tmp_path / "again", from_csv=src, repair_csv=out / "dense_repair.csv")
+    assert (tmp_path / "again" / "dense_repair.csv").read_text() == kept
+    again = (tmp_path / "again" / "dense.md").read_text()
+    section = md[md.index("## With the feasibility-preserving repair") :].split("\n## ")[0]
+    assert section.split("Regenerate:")[0] in again and len(rep["repair"]) == 2
+
+
+def test_report_has_no_repair_section_without_repair_rows(tmp_path):
+    src = _synthetic_csv(tmp_path / "in.csv")
+    dense.dense_report(None, tmp_path / "out", from_csv=src)
+    assert "feasibility-preserving repair" not in (tmp_path / "out" / "dense.md").read_text()
+    assert not (tmp_path / "out" / "dense_repair.csv").exists()
+
+
+def test_repair_dirs_are_the_repair_stores_only(tmp_path):
+    for name in (
+        "table1-map1",
+        "table1-map1-seeded",
+        "table1-walk-map2",
+        "table1-map2-feasible-local",
+        "table1-walk-map1-feasible-reach",
+        "table1-map3-edge",
+        "table1-map1-turbo",
+    ):
+        (tmp_path / name).mkdir()
+    assert [p.name for p in dense.repair_dirs(tmp_path)] == [
+        "table1-map2-feasible-local",
+        "table1-walk-map1-feasible-reach",
+    ]
+    assert [p.name for p in dense.repair_dirs(tmp_path, "feasible-reach")] == [
+        "table1-walk-map1-feasible-reach"
+    ]
+
+
+@pytest.mark.parametrize("bad", ["bogus", "none", ""])
+def test_cli_rejects_a_bad_repair(tmp_path, bad, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["experiment", "dense", "--quick", "--out", str(tmp_path), "--repair", bad])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert "--repair: invalid choice" in err and "feasible-local" in err
+    assert not any(tmp_path.iterdir())
+
+
+def test_cli_repair_needs_the_fast_engine_and_the_penalty_rows(tmp_path, capsys):
+    src = _synthetic_csv(tmp_path / "in.csv")
+    assert _quick_repair(tmp_path / "s", src, "--engine", "pymoo") == 2
+    assert "--repair feasible-local needs --engine fast" in capsys.readouterr().err
+    args = ["experiment", "dense", "--quick", "--repair", "feasible-local", "--out", str(tmp_path / "t")]
+    assert main([*args, "--workers", "0", "--quiet"]) == 2
+    assert "--repair reports beside the columns generator's rows" in capsys.readouterr().err
+    assert main([*args, "--from-csv", str(src), "--repair-csv", str(src), "--workers", "0", "--quiet"]) == 2
+    assert "is not a dense_repair.csv" in capsys.readouterr().err
+    assert not (tmp_path / "t").exists() or not any((tmp_path / "t").iterdir())
+    from gapath.errors import ConfigError
+
+    with pytest.raises(ConfigError, match="--repair: expected one of edge, feasible-local"):
+        dense.run(tmp_path / "u", quick=True, repair="feasible-everything", from_csv=src)

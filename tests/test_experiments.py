@@ -728,3 +728,49 @@ def test_spec_paths_setting_runs_free_paths_and_keeps_old_keys(tmp_path):
         ExperimentSpec.from_dict({**base, "settings": {**base["settings"], "paths": "free"}})
     with pytest.raises(ConfigError, match="expected one of monotone, free"):
         ExperimentSpec.from_dict({**base, "settings": {**base["settings"], "paths": "any"}})
+
+
+def test_spec_repair_setting_reaches_solve_and_keeps_old_keys():
+    """``settings.repair`` runs solve with that repair; ``edge`` (the
+    default) is not recorded, so such runs keep the keys of a spec without
+    the setting; a repair the engine or the path set cannot run is refused
+    when read."""
+    from gapath import dense_workspace
+    from gapath.errors import ConfigError
+    from gapath.experiments.runner import run_one
+    from gapath.experiments.spec import ExperimentSpec, canonical_json, run_key
+
+    base = dict(
+        name="r",
+        maps=[{"dense": {"n": 32, "p0": 0.6, "seed": 1}}],
+        settings={"pop_size": 200, "n_gen": 1, "seed_from": "none"},
+        seeds=[2],
+    )
+    plain = ExperimentSpec.from_dict(base)
+    edge = ExperimentSpec.from_dict({**base, "settings": {**base["settings"], "repair": "edge"}})
+    assert "repair" not in canonical_json(plain.runs()[0])
+    assert canonical_json(edge.runs()[0]) == canonical_json(plain.runs()[0])
+    assert edge.to_dict() == plain.to_dict()
+    fixed = ExperimentSpec.from_dict({**base, "settings": {**base["settings"], "repair": "feasible-local"}})
+    (run,) = fixed.runs()
+    assert run["settings"]["repair"] == "feasible-local" and run_key(run) != run_key(plain.runs()[0])
+    # one generation (the initial population) on a dense map: only the repaired run is feasible
+    got, without = run_one(run), run_one(plain.runs()[0])
+    assert got["status"] == without["status"] == "ok"
+    assert got["settings"]["repair"] == "feasible-local" and "repair" not in without["settings"]
+    assert got["indicators"]["feasible"] and not without["indicators"]["feasible"]
+    occ = dense_workspace(32, 0.6, 1).occ
+    assert all(not occ[tuple(np.asarray(p).T)].any() for p in got["front"]["paths"])
+    grid = ExperimentSpec.from_dict({**base, "grid": {"repair": ["edge", "feasible-local"]}})
+    assert [r["settings"].get("repair") for r in grid.runs()] == [None, "feasible-local"]
+    assert canonical_json(grid.runs()[0]) == canonical_json(plain.runs()[0])
+    for extra, match in (
+        ({"engines": ["pymoo"]}, "settings.repair: repair 'feasible-local' needs the fast engine"),
+        (
+            {"encodings": ["field"], "settings": {**fixed.settings, "paths": "free"}},
+            "needs monotone paths",
+        ),
+        ({"settings": {**base["settings"], "repair": "best"}}, "expected one of edge, feasible-local"),
+    ):
+        with pytest.raises(ConfigError, match=match):
+            ExperimentSpec.from_dict({**base, "settings": fixed.settings, **extra})
