@@ -1134,6 +1134,7 @@ def _write_report(
                 else f"{_f(row['seeded_success_pct'], 3)}, {_f(row['seeded_median_generations'])}"
             )
     repair_file = results_dir / f"{basename}_repair.csv"
+    walk_stored = bool(_walk_dirs_by_seed(walk_dirs))
     commands = _commands(
         main_seed, t1, others, per_run, seeded, large, walk, from_csv, repair_rows, repair_file
     )
@@ -1151,11 +1152,25 @@ def _write_report(
         f"at the first feasible path; all-random initial population "
         f'(`seed_from="none"`); engine `{t1[0]["engine"] if t1 else "-"}`.'
         + (
-            f" This page was regenerated from `{from_csv}` (the columns generator's rows) and "
-            "the walk generator's stores: the stores of the columns runs are not kept, so the "
-            "lists of the GA seeds of their unsuccessful runs and their cost are not repeated "
-            "here (they are in this file's history before issue 17)."
+            (
+                f" This page was regenerated from `{from_csv}` (the columns generator's rows) and "
+                "the walk generator's stores: the stores of the columns runs are not kept, so the "
+                "lists of the GA seeds of their unsuccessful runs and their cost are not repeated "
+                "here (they are in this file's history before issue 17)."
+                if walk_stored
+                else f" This page was regenerated from `{from_csv}` (the penalty rows of both "
+                "generators): their stores are not kept, so the lists of the GA seeds of their "
+                "unsuccessful runs and their cost are not repeated here (they are in this file's "
+                "history: issue 17)."
+            )
             if csv_rows is not None
+            else ""
+        )
+        + (
+            ' The section "With the feasibility-preserving repair" runs the same rows with a '
+            "repair that is not the paper's method (a GA change, issue 17); every other table is "
+            "the paper's protocol."
+            if repair_rows
             else ""
         ),
         "",
@@ -1391,6 +1406,10 @@ def _write_report(
     timing.update({f"table1-walk-map{m}": d for m, d in _walk_dirs_by_seed(walk_dirs).items()})
     timing.update({Path(d).name: d for d in repair_dirs if _exists(d)})
     lines = [] if csv_rows is None else ["- the columns runs: " + _NOT_IN_CSV]
+    if repair_rows and not any(_exists(d) for d in repair_dirs):
+        lines.append("- the runs with a repair: not in dense_repair.csv (see this file's history).")
+    if csv_rows is not None and walk and not walk_stored:
+        lines.append("- the walk runs without repair: not in dense.csv (see this file's history: issue 17).")
     for part, d in timing.items():
         t = _timing(d)
         line = f"- {part}: {t['runs']} runs, {t['seconds']:.0f} s of optimisation in total"
