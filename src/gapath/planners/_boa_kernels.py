@@ -40,16 +40,21 @@ import numba
 import numpy as np
 
 from gapath.grid import DC, DIRECTION, DR, SQRT2, turn
+from gapath.objectives import QUARTER_PI
+from gapath.planners._exact_heuristics import _length_to_go, _move_masks, _vulnerability_to_go
 from gapath.planners._exact_kernels import (
     CELL,
     DONE,
     F_HEAD,
     F_PARENT,
     F_VUL,
+    MODE_CELL,
     ND,
     NEED_ROOM,
     NEXT,
     NS,
+    OBJ_LEN,
+    OBJ_VUL,
     OVER_BUDGET,
     PAUSED,
     S_EXPANDED,
@@ -64,10 +69,13 @@ from gapath.planners._exact_kernels import (
     SF_GOAL_MIN,
     TURNS,
     _eq,
+    _free_init,
     _grow,
     _grow1,
     _heap_pop,
     _heap_push,
+    _tolerant_front,
+    _trace,
 )
 
 #: Columns of the edge table: the label the edge enters, its parent (an
@@ -538,3 +546,150 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         scratch += arr_bytes
     scratch += order.nbytes + stack.nbytes + T.nbytes + V.nbytes + hm.nbytes + buf.nbytes + cells.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
+
+
+# -- one call for a whole small search (the fixed cost of a call) ----------------
+#
+# On a 32x32 map the whole search takes about as long as the Python around it
+# took (numba dispatch, boxing of every returned array, the result's sorts and
+# fancy indexing). _boa_prepare (masks and heuristics, timed apart by the
+# caller) and _boa_solve (initial state, the first slice of the search and, if
+# that finishes it, the front's arrays) are the two calls of a small search;
+# a longer one continues from the state _boa_solve returns with _boa_run and
+# ends with _boa_finish.
+
+#: Entries of the counts array of :func:`_boa_finish`.
+C_EXPANDED, C_GENERATED, C_ROWS, C_FREE, C_SOLS, C_EDGES, C_PEAK = range(7)
+
+
+@numba.njit(cache=True)
+def _boa_prepare(occ, pot, gr, gc, corner_cutting):
+    """The move masks and the length and vulnerability heuristics of a
+    two-objective search: ``(mask, hs, hd, hv)`` as
+    :func:`gapath.planners._exact_heuristics._free_heuristics` (without the
+    turn heuristic)."""
+    h, w = occ.shape
+    n = h * w
+    goal = gr * w + gc
+    mask = _move_masks(occ, corner_cutting)
+    hs = np.full(n, -1, np.int64)
+    hd = np.full(n, -1, np.int64)
+    _length_to_go(mask, w, goal, hs, hd)
+    hv = np.full(n, np.inf)
+    _vulnerability_to_go(mask, pot, w, goal, hv)
+    return mask, hs, hd, hv
+
+
+@numba.njit(cache=True)
+def _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges):
+    """Bytes of a search's arrays (``stats["peak_bytes"]``; the 1-entry turn
+    placeholder included, as for the other searches)."""
+    fixed = hs.nbytes + hd.nbytes + hv.nbytes + 8 + gmin.nbytes + first.nbytes
+    return fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + edges.nbytes
+
+
+@numba.njit(cache=True)
+def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_first, n_steps, max_labels):
+    """Start BOA* (:func:`_boa_run`) and run at most ``n_steps`` pops.
+
+    Returns ``(status, result, state)``: when the search is done, ``result``
+    is what :func:`_boa_finish` returns and ``state`` is None; otherwise
+    (PAUSED or OVER_BUDGET) ``result`` is None and ``state`` is ``(gmin,
+    first, li, lf, sols, hk, hid, st, stf, edges, est)``, from which
+    :func:`_boa_run` continues. (A None is returned at no cost; every array
+    costs Python a fraction of a microsecond.)"""
+    h, w = occ.shape
+    ht = np.zeros(1, np.int64)
+    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
+        pot, sr, sc, w, cell_size, MODE_CELL, OBJ_LEN, OBJ_VUL, hs, hd, hv, ht, h * w
+    )
+    edges = np.empty((1024 if ties else 16, 3), np.int32)
+    est = np.zeros(1, np.int64)
+    li, lf, sols, hk, hid, edges, status = _boa_run(
+        occ, pot, gr, gc, cell_size, mask, hs, hd, hv, gmin, first, li, lf, sols, hk, hid, st, stf,
+        edges, est, n_steps, max_labels, ties,
+    )  # fmt: skip
+    if status != DONE:
+        return status, None, (gmin, first, li, lf, sols, hk, hid, st, stf, edges, est)
+    peak = _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges)
+    result = _boa_finish(li, lf, sols, st, edges, est[0], pot, w, cell_size, ties, len_first, peak)
+    return status, result, None
+
+
+@numba.njit(cache=True)
+def _boa_finish(li, lf, sols, st, edges, n_edges, pot, w, cell_size, ties, len_first, peak):
+    """The front of a finished search: its paths, the tolerance filter and
+    the final order, as arrays.
+
+    With ``ties`` and recorded edges, the smoothest path of each solution
+    (:func:`_smoothest`); otherwise each solution's own path (without tie
+    edges the DAG of :func:`_smoothest` is the labels' tree: the same path
+    and, summed in the same order, the same objectives). Among
+    tolerance-equal vectors the front keeps the smoothest path, then the
+    shortest (``_tolerant_front`` in the order of ``np.lexsort((length,
+    turns))``), and sorts the points lexicographically (``len_first``: length
+    is the first column of ``F``, else vulnerability).
+
+    Returns ``(F, smoothness, cells, offsets, counts)``: ``F`` (k, 2), the
+    path of point ``i`` is ``cells[offsets[i]:offsets[i + 1]]``, ``counts``
+    the int64 figures indexed by ``C_*`` (``C_PEAK``: ``peak`` plus the
+    dynamic programme's scratch memory).
+    """
+    n_sols = st[S_SOLS]
+    sols = sols[:n_sols]
+    if ties and n_edges > 0:
+        cells, offsets, ns, nd, turns, vul, scratch = _smoothest(li, st[S_N], sols, edges, n_edges, pot, w)
+        peak += scratch
+    else:
+        cells, offsets = _trace(li, sols, w)
+        ns = np.empty(n_sols, np.int64)
+        nd = np.empty(n_sols, np.int64)
+        turns = np.empty(n_sols, np.int64)
+        vul = np.empty(n_sols)
+        for i in range(n_sols):
+            x = sols[i]
+            ns[i] = li[x, NS]
+            nd[i] = li[x, ND]
+            turns[i] = li[x, TURNS]
+            vul[i] = lf[x, F_VUL]
+    steps = np.empty(n_sols)
+    F = np.empty((n_sols, 2))
+    for i in range(n_sols):
+        steps[i] = ns[i] + SQRT2 * nd[i]
+        length = steps[i] * cell_size
+        F[i, 0] = length if len_first else vul[i]
+        F[i, 1] = vul[i] if len_first else length
+    # np.lexsort((steps, turns)) by two stable sorts: the smoothest, then the shortest first
+    p = np.argsort(steps, kind="mergesort")
+    order = p[np.argsort(turns[p], kind="mergesort")]
+    keep = _tolerant_front(F, order)
+    # lexicographic order of F (np.lexsort(F[keep].T[::-1]))
+    p = np.argsort(F[keep, 1], kind="mergesort")
+    keep = keep[p[np.argsort(F[keep[p], 0], kind="mergesort")]]
+    k = len(keep)
+    out_f = np.empty((k, 2))
+    smooth = np.empty(k)
+    out_off = np.zeros(k + 1, np.int64)
+    for t in range(k):
+        i = keep[t]
+        out_f[t, 0] = F[i, 0]
+        out_f[t, 1] = F[i, 1]
+        smooth[t] = turns[i] * QUARTER_PI
+        out_off[t + 1] = out_off[t] + offsets[i + 1] - offsets[i]
+    out_cells = np.empty((out_off[k], 2), np.int64)
+    for t in range(k):
+        i = keep[t]
+        a = out_off[t]
+        for j in range(offsets[i], offsets[i + 1]):
+            out_cells[a, 0] = cells[j, 0]
+            out_cells[a, 1] = cells[j, 1]
+            a += 1
+    counts = np.zeros(7, np.int64)
+    counts[C_EXPANDED] = st[S_EXPANDED]
+    counts[C_GENERATED] = st[S_GENERATED]
+    counts[C_ROWS] = st[S_N]
+    counts[C_FREE] = st[S_N_FREE]
+    counts[C_SOLS] = n_sols
+    counts[C_EDGES] = n_edges
+    counts[C_PEAK] = peak
+    return out_f, smooth, out_cells, out_off, counts
