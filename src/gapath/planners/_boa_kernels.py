@@ -41,7 +41,7 @@ import numpy as np
 
 from gapath.grid import DC, DIRECTION, DR, SQRT2, turn
 from gapath.objectives import QUARTER_PI
-from gapath.planners._exact_heuristics import _length_to_go, _move_masks, _vulnerability_to_go
+from gapath.planners._exact_heuristics import COUNT, MOVES, _length_to_go, _move_masks, _vulnerability_to_go
 from gapath.planners._exact_kernels import (
     CELL,
     DONE,
@@ -72,8 +72,6 @@ from gapath.planners._exact_kernels import (
     _free_init,
     _grow,
     _grow1,
-    _heap_pop,
-    _heap_push,
     _tolerant_front,
     _trace,
 )
@@ -83,6 +81,12 @@ from gapath.planners._exact_kernels import (
 E_NODE, E_PARENT, E_DIR = range(3)
 
 _BIG = np.int64(1) << 40
+
+#: Open-list keys: ``(f_length, f_vulnerability, turns * ROW_SPAN + row)``, the
+#: third exact while below 2**53 (turns < 2**22); ``hid`` is not used. The start
+#: label's key of ``_free_init`` (third entry 0.0, row 0) is such a key.
+ROW_SPAN = float(1 << 31)
+ROW_MASK = np.int64((1 << 31) - 1)
 
 
 @numba.njit(cache=True)
@@ -155,9 +159,8 @@ def _boa_run(
         if st[S_N] + 8 > li.shape[0]:
             li = _grow(li, st[S_N] + 8)
             lf = _grow(lf, st[S_N] + 8)
-        if st[S_SIZE] + 8 > hid.shape[0]:
+        if st[S_SIZE] + 8 > hk.shape[0]:
             hk = _grow(hk, st[S_SIZE] + 8)
-            hid = _grow1(hid, st[S_SIZE] + 8)
         if st[S_SOLS] + 1 > sols.shape[0]:
             sols = _grow1(sols, st[S_SOLS] + 1)
         if est[0] + 9 > edges.shape[0]:
@@ -222,14 +225,41 @@ def _boa_steps(
             break
         if (
             n + 8 > li.shape[0]
-            or size + 8 > hid.shape[0]
+            or size + 8 > hk.shape[0]
             or n_sols + 1 > sols.shape[0]
             or ne + 9 > edges.shape[0]
         ):
             status = NEED_ROOM
             break
         steps += 1
-        x, size = _heap_pop(hk, hid, size)
+        # pop the least key (a 4-ary heap, written out: helpers that take the
+        # arrays cost reference counting); the keys are distinct (the row is in
+        # the third), so any heap pops them in the same order
+        x = np.int64(hk[0, 2]) & ROW_MASK
+        size -= 1
+        if size > 0:
+            k1, k2, k3 = hk[size, 0], hk[size, 1], hk[size, 2]
+            i = 0
+            while True:
+                ch = 4 * i + 1
+                if ch >= size:
+                    break
+                b1, b2, b3 = hk[ch, 0], hk[ch, 1], hk[ch, 2]
+                best = ch
+                for c2 in range(ch + 1, min(ch + 4, size)):
+                    a1, a2, a3 = hk[c2, 0], hk[c2, 1], hk[c2, 2]
+                    if a1 < b1 or (a1 == b1 and (a2 < b2 or (a2 == b2 and a3 < b3))):
+                        b1, b2, b3 = a1, a2, a3
+                        best = c2
+                if not (b1 < k1 or (b1 == k1 and (b2 < k2 or (b2 == k2 and b3 < k3)))):
+                    break
+                hk[i, 0] = b1
+                hk[i, 1] = b2
+                hk[i, 2] = b3
+                i = best
+            hk[i, 0] = k1
+            hk[i, 1] = k2
+            hk[i, 2] = k3
         c = li[x, CELL]
         q = lf[x, F_VUL]
 
@@ -287,9 +317,8 @@ def _boa_steps(
         head = li[x, F_HEAD]
         ns_x, nd_x, turns_x = li[x, NS], li[x, ND], li[x, TURNS]
         mk = mask[c]
-        for d in range(8):
-            if not (mk >> d) & 1:
-                continue
+        for jm in range(COUNT[mk]):  # the allowed moves (a test per bit mispredicts)
+            d = MOVES[mk, jm]
             r2, c2 = r + DR[d], col + DC[d]
             cell = r2 * w + c2
             if hv[cell] == np.inf:  # the goal cannot be reached from there
@@ -341,8 +370,22 @@ def _boa_steps(
             li[j, TURNS] = turns_j
             li[j, NEXT] = -1
             lf[j, F_VUL] = qj
-            _heap_push(hk, hid, size, f_len, f_vul, np.float64(turns_j), j)
+            # push (sift the hole up); third key: turns, then the row (exact below 2**53)
+            k3 = np.float64(turns_j) * ROW_SPAN + np.float64(j)
+            i = size
             size += 1
+            while i > 0:
+                pa = (i - 1) >> 2
+                b1, b2 = hk[pa, 0], hk[pa, 1]
+                if not (f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hk[pa, 2])))):
+                    break
+                hk[i, 0] = b1
+                hk[i, 1] = b2
+                hk[i, 2] = hk[pa, 2]
+                i = pa
+            hk[i, 0] = f_len
+            hk[i, 1] = f_vul
+            hk[i, 2] = k3
     st[S_N] = n
     st[S_SIZE] = size
     st[S_SOLS] = n_sols
