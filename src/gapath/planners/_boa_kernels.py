@@ -198,6 +198,10 @@ def _boa_steps(
     list or the edge table could overflow (a pop records at most 9 edges)."""
     h, w = occ.shape
     goal = gr * w + gc
+    pf = pot.reshape(h * w)
+    off = np.empty(8, np.int64)  # move d from cell c: to c + off[d]
+    for d in range(8):
+        off[d] = DR[d] * w + DC[d]
     n = st[S_N]
     size = st[S_SIZE]
     n_sols = st[S_SOLS]
@@ -313,20 +317,16 @@ def _boa_steps(
         n_expanded += 1
         gmin[c] = q
         first[c] = x
-        r, col = c // w, c % w
         head = li[x, F_HEAD]
         ns_x, nd_x, turns_x = li[x, NS], li[x, ND], li[x, TURNS]
         mk = mask[c]
         for jm in range(COUNT[mk]):  # the allowed moves (a test per bit mispredicts)
             d = MOVES[mk, jm]
-            r2, c2 = r + DR[d], col + DC[d]
-            cell = r2 * w + c2
-            if hv[cell] == np.inf:  # the goal cannot be reached from there
-                continue
+            cell = c + off[d]  # (the goal can be reached from there: _boa_prepare's mask)
             n_generated += 1
             ns_j = ns_x + (1 - d % 2)
             nd_j = nd_x + d % 2
-            qj = q + pot[r2, c2]
+            qj = q + pf[cell]
             # eager checks (BOA*: prune before the open list), on the values alone
             if cell != goal:
                 m = gmin[cell]
@@ -416,7 +416,9 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     vulnerable one is taken. Nodes are taken in the post-order of a
     depth-first search from the solutions, so parents come before children.
     The trace prefers, at each node, its own in-edge, then the recorded
-    ones in the order they were recorded, and the lowest heading.
+    ones in the order they were recorded, and the lowest heading: the first
+    (in-edge, heading) that gives the node's value, which the programme
+    keeps (``bp``, ``bh``) as it finds it.
 
     Returns ``(cells, offsets, n_straight, n_diag, turns, vul, scratch_bytes)``:
     the cells of solution ``i``'s path are ``cells[offsets[i]:offsets[i + 1]]``
@@ -478,6 +480,9 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     T = np.full(k * 8, _BIG, np.int64)
     V = np.full(k * 8, np.inf)
     hm = np.zeros(k, np.uint8)
+    # the first (in-edge, heading) giving (T, V): the trace's choice, kept
+    bp = np.empty(k * 8, np.int32)
+    bh = np.empty(k * 8, np.int8)
     for i in range(k):
         v = order[i]
         c = li[v, CELL]
@@ -497,13 +502,17 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
             base = ip * 8
             bits = hm[ip]
             bt, bv = T[i * 8 + d], V[i * 8 + d]
+            b_p, b_h = bp[i * 8 + d], bh[i * 8 + d]
             for hh in range(8):
                 if (bits >> hh) & 1:
                     t = T[base + hh] + turn(hh, d)
                     if t < bt or (t == bt and V[base + hh] + pv < bv):
                         bt, bv = t, V[base + hh] + pv
+                        b_p, b_h = p, hh
             T[i * 8 + d] = bt
             V[i * 8 + d] = bv
+            bp[i * 8 + d] = b_p
+            bh[i * 8 + d] = b_h
             hm[i] |= 1 << d
 
     # trace each solution back from its least (T, V) (the steps written out: a
@@ -532,26 +541,9 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
             m += 1
             if li[v, F_PARENT] < 0:
                 break
-            # an in-edge (p, d) of v (its own first) and a heading h of p giving T, V
+            # the first in-edge (p, d) of v (its own first) and heading of p giving T, V
             i = idx[v] * 8 + d
-            c = li[v, CELL]
-            pv = pot[c // w, c % w]
-            found = False
-            for e in range(off[v] - 1, off[v + 1]):
-                if e < off[v]:
-                    p, de = li[v, F_PARENT], li[v, F_HEAD]
-                else:
-                    p, de = ep[e], edir[e]
-                if de != d:
-                    continue
-                base = idx[p] * 8
-                for hh in range(8):
-                    if T[base + hh] + turn(hh, d) == T[i] and V[base + hh] + pv == V[i]:
-                        v, d = p, hh
-                        found = True
-                        break
-                if found:
-                    break
+            v, d = bp[i], np.int64(bh[i])
         a = offsets[si]
         b = a + m
         offsets[si + 1] = b
@@ -588,6 +580,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     for arr_bytes in (off.nbytes, fill.nbytes, ep.nbytes, edir.nbytes, state.nbytes, idx.nbytes):
         scratch += arr_bytes
     scratch += order.nbytes + stack.nbytes + T.nbytes + V.nbytes + hm.nbytes + buf.nbytes + cells.nbytes
+    scratch += bp.nbytes + bh.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
 
 
@@ -610,7 +603,9 @@ def _boa_prepare(occ, pot, gr, gc, corner_cutting):
     """The move masks and the length and vulnerability heuristics of a
     two-objective search: ``(mask, hs, hd, hv)`` as
     :func:`gapath.planners._exact_heuristics._free_heuristics` (without the
-    turn heuristic)."""
+    turn heuristic), except that ``mask`` has no move into a cell from which
+    the goal cannot be reached (``hv == inf``; BOA* never generates a label
+    there)."""
     h, w = occ.shape
     n = h * w
     goal = gr * w + gc
@@ -620,6 +615,18 @@ def _boa_prepare(occ, pot, gr, gc, corner_cutting):
     _length_to_go(mask, w, goal, hs, hd)
     hv = np.full(n, np.inf)
     _vulnerability_to_go(mask, pot, w, goal, hv)
+    # no move into a cell the goal cannot be reached from (the search's own test before)
+    off = np.empty(8, np.int64)
+    for d in range(8):
+        off[d] = DR[d] * w + DC[d]
+    for c in range(n):
+        m0 = mask[c]
+        mk = np.int64(m0)
+        for j in range(COUNT[m0]):
+            d = MOVES[m0, j]
+            if hv[c + off[d]] == np.inf:
+                mk &= ~(np.int64(1) << d)
+        mask[c] = mk
     return mask, hs, hd, hv
 
 
