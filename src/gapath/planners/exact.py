@@ -857,11 +857,7 @@ def free_front(
         mask, hs, hd, hv, ht, *state = _free_prepare(occ, pot, sr, sc, gr, gc, cs, cc, mode, P, Q)
         t_heur = time.perf_counter() - t0
         if hv[sr * w + sc] == np.inf:
-            raise NoPathError(
-                f"no feasible path from {workspace.start} to {workspace.goal} in workspace "
-                f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
-                f"corner_cutting={workspace.corner_cutting})"
-            )
+            raise _no_path(workspace)
         args = (
             occ,
             pot,
@@ -911,6 +907,7 @@ def free_front(
 
 
 def _no_path(workspace) -> NoPathError:
+    """The error of a free search whose goal cannot be reached."""
     h, w = workspace.shape
     return NoPathError(
         f"no feasible path from {workspace.start} to {workspace.goal} in workspace "
