@@ -657,7 +657,8 @@ def free_front(
     max_labels : int, optional
         Label budget: the most labels held at once (the rows of dropped
         labels are recycled, so this bounds the memory of the search, about
-        44 bytes a label plus 32 per open-list entry). None: no budget.
+        44 bytes a label plus 32 per open-list entry; 36 and 24 for length and
+        vulnerability). None: no budget.
     progress : callable, optional
         Called about ten times a second, and once at the end, with a dict
         ``phase="free"``, ``expansions``, ``generated``, ``labels``, ``open``
