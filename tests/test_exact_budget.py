@@ -284,11 +284,13 @@ def test_sigint_during_a_search_is_a_keyboard_interrupt(kind, tiny_slices):
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
 
 
-def test_sigint_inside_the_first_kernel_is_a_keyboard_interrupt(monkeypatch):
+@pytest.mark.parametrize("objectives, kernel", [(LV, "_boa_prepare"), (LVS, "_free_prepare")])
+def test_sigint_inside_the_first_kernel_is_a_keyboard_interrupt(monkeypatch, objectives, kernel):
     """Before the holding handler is installed (a search done in one kernel
     call never installs it), a SIGINT raised while a kernel runs surfaces in
     numba's boxing of its result as a SystemError; free_front raises the
-    KeyboardInterrupt instead, and a second call works."""
+    KeyboardInterrupt instead, and a second call works (two objectives:
+    BOA*'s first kernel, three: the other searches')."""
     import ctypes
     import signal
 
@@ -310,17 +312,17 @@ def test_sigint_inside_the_first_kernel_is_a_keyboard_interrupt(monkeypatch):
         raise_sigint_inside(1)  # compile, the signal ignored
     finally:
         signal.signal(signal.SIGINT, previous)
-    prepare = exact._free_prepare
+    prepare = getattr(exact, kernel)
 
     def prepare_then_sigint(*args):
         raise_sigint_inside(1)
         return prepare(*args)
 
     ws = _ws(seed=4, size=12)
-    fresh = free_front(ws, LV)
-    monkeypatch.setattr(exact, "_free_prepare", prepare_then_sigint)
+    fresh = free_front(ws, objectives)
+    monkeypatch.setattr(exact, kernel, prepare_then_sigint)
     with pytest.raises(KeyboardInterrupt):
-        free_front(ws, LV)
-    monkeypatch.setattr(exact, "_free_prepare", prepare)
+        free_front(ws, objectives)
+    monkeypatch.setattr(exact, kernel, prepare)
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
-    _same(free_front(ws, LV), fresh)
+    _same(free_front(ws, objectives), fresh)

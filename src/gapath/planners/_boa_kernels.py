@@ -40,16 +40,21 @@ import numba
 import numpy as np
 
 from gapath.grid import DC, DIRECTION, DR, SQRT2, turn
+from gapath.objectives import QUARTER_PI
+from gapath.planners._exact_heuristics import COUNT, MOVES, _length_to_go, _move_masks, _vulnerability_to_go
 from gapath.planners._exact_kernels import (
     CELL,
     DONE,
     F_HEAD,
     F_PARENT,
     F_VUL,
+    MODE_CELL,
     ND,
     NEED_ROOM,
     NEXT,
     NS,
+    OBJ_LEN,
+    OBJ_VUL,
     OVER_BUDGET,
     PAUSED,
     S_EXPANDED,
@@ -64,10 +69,11 @@ from gapath.planners._exact_kernels import (
     SF_GOAL_MIN,
     TURNS,
     _eq,
+    _free_init,
     _grow,
     _grow1,
-    _heap_pop,
-    _heap_push,
+    _tolerant_front,
+    _trace,
 )
 
 #: Columns of the edge table: the label the edge enters, its parent (an
@@ -75,6 +81,12 @@ from gapath.planners._exact_kernels import (
 E_NODE, E_PARENT, E_DIR = range(3)
 
 _BIG = np.int64(1) << 40
+
+#: Open-list keys (a binary heap: measured 8 % faster here than a 4-ary one): ``(f_length, f_vulnerability, turns * ROW_SPAN + row)``, the
+#: third exact while below 2**53 (turns < 2**22); ``hid`` is not used. The start
+#: label's key of ``_free_init`` (third entry 0.0, row 0) is such a key.
+ROW_SPAN = float(1 << 31)
+ROW_MASK = np.int64((1 << 31) - 1)
 
 
 @numba.njit(cache=True)
@@ -147,9 +159,8 @@ def _boa_run(
         if st[S_N] + 8 > li.shape[0]:
             li = _grow(li, st[S_N] + 8)
             lf = _grow(lf, st[S_N] + 8)
-        if st[S_SIZE] + 8 > hid.shape[0]:
+        if st[S_SIZE] + 8 > hk.shape[0]:
             hk = _grow(hk, st[S_SIZE] + 8)
-            hid = _grow1(hid, st[S_SIZE] + 8)
         if st[S_SOLS] + 1 > sols.shape[0]:
             sols = _grow1(sols, st[S_SOLS] + 1)
         if est[0] + 9 > edges.shape[0]:
@@ -187,6 +198,10 @@ def _boa_steps(
     list or the edge table could overflow (a pop records at most 9 edges)."""
     h, w = occ.shape
     goal = gr * w + gc
+    pf = pot.reshape(h * w)
+    off = np.empty(8, np.int64)  # move d from cell c: to c + off[d]
+    for d in range(8):
+        off[d] = DR[d] * w + DC[d]
     n = st[S_N]
     size = st[S_SIZE]
     n_sols = st[S_SOLS]
@@ -214,14 +229,41 @@ def _boa_steps(
             break
         if (
             n + 8 > li.shape[0]
-            or size + 8 > hid.shape[0]
+            or size + 8 > hk.shape[0]
             or n_sols + 1 > sols.shape[0]
             or ne + 9 > edges.shape[0]
         ):
             status = NEED_ROOM
             break
         steps += 1
-        x, size = _heap_pop(hk, hid, size)
+        # pop the least key (a binary heap, written out: helpers that take the
+        # arrays cost reference counting); the keys are distinct (the row is in
+        # the third), so any heap pops them in the same order
+        x = np.int64(hk[0, 2]) & ROW_MASK
+        size -= 1
+        if size > 0:
+            k1, k2, k3 = hk[size, 0], hk[size, 1], hk[size, 2]
+            i = 0
+            while True:
+                ch = 2 * i + 1
+                if ch >= size:
+                    break
+                b1, b2, b3 = hk[ch, 0], hk[ch, 1], hk[ch, 2]
+                best = ch
+                if ch + 1 < size:
+                    a1, a2, a3 = hk[ch + 1, 0], hk[ch + 1, 1], hk[ch + 1, 2]
+                    if a1 < b1 or (a1 == b1 and (a2 < b2 or (a2 == b2 and a3 < b3))):
+                        b1, b2, b3 = a1, a2, a3
+                        best = ch + 1
+                if not (b1 < k1 or (b1 == k1 and (b2 < k2 or (b2 == k2 and b3 < k3)))):
+                    break
+                hk[i, 0] = b1
+                hk[i, 1] = b2
+                hk[i, 2] = b3
+                i = best
+            hk[i, 0] = k1
+            hk[i, 1] = k2
+            hk[i, 2] = k3
         c = li[x, CELL]
         q = lf[x, F_VUL]
 
@@ -275,21 +317,16 @@ def _boa_steps(
         n_expanded += 1
         gmin[c] = q
         first[c] = x
-        r, col = c // w, c % w
         head = li[x, F_HEAD]
         ns_x, nd_x, turns_x = li[x, NS], li[x, ND], li[x, TURNS]
         mk = mask[c]
-        for d in range(8):
-            if not (mk >> d) & 1:
-                continue
-            r2, c2 = r + DR[d], col + DC[d]
-            cell = r2 * w + c2
-            if hv[cell] == np.inf:  # the goal cannot be reached from there
-                continue
+        for jm in range(COUNT[mk]):  # the allowed moves (a test per bit mispredicts)
+            d = MOVES[mk, jm]
+            cell = c + off[d]  # (the goal can be reached from there: _boa_prepare's mask)
             n_generated += 1
             ns_j = ns_x + (1 - d % 2)
             nd_j = nd_x + d % 2
-            qj = q + pot[r2, c2]
+            qj = q + pf[cell]
             # eager checks (BOA*: prune before the open list), on the values alone
             if cell != goal:
                 m = gmin[cell]
@@ -330,11 +367,24 @@ def _boa_steps(
             li[j, F_PARENT] = x
             li[j, NS] = ns_j
             li[j, ND] = nd_j
-            li[j, TURNS] = turns_j
-            li[j, NEXT] = -1
+            li[j, TURNS] = turns_j  # (NEXT is read only on free rows and solutions)
             lf[j, F_VUL] = qj
-            _heap_push(hk, hid, size, f_len, f_vul, np.float64(turns_j), j)
+            # push (sift the hole up); third key: turns, then the row (exact below 2**53)
+            k3 = np.float64(turns_j) * ROW_SPAN + np.float64(j)
+            i = size
             size += 1
+            while i > 0:
+                pa = (i - 1) >> 1
+                b1, b2 = hk[pa, 0], hk[pa, 1]
+                if not (f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hk[pa, 2])))):
+                    break
+                hk[i, 0] = b1
+                hk[i, 1] = b2
+                hk[i, 2] = hk[pa, 2]
+                i = pa
+            hk[i, 0] = f_len
+            hk[i, 1] = f_vul
+            hk[i, 2] = k3
     st[S_N] = n
     st[S_SIZE] = size
     st[S_SOLS] = n_sols
@@ -365,7 +415,9 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     vulnerable one is taken. Nodes are taken in the post-order of a
     depth-first search from the solutions, so parents come before children.
     The trace prefers, at each node, its own in-edge, then the recorded
-    ones in the order they were recorded, and the lowest heading.
+    ones in the order they were recorded, and the lowest heading: the first
+    (in-edge, heading) that gives the node's value, which the programme
+    keeps (``bp``, ``bh``) as it finds it.
 
     Returns ``(cells, offsets, n_straight, n_diag, turns, vul, scratch_bytes)``:
     the cells of solution ``i``'s path are ``cells[offsets[i]:offsets[i + 1]]``
@@ -427,6 +479,9 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     T = np.full(k * 8, _BIG, np.int64)
     V = np.full(k * 8, np.inf)
     hm = np.zeros(k, np.uint8)
+    # the first (in-edge, heading) giving (T, V): the trace's choice, kept
+    bp = np.empty(k * 8, np.int32)
+    bh = np.empty(k * 8, np.int8)
     for i in range(k):
         v = order[i]
         c = li[v, CELL]
@@ -446,13 +501,17 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
             base = ip * 8
             bits = hm[ip]
             bt, bv = T[i * 8 + d], V[i * 8 + d]
+            b_p, b_h = bp[i * 8 + d], bh[i * 8 + d]
             for hh in range(8):
                 if (bits >> hh) & 1:
                     t = T[base + hh] + turn(hh, d)
                     if t < bt or (t == bt and V[base + hh] + pv < bv):
                         bt, bv = t, V[base + hh] + pv
+                        b_p, b_h = p, hh
             T[i * 8 + d] = bt
             V[i * 8 + d] = bv
+            bp[i * 8 + d] = b_p
+            bh[i * 8 + d] = b_h
             hm[i] |= 1 << d
 
     # trace each solution back from its least (T, V) (the steps written out: a
@@ -481,26 +540,9 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
             m += 1
             if li[v, F_PARENT] < 0:
                 break
-            # an in-edge (p, d) of v (its own first) and a heading h of p giving T, V
+            # the first in-edge (p, d) of v (its own first) and heading of p giving T, V
             i = idx[v] * 8 + d
-            c = li[v, CELL]
-            pv = pot[c // w, c % w]
-            found = False
-            for e in range(off[v] - 1, off[v + 1]):
-                if e < off[v]:
-                    p, de = li[v, F_PARENT], li[v, F_HEAD]
-                else:
-                    p, de = ep[e], edir[e]
-                if de != d:
-                    continue
-                base = idx[p] * 8
-                for hh in range(8):
-                    if T[base + hh] + turn(hh, d) == T[i] and V[base + hh] + pv == V[i]:
-                        v, d = p, hh
-                        found = True
-                        break
-                if found:
-                    break
+            v, d = bp[i], np.int64(bh[i])
         a = offsets[si]
         b = a + m
         offsets[si + 1] = b
@@ -537,4 +579,171 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     for arr_bytes in (off.nbytes, fill.nbytes, ep.nbytes, edir.nbytes, state.nbytes, idx.nbytes):
         scratch += arr_bytes
     scratch += order.nbytes + stack.nbytes + T.nbytes + V.nbytes + hm.nbytes + buf.nbytes + cells.nbytes
+    scratch += bp.nbytes + bh.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
+
+
+# -- one call for a whole small search (the fixed cost of a call) ----------------
+#
+# On a 32x32 map the whole search takes about as long as the Python around it
+# took (numba dispatch, boxing of every returned array, the result's sorts and
+# fancy indexing). _boa_prepare (masks and heuristics, timed apart by the
+# caller) and _boa_solve (initial state, the first slice of the search and, if
+# that finishes it, the front's arrays) are the two calls of a small search;
+# a longer one continues from the state _boa_solve returns with _boa_run and
+# ends with _boa_finish.
+
+#: Entries of the counts array of :func:`_boa_finish`.
+C_EXPANDED, C_GENERATED, C_ROWS, C_FREE, C_SOLS, C_EDGES, C_PEAK = range(7)
+
+
+@numba.njit(cache=True)
+def _boa_prepare(occ, pot, gr, gc, corner_cutting):
+    """The move masks and the length and vulnerability heuristics of a
+    two-objective search: ``(mask, hs, hd, hv)`` as
+    :func:`gapath.planners._exact_heuristics._free_heuristics` (without the
+    turn heuristic), except that ``mask`` has no move into a cell from which
+    the goal cannot be reached (``hv == inf``; BOA* never generates a label
+    there)."""
+    h, w = occ.shape
+    n = h * w
+    goal = gr * w + gc
+    mask = _move_masks(occ, corner_cutting)
+    hs = np.full(n, -1, np.int64)
+    hd = np.full(n, -1, np.int64)
+    _length_to_go(mask, w, goal, hs, hd)
+    hv = np.full(n, np.inf)
+    _vulnerability_to_go(mask, pot, w, goal, hv)
+    # no move into a cell the goal cannot be reached from (the search's own test before)
+    off = np.empty(8, np.int64)
+    for d in range(8):
+        off[d] = DR[d] * w + DC[d]
+    for c in range(n):
+        m0 = mask[c]
+        mk = np.int64(m0)
+        for j in range(COUNT[m0]):
+            d = MOVES[m0, j]
+            if hv[c + off[d]] == np.inf:
+                mk &= ~(np.int64(1) << d)
+        mask[c] = mk
+    return mask, hs, hd, hv
+
+
+@numba.njit(cache=True)
+def _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges):
+    """Bytes of a search's arrays (``stats["peak_bytes"]``; the 1-entry turn
+    placeholder included, as for the other searches)."""
+    fixed = hs.nbytes + hd.nbytes + hv.nbytes + 8 + gmin.nbytes + first.nbytes
+    return fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + edges.nbytes
+
+
+@numba.njit(cache=True)
+def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_first, n_steps, max_labels):
+    """Start BOA* (:func:`_boa_run`) and run at most ``n_steps`` pops.
+
+    Returns ``(status, result, state)``: when the search is done, ``result``
+    is what :func:`_boa_finish` returns and ``state`` is None; otherwise
+    (PAUSED or OVER_BUDGET) ``result`` is None and ``state`` is ``(gmin,
+    first, li, lf, sols, hk, hid, st, stf, edges, est)``, from which
+    :func:`_boa_run` continues. (A None is returned at no cost; every array
+    costs Python a fraction of a microsecond.)"""
+    h, w = occ.shape
+    ht = np.zeros(1, np.int64)
+    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
+        pot, sr, sc, w, cell_size, MODE_CELL, OBJ_LEN, OBJ_VUL, hs, hd, hv, ht, h * w
+    )
+    # one float per label (the vulnerability; _free_init's second column, RUNMIN, is
+    # not used by BOA*): twice as many labels per cache line
+    lf1 = np.empty((lf.shape[0], 1))
+    lf1[0, F_VUL] = lf[0, F_VUL]
+    lf = lf1
+    edges = np.empty((1024 if ties else 16, 3), np.int32)
+    est = np.zeros(1, np.int64)
+    li, lf, sols, hk, hid, edges, status = _boa_run(
+        occ, pot, gr, gc, cell_size, mask, hs, hd, hv, gmin, first, li, lf, sols, hk, hid, st, stf,
+        edges, est, n_steps, max_labels, ties,
+    )  # fmt: skip
+    if status != DONE:
+        return status, None, (gmin, first, li, lf, sols, hk, hid, st, stf, edges, est)
+    peak = _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges)
+    result = _boa_finish(li, lf, sols, st, edges, est[0], pot, w, cell_size, ties, len_first, peak)
+    return status, result, None
+
+
+@numba.njit(cache=True)
+def _boa_finish(li, lf, sols, st, edges, n_edges, pot, w, cell_size, ties, len_first, peak):
+    """The front of a finished search: its paths, the tolerance filter and
+    the final order, as arrays.
+
+    With ``ties`` and recorded edges, the smoothest path of each solution
+    (:func:`_smoothest`); otherwise each solution's own path (without tie
+    edges the DAG of :func:`_smoothest` is the labels' tree: the same path
+    and, summed in the same order, the same objectives). Among
+    tolerance-equal vectors the front keeps the smoothest path, then the
+    shortest (``_tolerant_front`` in the order of ``np.lexsort((length,
+    turns))``), and sorts the points lexicographically (``len_first``: length
+    is the first column of ``F``, else vulnerability).
+
+    Returns ``(F, smoothness, cells, offsets, counts)``: ``F`` (k, 2), the
+    path of point ``i`` is ``cells[offsets[i]:offsets[i + 1]]``, ``counts``
+    the int64 figures indexed by ``C_*`` (``C_PEAK``: ``peak`` plus the
+    dynamic programme's scratch memory).
+    """
+    n_sols = st[S_SOLS]
+    sols = sols[:n_sols]
+    if ties and n_edges > 0:
+        cells, offsets, ns, nd, turns, vul, scratch = _smoothest(li, st[S_N], sols, edges, n_edges, pot, w)
+        peak += scratch
+    else:
+        cells, offsets = _trace(li, sols, w)
+        ns = np.empty(n_sols, np.int64)
+        nd = np.empty(n_sols, np.int64)
+        turns = np.empty(n_sols, np.int64)
+        vul = np.empty(n_sols)
+        for i in range(n_sols):
+            x = sols[i]
+            ns[i] = li[x, NS]
+            nd[i] = li[x, ND]
+            turns[i] = li[x, TURNS]
+            vul[i] = lf[x, F_VUL]
+    steps = np.empty(n_sols)
+    F = np.empty((n_sols, 2))
+    for i in range(n_sols):
+        steps[i] = ns[i] + SQRT2 * nd[i]
+        length = steps[i] * cell_size
+        F[i, 0] = length if len_first else vul[i]
+        F[i, 1] = vul[i] if len_first else length
+    # np.lexsort((steps, turns)) by two stable sorts: the smoothest, then the shortest first
+    p = np.argsort(steps, kind="mergesort")
+    order = p[np.argsort(turns[p], kind="mergesort")]
+    keep = _tolerant_front(F, order)
+    # lexicographic order of F (np.lexsort(F[keep].T[::-1]))
+    p = np.argsort(F[keep, 1], kind="mergesort")
+    keep = keep[p[np.argsort(F[keep[p], 0], kind="mergesort")]]
+    k = len(keep)
+    out_f = np.empty((k, 2))
+    smooth = np.empty(k)
+    out_off = np.zeros(k + 1, np.int64)
+    for t in range(k):
+        i = keep[t]
+        out_f[t, 0] = F[i, 0]
+        out_f[t, 1] = F[i, 1]
+        smooth[t] = turns[i] * QUARTER_PI
+        out_off[t + 1] = out_off[t] + offsets[i + 1] - offsets[i]
+    out_cells = np.empty((out_off[k], 2), np.int64)
+    for t in range(k):
+        i = keep[t]
+        a = out_off[t]
+        for j in range(offsets[i], offsets[i + 1]):
+            out_cells[a, 0] = cells[j, 0]
+            out_cells[a, 1] = cells[j, 1]
+            a += 1
+    counts = np.zeros(7, np.int64)
+    counts[C_EXPANDED] = st[S_EXPANDED]
+    counts[C_GENERATED] = st[S_GENERATED]
+    counts[C_ROWS] = st[S_N]
+    counts[C_FREE] = st[S_N_FREE]
+    counts[C_SOLS] = n_sols
+    counts[C_EDGES] = n_edges
+    counts[C_PEAK] = peak
+    return out_f, smooth, out_cells, out_off, counts

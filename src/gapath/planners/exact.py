@@ -59,7 +59,20 @@ from gapath.errors import ConfigError, LabelBudgetError, NoPathError
 from gapath.grid import SQRT2
 from gapath.monotone import Frame, expand_profiles, split_paths
 from gapath.objectives import OBJECTIVES, QUARTER_PI, objective_index
-from gapath.planners._boa_kernels import _boa_run, _smoothest
+from gapath.planners._boa_kernels import (
+    C_EDGES,
+    C_EXPANDED,
+    C_FREE,
+    C_GENERATED,
+    C_PEAK,
+    C_ROWS,
+    C_SOLS,
+    _boa_bytes,
+    _boa_finish,
+    _boa_prepare,
+    _boa_run,
+    _boa_solve,
+)
 from gapath.planners._exact_heuristics import _free_prepare
 from gapath.planners._exact_kernels import (
     DONE,
@@ -644,7 +657,8 @@ def free_front(
     max_labels : int, optional
         Label budget: the most labels held at once (the rows of dropped
         labels are recycled, so this bounds the memory of the search, about
-        44 bytes a label plus 32 per open-list entry). None: no budget.
+        44 bytes a label plus 32 per open-list entry; 36 and 24 for length and
+        vulnerability). None: no budget.
     progress : callable, optional
         Called about ten times a second, and once at the end, with a dict
         ``phase="free"``, ``expansions``, ``generated``, ``labels``, ``open``
@@ -829,6 +843,8 @@ def free_front(
     t0 = time.perf_counter()
     occ = np.ascontiguousarray(workspace.occ)
     pot = np.ascontiguousarray(workspace.potential, dtype=np.float64)
+    if mode == MODE_CELL:  # (length, vulnerability): BOA*
+        return _boa_front(workspace, names, occ, pot, budget, progress, tie_break == "smoothest", t0)
     (sr, sc), (gr, gc) = workspace.start, workspace.goal
     h, w = workspace.shape
     cs = float(workspace.cell_size)
@@ -842,11 +858,7 @@ def free_front(
         mask, hs, hd, hv, ht, *state = _free_prepare(occ, pot, sr, sc, gr, gc, cs, cc, mode, P, Q)
         t_heur = time.perf_counter() - t0
         if hv[sr * w + sc] == np.inf:
-            raise NoPathError(
-                f"no feasible path from {workspace.start} to {workspace.goal} in workspace "
-                f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
-                f"corner_cutting={workspace.corner_cutting})"
-            )
+            raise _no_path(workspace)
         args = (
             occ,
             pot,
@@ -865,19 +877,9 @@ def free_front(
         total = {"expansions": 0, "generated": 0, "labels": 0, "peak_bytes": 0}
         ties = tie_break == "smoothest"
         li, lf, sols, st, edges, n_edges = _search_pass(*args, ties, total, t0)
-        after = mode == MODE_CELL and ties  # the smoothest path is chosen after the search
-        if after:
-            # the smoothest path of each solution over the tied in-edges; its objectives
-            # recomputed along it (a tied path may sum the vulnerability in another order)
-            cells, offsets, ns, nd, turns, vul, scratch = _smoothest(
-                li, int(st[S_N]), sols, edges, n_edges, pot, w
-            )
-            interrupt.check()
-            total["peak_bytes"] += int(scratch)
 
-    if not after:
-        cells, offsets = _trace(li, sols, w)
-        ns, nd, turns, vul = li[sols, NS], li[sols, ND], li[sols, TURNS], lf[sols, F_VUL]
+    cells, offsets = _trace(li, sols, w)
+    ns, nd, turns, vul = li[sols, NS], li[sols, ND], li[sols, TURNS], lf[sols, F_VUL]
     values = {
         "length": (ns + SQRT2 * nd) * cs,
         "vulnerability": vul,
@@ -903,6 +905,118 @@ def free_front(
         smoothness=values["smoothness"][keep],
         stats=stats,
     )
+
+
+def _no_path(workspace) -> NoPathError:
+    """The error of a free search whose goal cannot be reached."""
+    h, w = workspace.shape
+    return NoPathError(
+        f"no feasible path from {workspace.start} to {workspace.goal} in workspace "
+        f"{workspace.name!r} ({h}x{w}, {workspace.n_obstacles} obstacles, "
+        f"corner_cutting={workspace.corner_cutting})"
+    )
+
+
+def _boa_front(workspace, names, occ, pot, budget, progress, ties, t0) -> ExactFront:
+    """:func:`free_front` on (length, vulnerability), in either column order:
+    BOA* (:mod:`gapath.planners._boa_kernels`). A small search is two kernel
+    calls (heuristics; search and result arrays); a longer one continues in
+    slices like :func:`_search_pass` (progress, Ctrl-C, the budget)."""
+    (sr, sc), (gr, gc) = workspace.start, workspace.goal
+    w = workspace.shape[1]
+    cs = float(workspace.cell_size)
+    len_first = names[0] == "length"
+    with _DeferredInterrupt(lazy=True) as interrupt:
+        mask, hs, hd, hv = _boa_prepare(occ, pot, gr, gc, bool(workspace.corner_cutting))
+        t1 = time.perf_counter()
+        t_heur = t1 - t0
+        if hv[sr * w + sc] == np.inf:
+            raise _no_path(workspace)
+        slices = _Slices(1 << 14, 1 << 10, 1 << 26)
+        status, result, state = _boa_solve(
+            occ, pot, sr, sc, gr, gc, cs, mask, hs, hd, hv, ties, len_first, slices.n, budget
+        )
+        interrupt.check()
+        if result is None or progress is not None:
+            result = _boa_slices(
+                workspace, occ, pot, mask, hs, hd, hv, ties, len_first, budget, progress, interrupt,
+                slices, status, result, state, t0, t1,
+            )  # fmt: skip
+    F, smoothness, cells, offsets, counts = result
+    stats = {
+        "expansions": int(counts[C_EXPANDED]),
+        "generated": int(counts[C_GENERATED]),
+        "labels": int(counts[C_ROWS]),
+        "peak_bytes": int(counts[C_PEAK]),
+    }
+    if ties:
+        stats["tie_edges"] = int(counts[C_EDGES])
+    stats["solutions"] = int(counts[C_SOLS])
+    stats["heuristic_seconds"] = t_heur
+    stats["seconds"] = time.perf_counter() - t0
+    return ExactFront(
+        objectives=names,
+        F=F,
+        paths=[cells[offsets[i] : offsets[i + 1]] for i in range(len(F))],
+        profiles=None,
+        smoothness=smoothness,
+        stats=stats,
+    )
+
+
+def _boa_slices(
+    workspace, occ, pot, mask, hs, hd, hv, ties, len_first, budget, progress, interrupt,
+    slices, status, result, state, t0, t1,
+):  # fmt: skip
+    """The rest of a BOA* search that did not end in its first slice (or
+    reports progress): slices of :func:`_boa_run`, then :func:`_boa_finish`."""
+    (gr, gc), w = workspace.goal, workspace.shape[1]
+    cs = float(workspace.cell_size)
+    pops = 0
+    while True:
+        now = time.perf_counter()
+        if result is not None:  # done (reported once, for the progress callback)
+            counts = result[4]
+            stats = {
+                "expansions": int(counts[C_EXPANDED]),
+                "generated": int(counts[C_GENERATED]),
+                "labels": int(counts[C_ROWS] - counts[C_FREE]),
+                "open": 0,
+                "solutions": int(counts[C_SOLS]),
+                "seconds": now - t0,
+            }
+            progress({"phase": "free", **stats})
+            return result
+        gmin, first, li, lf, sols, hk, hid, st, stf, edges, est = state
+        if status == PAUSED:  # a longer search: hold Ctrl-C from now on
+            interrupt.arm()
+        slices.update(int(st[S_POPS]) - pops, now - t1)
+        stats = {
+            "expansions": int(st[S_EXPANDED]),
+            "generated": int(st[S_GENERATED]),
+            "labels": int(st[S_N] - st[S_N_FREE]),
+            "open": int(st[S_SIZE]),
+            "solutions": int(st[S_SOLS]),
+            "seconds": now - t0,
+        }
+        if status == OVER_BUDGET:
+            raise _free_budget_error(budget, stats)
+        if status == DONE:
+            peak = _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges)
+            result = _boa_finish(li, lf, sols, st, edges, est[0], pot, w, cs, ties, len_first, peak)
+            interrupt.check()
+            if progress is None:
+                return result
+            continue
+        if progress is not None:
+            progress({"phase": "free", **stats})
+        pops, t1 = int(st[S_POPS]), time.perf_counter()
+        li, lf, sols, hk, hid, edges, status = _boa_run(
+            occ, pot, gr, gc, cs, mask, hs, hd, hv, gmin, first, li, lf, sols, hk, hid, st, stf,
+            edges, est, slices.n, budget, ties,
+        )  # fmt: skip
+        interrupt.check()
+        state = (gmin, first, li, lf, sols, hk, hid, st, stf, edges, est)
 
 
 def _search_pass(
