@@ -51,6 +51,14 @@ Measures (``metrics.hypervolume``, reference point 1.1 after normalising)
     many planner points no GA point dominates (SPEC tolerance 1e-9
     relative), front sizes, wall and CPU seconds.
 
+Sum front (``--sum-front FILE``, after a run)
+    For the ``elevation`` instances of FILE: the exact front of (length,
+    elevation *summed* over the cells) (:func:`gapath.planners.exact.free_front`
+    with ``elevation_sum``: every path any planner of the summed surrogate
+    could return, the non-supported ones included), each path evaluated on the
+    mean, its non-dominated set, HV with the instance's stored normalisation:
+    ``hv_sum_front`` and ``ga_over_sum_front`` (median GA HV over it).
+
 Output: one JSON line per GA run (``"kind": "run"``) and one per instance and
 pair (``"kind": "instance"``, with the median and range over seeds), on
 stdout and appended to ``--out``. ``--table FILE`` prints the Markdown table of
@@ -81,7 +89,7 @@ from gapath.callbacks import population_arrays
 from gapath.costmap import Costmap, elevation_from_dem, fractal_terrain
 from gapath.errors import NoPathError
 from gapath.grid import path_length
-from gapath.metrics import close, hypervolume, normalisation_bounds, nondominated
+from gapath.metrics import close, hypervolume, nondominated, normalisation_bounds
 from gapath.planners import weighted_sum_astar
 from gapath.planners.astar import astar
 from gapath.solver import solve
@@ -225,7 +233,16 @@ class FirstGeneration(Callback):
 def run_ga(ws, cm, pair, seed, pop, gen):
     cb = FirstGeneration()
     c0, t0 = time.process_time(), time.perf_counter()
-    r = solve(ws, objectives=("length", pair), paths="free", costmap=cm, pop_size=pop, n_gen=gen, seed=seed, callback=cb)
+    r = solve(
+        ws,
+        objectives=("length", pair),
+        paths="free",
+        costmap=cm,
+        pop_size=pop,
+        n_gen=gen,
+        seed=seed,
+        callback=cb,
+    )
     wall, cpu = time.perf_counter() - t0, time.process_time() - c0
     # objectives recomputed from the paths (the problem's F must agree)
     F = np.array([true_objectives(cm, p, pair) for p in r.front.paths]).reshape(-1, 2)
@@ -279,6 +296,7 @@ def study(name, ws, cm, pair, seeds, pop, gen, n_weights, emit):
             wall_s=round(r["wall"], 2),
             cpu_s=round(r["cpu"], 2),
             n_eval=r["n_eval"],
+            front=r["G"].tolist(),
         )
         if exact is not None:
             row.update(
@@ -327,6 +345,37 @@ def study(name, ws, cm, pair, seeds, pop, gen, n_weights, emit):
     emit(summary)
 
 
+def sum_fronts(path, emit):
+    """``--sum-front``: the exact summed-surrogate front of every elevation instance."""
+    from gapath.planners.exact import free_front
+
+    rows = [json.loads(x) for x in Path(path).read_text().splitlines() if x.strip()]
+    for r in rows:
+        if r.get("kind") != "instance" or r["pair"] != "elevation":
+            continue
+        ws, cm = instances([r["instance"]])[r["instance"]]
+        t0 = time.perf_counter()
+        fr = free_front(ws, ["length", "elevation_sum"], costmap=cm)
+        sec = time.perf_counter() - t0
+        S = front_of([true_objectives(cm, p, "elevation") for p in fr.paths])
+        hv_s = hypervolume(S, r["ideal"], r["nadir"])
+        emit(
+            dict(
+                kind="sum_front",
+                instance=r["instance"],
+                pair="elevation",
+                n_sum_exact=len(fr.paths),
+                n_sum_front=len(S),
+                sum_front_s=round(sec, 3),
+                hv_sum_front=hv_s,
+                sum_front_over_planner=hv_s / r["hv_planner"],
+                ga_over_sum_front={k: v / hv_s for k, v in r["hv_ga"].items()},
+                gen0_over_sum_front={k: v / hv_s for k, v in r["hv_gen0"].items()},
+                sum_front=S.tolist(),
+            )
+        )
+
+
 def _fmt(s, digits=4):
     if s is None:
         return "-"
@@ -367,9 +416,21 @@ def main(argv=None):
     ap.add_argument("--weights", type=int, default=101)
     ap.add_argument("--out", default=None, help="JSONL file the lines are appended to")
     ap.add_argument("--table", default=None, help="print the Markdown table of a JSONL file and exit")
+    ap.add_argument(
+        "--sum-front",
+        default=None,
+        help="exact summed-surrogate fronts of a JSONL file's elevation instances",
+    )
     a = ap.parse_args(argv)
     if a.table:
         print(table(a.table))
+        return 0
+    if a.sum_front:
+        with open(a.out or os.devnull, "a") as out:
+            sum_fronts(
+                a.sum_front,
+                lambda row: (print(json.dumps(row), flush=True), out.write(json.dumps(row) + "\n")),
+            )
         return 0
     names = [n.strip() for n in a.instances.split(",") if n.strip()]
     pairs = [p.strip() for p in a.pairs.split(",") if p.strip()]
@@ -386,7 +447,19 @@ def main(argv=None):
             out.write(line + "\n")
             out.flush()
 
-    emit(dict(kind="settings", host=os.uname().nodename, cpus=os.cpu_count(), date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()), pop=a.pop, gen=a.gen, seeds=seeds, weights=a.weights, argv=sys.argv[1:]))
+    emit(
+        dict(
+            kind="settings",
+            host=os.uname().nodename,
+            cpus=os.cpu_count(),
+            date=time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
+            pop=a.pop,
+            gen=a.gen,
+            seeds=seeds,
+            weights=a.weights,
+            argv=sys.argv[1:],
+        )
+    )
     for name, (ws, cm) in instances(names).items():
         for pair in pairs:
             study(name, ws, cm, pair, seeds, a.pop, a.gen, a.weights, emit)

@@ -748,9 +748,7 @@ class Costmap:
         ConfigError
             On unknown objectives or a malformed path.
         """
-        names = (
-            self.objective_names if objectives is None else self.check_objectives(objectives, maxima=True)
-        )
+        names = self.objective_names if objectives is None else self.check_objectives(objectives, maxima=True)
         p = check_path(path, self.workspace.shape)
         d = np.diff(p, axis=0)
         out = {}
