@@ -40,7 +40,13 @@ Path objectives (paper eqs. 4-7)
     * ``solar`` (F3) = ``sum_k sigma_k``, a sum over the steps (eq. 6 has no
       ``1/n``), with ``sigma_k`` defined in :meth:`Costmap.solar_cost`;
     * ``risk`` (F4) = ``sum_i r(p_i) / n``, the mean over the waypoints;
-    * a user layer ``L`` = ``sum_i L(p_i) / n``, like elevation and risk.
+    * a user layer ``L`` = ``sum_i L(p_i) / n``, like elevation and risk;
+    * ``<layer>_max`` (``risk_max``, ``elevation_max``, a user layer's name +
+      ``_max``) = ``max_i L(p_i)``, the worst cell of the path, start and
+      goal included (worst-case risk; not in the paper). Like the mean, a
+      maximum is not a sum over the steps: the GA problems take it, the
+      graph-search planners (cost sums) do not. A layer whose own name ends
+      in ``_max`` keeps that name for itself (the real layer wins).
 
 Errors
     Unknown layer names, layers of the wrong shape, NaN, infinite or negative
@@ -70,6 +76,7 @@ __all__ = [
     "PLAN_LAYERS",
     "build_costmap",
     "CELL_MEAN",
+    "CELL_MAX",
     "elevation_from_dem",
     "fractal_terrain",
     "load_dem",
@@ -88,8 +95,12 @@ _DERIVED = ("distance", "heuristic", "solar")
 #: Names that cannot be used for user layers.
 _RESERVED = _DERIVED + ("length", "vulnerability", "smoothness", "interfering")
 
-#: Aggregation codes of the layer objectives (numba kernels).
-CELL_MEAN, STEP_SUM = 0, 1
+#: Aggregation codes of the layer objectives (numba kernels): the mean of a
+#: cell layer over the path's cells, the solar cost summed over the steps,
+#: the maximum of a cell layer over the path's cells.
+CELL_MEAN, STEP_SUM, CELL_MAX = 0, 1, 2
+#: Suffix of the worst-case (maximum over the path's cells) objectives.
+MAX_SUFFIX = "_max"
 
 
 # ---------------------------------------------------------------------------
@@ -505,23 +516,72 @@ class Costmap:
         and heuristic layers), then every other layer except ``heuristic``."""
         return ("length",) + tuple(n for n in self.names if n not in ("distance", "heuristic"))
 
+    @property
+    def max_objective_names(self) -> tuple[str, ...]:
+        """The worst-case objectives ``<layer>_max`` (the maximum of a cell
+        layer over the path's cells), one per cell layer, except where a
+        layer already has that name.
+
+        Examples
+        --------
+        >>> from gapath import Workspace
+        >>> Costmap(Workspace(np.zeros((3, 3), bool)), risk=(1, 1)).max_objective_names
+        ('risk_max',)
+        """
+        cell = [n for n in self.names if n not in _DERIVED]
+        return tuple(n + MAX_SUFFIX for n in cell if n + MAX_SUFFIX not in self._layers)
+
+    def base_layer(self, name: str) -> str:
+        """The cell layer an objective reads: ``name`` itself, or for a
+        worst-case objective ``<layer>_max`` its ``<layer>``.
+
+        Raises
+        ------
+        ConfigError
+            If ``name`` is not a layer objective of this costmap (``length``
+            and ``solar`` read no cell layer).
+        """
+        self.check_objectives([name], maxima=True)
+        if name in ("length", "solar"):
+            raise ConfigError(f"objective {name!r} reads no cell layer")
+        if name in self._layers:
+            return name
+        return name[: -len(MAX_SUFFIX)]
+
     def aggregation(self, name: str) -> int:
         """How objective ``name`` sums up along a path: :data:`STEP_SUM`
-        (``solar``) or :data:`CELL_MEAN` (cell layers).
+        (``solar``), :data:`CELL_MEAN` (cell layers) or :data:`CELL_MAX`
+        (``<layer>_max``).
 
         Raises
         ------
         ConfigError
             If ``name`` is not a layer objective of this costmap.
+
+        Examples
+        --------
+        >>> from gapath import Workspace
+        >>> cm = Costmap(Workspace(np.zeros((3, 3), bool)), risk=(1, 1))
+        >>> [cm.aggregation(n) == a for n, a in (("risk", CELL_MEAN), ("risk_max", CELL_MAX))]
+        [True, True]
         """
-        self.check_objectives([name])
+        self.check_objectives([name], maxima=True)
         if name == "length":
             raise ConfigError("'length' is not a layer objective (it is the path length)")
-        return STEP_SUM if name == "solar" else CELL_MEAN
+        if name == "solar":
+            return STEP_SUM
+        return CELL_MEAN if name in self._layers else CELL_MAX
 
-    def check_objectives(self, objectives) -> tuple[str, ...]:
+    def check_objectives(self, objectives, *, maxima: bool = False) -> tuple[str, ...]:
         """``objectives`` (sequence or comma-separated string) as a tuple of
         names, each one a path objective of this costmap.
+
+        Parameters
+        ----------
+        objectives : sequence of str or str
+        maxima : also accept the worst-case objectives
+            (:attr:`max_objective_names`; the GA problems take them, the
+            graph-search planners, which minimise cost sums, do not).
 
         Raises
         ------
@@ -534,10 +594,16 @@ class Costmap:
         names = tuple(objectives)
         if not names:
             raise ConfigError("at least one objective is needed")
+        allowed = self.objective_names + (self.max_objective_names if maxima else ())
         for n in names:
             if not isinstance(n, str):
                 raise ConfigError(f"objective names must be strings, got {n!r}")
-            if n not in self.objective_names:
+            if n not in allowed:
+                if not maxima and n in self.max_objective_names:
+                    raise ConfigError(
+                        f"objective {n!r} (the worst cell of the path) is not a sum along the "
+                        f"path; graph-search planners minimise sums (the GA problems take it)"
+                    )
                 raise ConfigError(self._unknown(n, objective=True))
         for n in names:
             if names.count(n) > 1:
@@ -682,7 +748,7 @@ class Costmap:
         ConfigError
             On unknown objectives or a malformed path.
         """
-        names = self.objective_names if objectives is None else self.check_objectives(objectives)
+        names = self.objective_names if objectives is None else self.check_objectives(objectives, maxima=True)
         p = check_path(path, self.workspace.shape)
         d = np.diff(p, axis=0)
         out = {}
@@ -691,8 +757,10 @@ class Costmap:
                 out[n] = path_length(p, self.workspace.cell_size)
             elif n == "solar":
                 out[n] = float(np.sum(self.solar_cost(d[:, 0], d[:, 1], np.arange(len(d)))))
-            else:
+            elif n in self._layers:
                 out[n] = float(np.mean(self._layers[n][p[:, 0], p[:, 1]]))
+            else:  # <layer>_max
+                out[n] = float(np.max(self._layers[self.base_layer(n)][p[:, 0], p[:, 1]]))
         return out
 
     def with_workspace(self, workspace) -> Costmap:
@@ -742,8 +810,9 @@ def evaluate_layer_paths(paths, lengths, layers, agg, solar_angle0, solar_rate):
     lengths : (N,) int array, the number of cells of each path.
     layers : (k, H, W) float array, the cell layers (unused for ``solar``).
     agg : (k,) int array: :data:`CELL_MEAN`, the mean of layer ``j`` over the
-        path's cells, or :data:`STEP_SUM`, the solar cost summed over the
-        steps (:meth:`Costmap.solar_cost`).
+        path's cells, :data:`CELL_MAX`, its maximum over the path's cells,
+        or :data:`STEP_SUM`, the solar cost summed over the steps
+        (:meth:`Costmap.solar_cost`).
     solar_angle0, solar_rate : the costmap's solar settings.
 
     Returns
@@ -761,6 +830,13 @@ def evaluate_layer_paths(paths, lengths, layers, agg, solar_angle0, solar_rate):
                 for q in range(m):
                     acc += layers[j, paths[i, q, 0], paths[i, q, 1]]
                 out[i, j] = acc / m
+            elif agg[j] == CELL_MAX:
+                acc = layers[j, paths[i, 0, 0], paths[i, 0, 1]]
+                for q in range(1, m):
+                    v = layers[j, paths[i, q, 0], paths[i, q, 1]]
+                    if v > acc:
+                        acc = v
+                out[i, j] = acc
             else:
                 for q in range(1, m):
                     dr = paths[i, q, 0] - paths[i, q - 1, 0]
@@ -794,7 +870,8 @@ def evaluate_layer_profiles(entries, exits, col0, layers, agg, flip, transpose, 
     layers : (k, Hf, Wf) float array, the cell layers in frame orientation
         (unused rows for ``solar``).
     agg : (k,) int array, :data:`CELL_MEAN` (mean of the layer over the
-        path's cells, start and goal included) or :data:`STEP_SUM` (the
+        path's cells, start and goal included), :data:`CELL_MAX` (its
+        maximum over the path's cells) or :data:`STEP_SUM` (the
         solar cost summed over the steps, with their true indices
         ``0, 1, ...`` and their directions mapped back to the workspace).
     flip, transpose : the frame's maps (:class:`gapath.monotone.Frame`);
@@ -812,6 +889,9 @@ def evaluate_layer_profiles(entries, exits, col0, layers, agg, flip, transpose, 
     acc = np.zeros(n_obj)
     for i in range(n):
         acc[:] = 0.0
+        for j in range(n_obj):
+            if agg[j] == CELL_MAX:
+                acc[j] = -np.inf
         n_cells = 0
         step = 0
         for k in range(n_cols):
@@ -840,6 +920,8 @@ def evaluate_layer_profiles(entries, exits, col0, layers, agg, flip, transpose, 
                 for j in range(n_obj):
                     if agg[j] == CELL_MEAN:
                         acc[j] += layers[j, r, c]
+                    elif agg[j] == CELL_MAX and layers[j, r, c] > acc[j]:
+                        acc[j] = layers[j, r, c]
                 if r == b:
                     break
                 # a vertical step inside the column
@@ -873,7 +955,7 @@ class LayerProfileEvaluator:
     """
 
     def __init__(self, costmap: Costmap, frame, objectives):
-        names = costmap.check_objectives(objectives)
+        names = costmap.check_objectives(objectives, maxima=True)
         if "length" in names:
             raise ConfigError(
                 "'length' is computed by the frame's objective kernel, not as a layer objective"
@@ -889,14 +971,14 @@ class LayerProfileEvaluator:
         stack = np.zeros((len(names), fh, fw))
         for j, name in enumerate(names):
             if name != "solar":
-                arr = costmap.layer(name)
+                arr = costmap.layer(costmap.base_layer(name))
                 if frame.transpose:
                     arr = arr.T
                 if frame.flip:
                     arr = arr[:, ::-1]
                 stack[j] = arr
         self._layers = np.ascontiguousarray(stack)
-        self._agg = np.array([STEP_SUM if n == "solar" else CELL_MEAN for n in names], np.int64)
+        self._agg = np.array([costmap.aggregation(n) for n in names], np.int64)
 
     def __call__(self, entries, exits) -> np.ndarray:
         return evaluate_layer_profiles(

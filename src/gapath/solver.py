@@ -89,6 +89,7 @@ def solve(
     adaptive_penalty=None,
     repair=None,
     refine=None,
+    costmap=None,
 ) -> SolveResult:
     """Run Ahmed & Deb's NSGA-II on ``workspace`` and return its front.
 
@@ -122,6 +123,9 @@ def solve(
         ``"free"`` (any simple 8-connected path); seeds from
         :class:`gapath.operators.sampling.free_sampling.FreeSampling` for
         free paths (``"astar"`` seeds as ``"weighted"``).
+    costmap : :class:`gapath.costmap.Costmap`, optional: its layer
+        objectives (``elevation``, ``risk``, ``risk_max``, ...) may be named
+        in ``objectives`` (passed to the problem).
     pop_size, n_gen : population size and generations (seeds: 500 x 500).
     seed : random seed; the same seed gives the same front, bit for bit.
     tiebreak : ``"smoothness"`` or ``None`` (see :func:`gapath.algorithms.paper_nsga2`).
@@ -193,6 +197,7 @@ def solve(
         encoding=encoding,
         constraints="constraint" if handling is not None else constraints,
         penalty=penalty,
+        **({} if costmap is None else {"costmap": costmap}),
     )
     encoding = problem.encoding.name
     if paths == "free":

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 from pymoo.core.problem import Problem
 
-from gapath.costmap import CELL_MEAN, STEP_SUM, evaluate_layer_paths
+from gapath.costmap import STEP_SUM, evaluate_layer_paths
 from gapath.encodings.free import DEFAULT_FREE_ENCODING, FREE_ENCODINGS, make_free_encoding
 from gapath.errors import ConfigError
 from gapath.objectives import INTERFERING, SMOOTHNESS, evaluate_paths
@@ -39,14 +39,15 @@ class FreePathProblem(Problem):
         outputs keep the same shape.
     penalty : penalty per interfering cell (default 1000).
     costmap : :class:`gapath.costmap.Costmap`, optional: layer objectives
-        (mean of a cell layer over the path's cells, ``solar`` summed over
-        the steps).
+        (mean of a cell layer over the path's cells, ``<layer>_max`` its
+        maximum over them, ``solar`` summed over the steps).
     **options : passed to the encoding (``n_via``, ``field_shape``, ``beta``,
         ``lam_range``).
 
     The decoders weigh the length against a per-cell cost: the potential
     field when ``vulnerability`` is an objective, plus every cell layer that
-    is an objective (layers are normalised to [0, 1]); the potential field
+    is an objective, a worst-case ``<layer>_max`` weighed by its layer
+    (layers are normalised to [0, 1]); the potential field
     when no objective is a cell cost.
 
     Raises
@@ -97,7 +98,7 @@ class FreePathProblem(Problem):
         self._layer_stack = self._layer_agg = None
         extra = None
         if self.layer_objectives:
-            costmap.check_objectives(self.layer_objectives)
+            costmap.check_objectives(self.layer_objectives, maxima=True)
             if tuple(costmap.shape) != tuple(workspace.shape):
                 raise ConfigError(
                     f"the costmap's grid {costmap.shape} differs from the workspace's {workspace.shape}"
@@ -106,11 +107,11 @@ class FreePathProblem(Problem):
             stack = np.zeros((len(self.layer_objectives), h, w))
             agg = np.empty(len(self.layer_objectives), np.int64)
             for j, n in enumerate(self.layer_objectives):
-                agg[j] = STEP_SUM if n == "solar" else CELL_MEAN
+                agg[j] = costmap.aggregation(n)
                 if n != "solar":
-                    stack[j] = costmap.layer(n)
+                    stack[j] = costmap.layer(costmap.base_layer(n))
             self._layer_stack, self._layer_agg = np.ascontiguousarray(stack), agg
-            cell_layers = [stack[j] for j in range(len(agg)) if agg[j] == CELL_MEAN]
+            cell_layers = [stack[j] for j in range(len(agg)) if agg[j] != STEP_SUM]
             if cell_layers:
                 extra = np.sum(cell_layers, axis=0)
                 if "vulnerability" in self.objectives:

@@ -49,7 +49,9 @@ def problem_settings(objectives, constraints, penalty, costmap=None):
     """
     names = objectives.split(",") if isinstance(objectives, str) else list(objectives)
     names = [n.strip() for n in names]
-    check_objective_names(names, () if costmap is None else costmap.objective_names)
+    check_objective_names(
+        names, () if costmap is None else costmap.objective_names + costmap.max_objective_names
+    )
     # layer objectives: metrics columns 4, 5, ... (after OBJECTIVES)
     layers = tuple(n for n in names if n not in OBJECTIVE_NAMES)
     base = [n for n in names if n in OBJECTIVE_NAMES]
@@ -97,7 +99,8 @@ class GridPathProblem(Problem):
     costmap : :class:`gapath.costmap.Costmap`, optional. Its layer objectives
         are computed by :func:`gapath.costmap.evaluate_layer_profiles` over
         the decoded column profiles (mean over the path's cells for cell
-        layers, sum over the steps for ``solar``); they get the same penalty
+        layers, maximum over them for ``<layer>_max``, sum over the steps
+        for ``solar``); they get the same penalty
         as the other objectives.
 
     Raises
