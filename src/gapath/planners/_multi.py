@@ -38,7 +38,9 @@ from gapath.planners._multi_kernels import (
     S_N_FREE,
     S_POPS,
     S_SIZE,
+    S_GOAL_TESTS,
     S_SOLS,
+    S_STATE_TESTS,
     STEP_LIMIT,
     TURNS,
     _cell_to_go,
@@ -263,8 +265,8 @@ def multi_front(
                 hfl[col] = _step_to_go(np.ascontiguousarray(table[0]), mask, w, goal)
         interrupt.check()
         t_heur = time.perf_counter() - t0
-        heads = np.full(n_cells + 1, -1, np.int32)  # the goal's set last
-        li, lg, lf, hid, sols, st = _k_init(
+        sidx = np.zeros((n_cells + 1, 3), np.int64)  # per-state set blocks, the goal's last
+        li, lg, lf, hid, sols, st, sv, si, sfree = _k_init(
             sr * w + sc, layers, okind, ocol, cs, hs, hd, ht, hfl, hop, psum, timed, n_float
         )
         fixed = sum(a.nbytes for a in (hs, hd, ht, hfl, layers, table, psum, hop, mask))
@@ -272,15 +274,15 @@ def multi_front(
         peak = 0
         while True:
             pops, t1 = st[S_POPS], time.perf_counter()
-            heads, li, lg, lf, hid, sols, status = _k_run(
+            sidx, li, lg, lf, hid, sols, sv, si, status = _k_run(
                 mask, w, goal, layers, table, okind, ocol, cs, hs, hd, ht, hfl, hop, psum,
-                timed, smooth, tie_break == "smoothest", heads, li, lg, lf, hid, sols, st,
-                slices.n, budget,
+                timed, smooth, tie_break == "smoothest", sidx, li, lg, lf, hid, sols, st,
+                sv, si, sfree, slices.n, budget,
             )  # fmt: skip
             interrupt.check()
             now = time.perf_counter()
             slices.update(st[S_POPS] - pops, now - t1)
-            peak = max(peak, fixed + sum(a.nbytes for a in (heads, li, lg, lf, hid, sols)))
+            peak = max(peak, fixed + sum(a.nbytes for a in (sidx, li, lg, lf, hid, sols, sv, si)))
             stats = {
                 "expansions": int(st[S_EXPANDED]),
                 "generated": int(st[S_GENERATED]),
@@ -329,6 +331,8 @@ def multi_front(
         "labels": int(st[S_N]),
         "peak_bytes": int(peak),
         "solutions": int(st[S_SOLS]),
+        "state_tests": int(st[S_STATE_TESTS]),
+        "goal_tests": int(st[S_GOAL_TESTS]),
         "heuristic_seconds": t_heur,
         "seconds": time.perf_counter() - t0,
         "search": "k-objective",
