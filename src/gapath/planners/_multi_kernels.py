@@ -275,6 +275,8 @@ B_OFF, B_CNT, B_CAP = range(3)
 M_TURNS, M_HEAD = range(2)
 #: Size classes of the pool's blocks (``4 << c`` rows).
 N_CLASS = 40
+#: Members per chunk of a block (chunk minima let a query skip a chunk).
+CHUNK = 16
 
 
 @numba.njit(cache=True)
@@ -307,9 +309,10 @@ def _covered(sv, si, off, cnt, q, qr, okind, tx, hx, at_goal, to_go, ties, smoot
         return False, 0
     i = _cut(sv, off, cnt, q[qr, 1]) - 1 if k > 1 else cnt - 1
     tested = 0
+    cm = k + max(k - 2, 0)  # first column of the chunk minima
+    top = i
     while i >= 0:
         r = off + i
-        i -= 1
         stop = False
         for j in range(2, k):
             if not _le(sv[r, k + j - 2], q[qr, j]):
@@ -317,6 +320,18 @@ def _covered(sv, si, off, cnt, q, qr, okind, tx, hx, at_goal, to_go, ties, smoot
                 break
         if stop:
             break
+        if k > 2 and (i == top or (i + 1) % CHUNK == 0):
+            # entering a chunk (from its end, or the cut): its minima first
+            c0 = off + (i // CHUNK) * CHUNK
+            skip = False
+            for j in range(2, k):
+                if not _le(sv[c0, cm + j - 2], q[qr, j]):
+                    skip = True
+                    break
+            if skip:
+                i = (i // CHUNK) * CHUNK - 1
+                continue
+        i -= 1
         tested += 1
         gap = 0 if at_goal else _gap(si[r, M_HEAD], hx)
         ok = True
@@ -352,7 +367,10 @@ def _covered(sv, si, off, cnt, q, qr, okind, tx, hx, at_goal, to_go, ties, smoot
 
 @numba.njit(cache=True)
 def _prefix_min(sv, off, cnt, k, first):
-    """Recompute the prefix minima of the block from member ``first`` on."""
+    """Recompute the prefix minima of the block from member ``first`` on, and
+    the minima of the chunks from ``first``'s on (kept in the chunk's first
+    row)."""
+    cm = k + max(k - 2, 0)
     for i in range(first, cnt):
         r = off + i
         for j in range(2, k):
@@ -360,6 +378,13 @@ def _prefix_min(sv, off, cnt, k, first):
             if i > 0 and sv[r - 1, k + j - 2] < v:
                 v = sv[r - 1, k + j - 2]
             sv[r, k + j - 2] = v
+    for c0 in range((first // CHUNK) * CHUNK, cnt, CHUNK):
+        for j in range(2, k):
+            v = sv[off + c0, j]
+            for i in range(c0 + 1, min(c0 + CHUNK, cnt)):
+                if sv[off + i, j] < v:
+                    v = sv[off + i, j]
+            sv[off + c0, cm + j - 2] = v
 
 
 @numba.njit(cache=True)
@@ -497,7 +522,7 @@ def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, t
     st[S_GENERATED] = 1
     st[S_FREE] = -1
     st[S_SPAN] = 1
-    sv = np.empty((1024, k + max(k - 2, 0)))
+    sv = np.empty((1024, k + 2 * max(k - 2, 0)))
     si = np.empty((1024, 2), np.int32)
     sfree = np.full(N_CLASS, -1, np.int64)
     return li, lg, lf, hid, sols, st, sv, si, sfree
