@@ -196,6 +196,19 @@ def path_objectives(workspace, path, objectives, costmap=None) -> dict[str, floa
     return out
 
 
+def _set_sizes(sidx) -> dict[str, float]:
+    """Sizes of the per-state sets at the end (non-empty ones) and of the goal's."""
+    cnt = sidx[:-1, 1]
+    cnt = cnt[cnt > 0]
+    return {
+        "states": int(len(cnt)),
+        "mean": float(cnt.mean()) if len(cnt) else 0.0,
+        "p90": float(np.percentile(cnt, 90)) if len(cnt) else 0.0,
+        "max": int(cnt.max()) if len(cnt) else 0,
+        "goal": int(sidx[-1, 1]),
+    }
+
+
 def multi_front(
     workspace, objectives, costmap=None, *, max_labels=None, progress=None, tie_break="smoothest"
 ):
@@ -332,6 +345,7 @@ def multi_front(
         "peak_bytes": int(peak),
         "solutions": int(st[S_SOLS]),
         "state_tests": int(st[S_STATE_TESTS]),
+        "set_sizes": _set_sizes(sidx),
         "goal_tests": int(st[S_GOAL_TESTS]),
         "heuristic_seconds": t_heur,
         "seconds": time.perf_counter() - t0,

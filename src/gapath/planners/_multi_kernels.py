@@ -276,7 +276,7 @@ M_TURNS, M_HEAD = range(2)
 #: Size classes of the pool's blocks (``4 << c`` rows).
 N_CLASS = 40
 #: Members per chunk of a block (chunk minima let a query skip a chunk).
-CHUNK = 16
+CHUNK = 8
 
 
 @numba.njit(cache=True)
@@ -419,6 +419,7 @@ def _insert(sv, si, sidx, sfree, st, s, q, qr, okind, tx, hx, at_goal):
         else:
             first = 0
     wr = first
+    n_before = cnt
     for i in range(first, cnt):
         r = off + i
         gap = 0 if at_goal else _gap(hx, si[r, M_HEAD])
@@ -471,18 +472,79 @@ def _insert(sv, si, sidx, sfree, st, s, q, qr, okind, tx, hx, at_goal):
             else:
                 hi = m
         pos = lo
-    for i in range(cnt, pos, -1):
+    if wr < n_before or k <= 2:  # members dropped: shift, recompute the minima after them
+        for i in range(cnt, pos, -1):
+            for cc in range(k):
+                sv[off + i, cc] = sv[off + i - 1, cc]
+            si[off + i, 0] = si[off + i - 1, 0]
+            si[off + i, 1] = si[off + i - 1, 1]
         for cc in range(k):
-            sv[off + i, cc] = sv[off + i - 1, cc]
-        si[off + i, 0] = si[off + i - 1, 0]
-        si[off + i, 1] = si[off + i - 1, 1]
+            sv[off + pos, cc] = q[qr, cc]
+        si[off + pos, M_TURNS] = tx
+        si[off + pos, M_HEAD] = hx
+        cnt += 1
+        sidx[s, B_CNT] = cnt
+        if k > 2:
+            _prefix_min(sv, off, cnt, k, min(pos, first))
+        return
+    _shift_in(sv, si, off, cnt, pos, q, qr, k, tx, hx)
+    sidx[s, B_CNT] = cnt + 1
+
+
+@numba.njit(cache=True)
+def _shift_in(sv, si, off, cnt, pos, q, qr, k, tx, hx):
+    """Insert a member at ``pos`` of a block of ``cnt`` members (k > 2) and
+    update the prefix and chunk minima incrementally (nothing was dropped)."""
+    cm = k + k - 2
+    for i in range(cnt, pos, -1):  # values and prefix minima move up one row
+        r = off + i
+        for cc in range(cm):
+            sv[r, cc] = sv[r - 1, cc]
+        si[r, 0] = si[r - 1, 0]
+        si[r, 1] = si[r - 1, 1]
+    r = off + pos
     for cc in range(k):
-        sv[off + pos, cc] = q[qr, cc]
-    si[off + pos, M_TURNS] = tx
-    si[off + pos, M_HEAD] = hx
-    cnt += 1
-    sidx[s, B_CNT] = cnt
-    _prefix_min(sv, off, cnt, k, min(pos, first))
+        sv[r, cc] = q[qr, cc]
+    si[r, M_TURNS] = tx
+    si[r, M_HEAD] = hx
+    for j in range(2, k):
+        v = q[qr, j]
+        if pos > 0 and sv[r - 1, k + j - 2] < v:
+            v = sv[r - 1, k + j - 2]
+        sv[r, k + j - 2] = v
+    for i in range(pos + 1, cnt + 1):  # the prefix minima after it: min with its values
+        r = off + i
+        same = True
+        for j in range(2, k):
+            if sv[r, k + j - 2] > q[qr, j]:
+                sv[r, k + j - 2] = q[qr, j]
+                same = False
+        if same:
+            break
+    n = cnt + 1
+    cp = pos // CHUNK
+    for c in range(cp, (n - 1) // CHUNK + 1):
+        c0 = off + c * CHUNK
+        end = min((c + 1) * CHUNK, n)
+        old = c * CHUNK < cnt  # the chunk existed: its minima are in row c0
+        out = (c + 1) * CHUNK < n  # a member left it for the next chunk
+        for j in range(2, k):
+            if old:
+                m = sv[c0, cm + j - 2]
+                inc = q[qr, j] if c == cp else sv[c0, j]
+                if out and sv[off + (c + 1) * CHUNK, j] <= m:
+                    m = sv[c0, j]  # the least may have left: recompute
+                    for i in range(c * CHUNK + 1, end):
+                        if sv[off + i, j] < m:
+                            m = sv[off + i, j]
+                elif inc < m:
+                    m = inc
+            else:
+                m = sv[c0, j]
+                for i in range(c * CHUNK + 1, end):
+                    if sv[off + i, j] < m:
+                        m = sv[off + i, j]
+            sv[c0, cm + j - 2] = m
 
 
 @numba.njit(cache=True, inline="always")
