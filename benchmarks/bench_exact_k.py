@@ -26,7 +26,9 @@ from __future__ import annotations
 
 import argparse
 import json
+import sys
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -40,6 +42,9 @@ MARS_SETS = {
     "LESR": (("length", "elevation_sum", "solar", "risk_sum"), 1.0),
 }
 LVS = ("length", "vulnerability", "smoothness")
+#: ``--reference``: the k-objective search before its contiguous sets
+#: (tests/_multi_reference.py, linked lists scanned linearly), for before/after figures.
+REFERENCE = None
 
 
 class _TimeUp(Exception):
@@ -56,7 +61,10 @@ def _run(ws, names, cm=None, search="auto", max_labels=None, max_seconds=None):
             raise _TimeUp
 
     try:
-        front = free_front(ws, names, costmap=cm, search=search, max_labels=max_labels, progress=progress)
+        if REFERENCE and cm is not None:
+            front = REFERENCE(ws, names, costmap=cm, max_labels=max_labels, progress=progress)
+        else:
+            front = free_front(ws, names, costmap=cm, search=search, max_labels=max_labels, progress=progress)
     except _TimeUp:
         return {
             "status": f"not finished in {max_seconds:g} s CPU",
@@ -95,10 +103,11 @@ def _warm_up():
 
     for rate in (0.0, 1.0):
         ws, cm = study_workspace(0, size=8, solar_rate=rate)
-        try:
-            free_front(ws, MARS_SETS["LESR0"][0], costmap=cm, max_labels=10**5)
-        except GapathError:
-            pass
+        for fn in (free_front, REFERENCE) if REFERENCE else (free_front,):
+            try:
+                fn(ws, MARS_SETS["LESR0"][0], costmap=cm, max_labels=10**5)
+            except GapathError:
+                pass
     ws = random_workspace((8, 8), 6, seed=0)
     free_front(ws, LVS, search="k")
     free_front(ws, LVS)
@@ -116,6 +125,7 @@ def mars(args):
                 budget = args.max_labels if key == "LESR" else None
                 rec = {
                     "part": "mars",
+                    "solver": "reference (linked lists)" if REFERENCE else "k-objective",
                     "map": ws.name,
                     "size": size,
                     "workspace": i,
@@ -153,7 +163,18 @@ def main():
     )
     ap.add_argument("--queries", type=int, default=3, help="three: random maps (10 %% obstacles), seeds 0..")
     ap.add_argument("--max-labels", type=int, default=20_000_000, help="budget of the timed-solar runs")
+    ap.add_argument(
+        "--reference",
+        action="store_true",
+        help="mars: run the previous k-objective search (tests/_multi_reference.py) instead",
+    )
     args = ap.parse_args()
+    if args.reference:
+        global REFERENCE
+        sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+        from _multi_reference import multi_front
+
+        REFERENCE = multi_front
     if args.size is None:
         args.size = 100 if args.part == "mars" else 64
     _warm_up()

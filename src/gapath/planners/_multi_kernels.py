@@ -496,12 +496,13 @@ def _shift_in(sv, si, off, cnt, pos, q, qr, k, tx, hx):
     """Insert a member at ``pos`` of a block of ``cnt`` members (k > 2) and
     update the prefix and chunk minima incrementally (nothing was dropped)."""
     cm = k + k - 2
-    for i in range(cnt, pos, -1):  # values and prefix minima move up one row
-        r = off + i
-        for cc in range(cm):
-            sv[r, cc] = sv[r - 1, cc]
-        si[r, 0] = si[r - 1, 0]
-        si[r, 1] = si[r - 1, 1]
+    wid = sv.shape[1]
+    fv = sv.reshape(-1)  # whole rows move up one row (a memmove)
+    for t in range((off + cnt + 1) * wid - 1, (off + pos + 1) * wid - 1, -1):
+        fv[t] = fv[t - wid]
+    fi = si.reshape(-1)
+    for t in range(2 * (off + cnt + 1) - 1, 2 * (off + pos + 1) - 1, -1):
+        fi[t] = fi[t - 2]
     r = off + pos
     for cc in range(k):
         sv[r, cc] = q[qr, cc]
@@ -526,11 +527,12 @@ def _shift_in(sv, si, off, cnt, pos, q, qr, k, tx, hx):
     for c in range(cp, (n - 1) // CHUNK + 1):
         c0 = off + c * CHUNK
         end = min((c + 1) * CHUNK, n)
-        old = c * CHUNK < cnt  # the chunk existed: its minima are in row c0
+        old = c * CHUNK < cnt  # the chunk existed: its minima are in its old first row
+        o0 = c0 + 1 if c * CHUNK >= pos else c0
         out = (c + 1) * CHUNK < n  # a member left it for the next chunk
         for j in range(2, k):
             if old:
-                m = sv[c0, cm + j - 2]
+                m = sv[o0, cm + j - 2]
                 inc = q[qr, j] if c == cp else sv[c0, j]
                 if out and sv[off + (c + 1) * CHUNK, j] <= m:
                     m = sv[c0, j]  # the least may have left: recompute
