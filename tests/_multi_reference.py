@@ -23,10 +23,6 @@ from __future__ import annotations
 import time
 
 import numpy as np
-
-from gapath.errors import ConfigError, NoPathError
-from gapath.grid import DC, DR, SQRT2, check_path
-from gapath.objectives import QUARTER_PI
 from _multi_reference_kernels import (
     DONE,
     K_CELL,
@@ -52,6 +48,10 @@ from _multi_reference_kernels import (
     _k_trace,
     _step_to_go,
 )
+
+from gapath.errors import ConfigError, NoPathError
+from gapath.grid import DC, DR, SQRT2, check_path
+from gapath.objectives import QUARTER_PI
 
 #: Objective names of the k-objective search that need no costmap.
 BASE_OBJECTIVES = ("length", "vulnerability", "smoothness")
