@@ -23,7 +23,8 @@ States
     A state is a cell, or with ``timed`` (a step cost that depends on the
     step index) a (step count, cell) pair, index ``steps * n_cells + cell``:
     two labels compare only when their future step costs are the same.
-    ``heads`` holds the head of each state's set, the goal's set last. The
+    Row ``s`` of ``sidx`` locates state ``s``'s set in the pool (see "per-state
+    sets" below), the goal's set last. The
     turn objective does not split states: a label with heading ``ha`` covers
     one with heading ``hb`` only after its turns are charged with the most
     the next turn can differ by (``_gap``).
