@@ -34,11 +34,13 @@ from gapath.planners._multi_kernels import (
     OVER_BUDGET,
     S_EXPANDED,
     S_GENERATED,
+    S_GOAL_TESTS,
     S_N,
     S_N_FREE,
     S_POPS,
     S_SIZE,
     S_SOLS,
+    S_STATE_TESTS,
     STEP_LIMIT,
     TURNS,
     _cell_to_go,
@@ -194,6 +196,19 @@ def path_objectives(workspace, path, objectives, costmap=None) -> dict[str, floa
     return out
 
 
+def _set_sizes(sidx) -> dict[str, float]:
+    """Sizes of the per-state sets at the end (non-empty ones) and of the goal's."""
+    cnt = sidx[:-1, 1]
+    cnt = cnt[cnt > 0]
+    return {
+        "states": int(len(cnt)),
+        "mean": float(cnt.mean()) if len(cnt) else 0.0,
+        "p90": float(np.percentile(cnt, 90)) if len(cnt) else 0.0,
+        "max": int(cnt.max()) if len(cnt) else 0,
+        "goal": int(sidx[-1, 1]),
+    }
+
+
 def multi_front(
     workspace, objectives, costmap=None, *, max_labels=None, progress=None, tie_break="smoothest"
 ):
@@ -263,8 +278,8 @@ def multi_front(
                 hfl[col] = _step_to_go(np.ascontiguousarray(table[0]), mask, w, goal)
         interrupt.check()
         t_heur = time.perf_counter() - t0
-        heads = np.full(n_cells + 1, -1, np.int32)  # the goal's set last
-        li, lg, lf, hid, sols, st = _k_init(
+        sidx = np.zeros((n_cells + 1, 3), np.int64)  # per-state set blocks, the goal's last
+        li, lg, lf, hid, sols, st, sv, si, sfree = _k_init(
             sr * w + sc, layers, okind, ocol, cs, hs, hd, ht, hfl, hop, psum, timed, n_float
         )
         fixed = sum(a.nbytes for a in (hs, hd, ht, hfl, layers, table, psum, hop, mask))
@@ -272,15 +287,15 @@ def multi_front(
         peak = 0
         while True:
             pops, t1 = st[S_POPS], time.perf_counter()
-            heads, li, lg, lf, hid, sols, status = _k_run(
+            sidx, li, lg, lf, hid, sols, sv, si, status = _k_run(
                 mask, w, goal, layers, table, okind, ocol, cs, hs, hd, ht, hfl, hop, psum,
-                timed, smooth, tie_break == "smoothest", heads, li, lg, lf, hid, sols, st,
-                slices.n, budget,
+                timed, smooth, tie_break == "smoothest", sidx, li, lg, lf, hid, sols, st,
+                sv, si, sfree, slices.n, budget,
             )  # fmt: skip
             interrupt.check()
             now = time.perf_counter()
             slices.update(st[S_POPS] - pops, now - t1)
-            peak = max(peak, fixed + sum(a.nbytes for a in (heads, li, lg, lf, hid, sols)))
+            peak = max(peak, fixed + sum(a.nbytes for a in (sidx, li, lg, lf, hid, sols, sv, si)))
             stats = {
                 "expansions": int(st[S_EXPANDED]),
                 "generated": int(st[S_GENERATED]),
@@ -329,6 +344,9 @@ def multi_front(
         "labels": int(st[S_N]),
         "peak_bytes": int(peak),
         "solutions": int(st[S_SOLS]),
+        "state_tests": int(st[S_STATE_TESTS]),
+        "set_sizes": _set_sizes(sidx),
+        "goal_tests": int(st[S_GOAL_TESTS]),
         "heuristic_seconds": t_heur,
         "seconds": time.perf_counter() - t0,
         "search": "k-objective",

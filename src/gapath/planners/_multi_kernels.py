@@ -23,7 +23,8 @@ States
     A state is a cell, or with ``timed`` (a step cost that depends on the
     step index) a (step count, cell) pair, index ``steps * n_cells + cell``:
     two labels compare only when their future step costs are the same.
-    ``heads`` holds the head of each state's set, the goal's set last. The
+    Row ``s`` of ``sidx`` locates state ``s``'s set in the pool (see "per-state
+    sets" below), the goal's set last. The
     turn objective does not split states: a label with heading ``ha`` covers
     one with heading ``hb`` only after its turns are charged with the most
     the next turn can differ by (``_gap``).
@@ -49,7 +50,9 @@ CELL, HEAD, PARENT, NS, ND, TURNS, NEXT = range(7)
 N_INT = 7
 # scalars of the search state
 S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_FREE, S_N_FREE, S_POPS, S_SPAN = range(10)
-N_ST = 10
+# pool rows in use, members tested by the state and the goal checks
+S_PTOP, S_STATE_TESTS, S_GOAL_TESTS = range(10, 13)
+N_ST = 13
 
 
 @numba.njit(cache=True, inline="always")
@@ -255,128 +258,302 @@ def _pop(hid, size, lf, k):
     return size
 
 
-# -- dominance ----------------------------------------------------------------------
+# -- per-state sets: contiguous blocks in one pool ------------------------------------
+#
+# The set of a state (and the goal's, the last row of ``sidx``) is a block of rows
+# of the pool ``sv`` (floats) / ``si`` (ints): row ``r`` holds a member's k g-values
+# (internal order, the turns as a float) in ``sv[r, :k]``, and for ``j >= 2`` the
+# least ``g_j`` of the members up to this one in ``sv[r, k + j - 2]`` (prefix
+# minima); ``si[r]`` its turns and heading. A block is sorted by ``g_1`` (the first
+# objective after the primary). A query walks back from the last member whose
+# ``g_1`` is within the tolerance of the label's and stops as soon as a prefix
+# minimum is beyond it (no earlier member can cover the label): for k = 3 the set
+# is a staircase and the walk touches a few rows; the outcome (covered or not, and
+# which members an insertion drops) is that of a scan of the whole set.
+# Blocks double when full; a freed block goes to a free list of its size class.
+
+B_OFF, B_CNT, B_CAP = range(3)
+M_TURNS, M_HEAD = range(2)
+#: Size classes of the pool's blocks (``4 << c`` rows).
+N_CLASS = 40
+#: Members per chunk of a block (chunk minima let a query skip a chunk).
+CHUNK = 8
 
 
 @numba.njit(cache=True)
-def _state_covered(li, lg, heads, s, x, okind, ocol, cell_size, ties, smooth):
-    """True if an expanded label of state ``s`` covers label ``x``: every
-    completion of ``x`` is dominated by, or tolerance-equal to and (with
-    ``ties``, smoothness not an objective) not smoother than, the same
-    completion of that label. The covering label moves to the front of the
-    set (the next labels tested are often alike)."""
+def _cut(sv, off, cnt, q1):
+    """Number of members whose ``g_1`` is ``<=`` ``q1`` within the tolerance
+    (``_le`` is monotone in its first argument, the block sorted by ``g_1``)."""
+    lo, hi = 0, cnt
+    while lo < hi:
+        m = (lo + hi) >> 1
+        if _le(sv[off + m, 1], q1):
+            lo = m + 1
+        else:
+            hi = m
+    return lo
+
+
+@numba.njit(cache=True)
+def _covered(sv, si, off, cnt, q, qr, okind, tx, hx, at_goal, to_go, ties, smooth):
+    """True if a member of the block covers the vector ``q[qr]``: at a state,
+    ``q[qr]`` is a label's g-vector and a member with heading ``ha`` charges
+    its turns with ``_gap(ha, hx)``; at the goal (``at_goal``), ``q[qr]`` is
+    the label's f-vector (a lower bound of its completions' costs). Covering:
+    weakly better on every objective within the tolerance and strictly on
+    one, or equal and (with ``ties``, smoothness not an objective) not less
+    smooth (at the goal: not more turns than the label's ``tx`` plus
+    ``to_go``, a lower bound of the turns still to come). Returns ``(covered,
+    members tested)``."""
     k = okind.shape[0]
-    hx = li[x, HEAD]
-    prev = -1
-    a = heads[s]
-    while a >= 0:
-        gap = _gap(li[a, HEAD], hx)
+    if cnt == 0:
+        return False, 0
+    i = _cut(sv, off, cnt, q[qr, 1]) - 1 if k > 1 else cnt - 1
+    tested = 0
+    cm = k + max(k - 2, 0)  # first column of the chunk minima
+    top = i
+    while i >= 0:
+        r = off + i
+        stop = False
+        for j in range(2, k):
+            if not _le(sv[r, k + j - 2], q[qr, j]):
+                stop = True
+                break
+        if stop:
+            break
+        if k > 2 and (i == top or (i + 1) % CHUNK == 0):
+            # entering a chunk (from its end, or the cut): its minima first
+            c0 = off + (i // CHUNK) * CHUNK
+            skip = False
+            for j in range(2, k):
+                if not _le(sv[c0, cm + j - 2], q[qr, j]):
+                    skip = True
+                    break
+            if skip:
+                i = (i // CHUNK) * CHUNK - 1
+                continue
+        i -= 1
+        tested += 1
+        gap = 0 if at_goal else _gap(si[r, M_HEAD], hx)
         ok = True
         strict = False
         for jj in range(k):
             j = jj + 1 if jj < k - 1 else 0  # the primary last: it rarely decides
-            kind = okind[j]
-            if kind == K_TURN:
-                ta = li[a, TURNS] + gap
-                tx = li[x, TURNS]
-                if ta > tx:
+            ga = sv[r, j]
+            gx = q[qr, j]
+            if okind[j] == K_TURN:
+                ga += gap
+                if ga > gx:
                     ok = False
                     break
-                if ta < tx:
+                if ga < gx:
                     strict = True
             else:
-                ga = _g(li, lg, a, kind, ocol[j], cell_size)
-                gx = _g(li, lg, x, kind, ocol[j], cell_size)
                 if not _le(ga, gx):
                     ok = False
                     break
                 if not _eq(ga, gx):
                     strict = True
-        if ok and (strict or smooth or not ties or li[a, TURNS] + gap <= li[x, TURNS]):
-            if prev >= 0:
-                li[prev, NEXT] = li[a, NEXT]
-                li[a, NEXT] = heads[s]
-                heads[s] = a
-            return True
-        prev = a
-        a = li[a, NEXT]
-    return False
+        if not ok:
+            continue
+        if strict or smooth or not ties:
+            return True, tested
+        if at_goal:
+            if si[r, M_TURNS] <= tx + to_go:
+                return True, tested
+        elif si[r, M_TURNS] + gap <= tx:
+            return True, tested
+    return False, tested
 
 
 @numba.njit(cache=True)
-def _goal_covered(li, lg, lf, heads, x, okind, ocol, cell_size, ties, smooth, to_go):
-    """True if a solution covers the f-vector of ``x`` (its lower bound at
-    the goal); ``to_go`` is a lower bound of the turns still to come (0 when
-    the turn heuristic is not computed). The goal's set is headed by
-    ``heads[-1]``; the covering solution moves to its front."""
-    k = okind.shape[0]
-    g = heads.shape[0] - 1
-    prev = -1
-    a = heads[g]
-    while a >= 0:
-        ok = True
-        strict = False
-        for jj in range(k):
-            j = jj + 1 if jj < k - 1 else 0
-            kind = okind[j]
-            fx = lf[x, j]
-            ga = _g(li, lg, a, kind, ocol[j], cell_size)
-            if kind == K_TURN:
-                if ga > fx:
-                    ok = False
-                    break
-                if ga < fx:
-                    strict = True
-            else:
-                if not _le(ga, fx):
-                    ok = False
-                    break
-                if not _eq(ga, fx):
-                    strict = True
-        if ok and (strict or smooth or not ties or li[a, TURNS] <= li[x, TURNS] + to_go):
-            if prev >= 0:
-                li[prev, NEXT] = li[a, NEXT]
-                li[a, NEXT] = heads[g]
-                heads[g] = a
-            return True
-        prev = a
-        a = li[a, NEXT]
-    return False
+def _prefix_min(sv, off, cnt, k, first):
+    """Recompute the prefix minima of the block from member ``first`` on, and
+    the minima of the chunks from ``first``'s on (kept in the chunk's first
+    row)."""
+    cm = k + max(k - 2, 0)
+    for i in range(first, cnt):
+        r = off + i
+        for j in range(2, k):
+            v = sv[r, j]
+            if i > 0 and sv[r - 1, k + j - 2] < v:
+                v = sv[r - 1, k + j - 2]
+            sv[r, k + j - 2] = v
+    for c0 in range((first // CHUNK) * CHUNK, cnt, CHUNK):
+        for j in range(2, k):
+            v = sv[off + c0, j]
+            for i in range(c0 + 1, min(c0 + CHUNK, cnt)):
+                if sv[off + i, j] < v:
+                    v = sv[off + i, j]
+            sv[off + c0, cm + j - 2] = v
 
 
 @numba.njit(cache=True)
-def _insert(li, lg, first, x, okind, ocol, cell_size, at_goal):
-    """Put label ``x`` at the head of the set whose head is ``first`` and
-    unlink the members it makes redundant for later checks: those it weakly
-    dominates on every objective but the primary (later labels are not
-    better in the primary, NAMOA*-dr). Returns the new head."""
+def _block_class(cap):
+    c = 0
+    while (4 << c) < cap:
+        c += 1
+    return c
+
+
+@numba.njit(cache=True)
+def _insert(sv, si, sidx, sfree, st, s, q, qr, okind, tx, hx, at_goal):
+    """Add the member with g-vector ``q[qr]``, turns ``tx`` and heading ``hx``
+    to the set of ``s`` and drop the members it makes redundant for later
+    checks: those it weakly dominates on every objective but the primary
+    (later labels are not better in the primary, NAMOA*-dr). The caller has
+    made sure the pool holds ``2 * cap + 4`` more rows."""
     k = okind.shape[0]
-    hx = li[x, HEAD]
-    prev = -1
-    a = first
-    while a >= 0:
-        nxt = li[a, NEXT]
-        gap = 0 if at_goal else _gap(hx, li[a, HEAD])
+    off, cnt, cap = sidx[s, B_OFF], sidx[s, B_CNT], sidx[s, B_CAP]
+    # members it drops have g_1 >= its own within the tolerance: a suffix
+    first = cnt
+    if cnt > 0:
+        if k > 1:
+            lo, hi = 0, cnt
+            while lo < hi:
+                m = (lo + hi) >> 1
+                if _le(q[qr, 1], sv[off + m, 1]):
+                    hi = m
+                else:
+                    lo = m + 1
+            first = lo
+        else:
+            first = 0
+    wr = first
+    n_before = cnt
+    for i in range(first, cnt):
+        r = off + i
+        gap = 0 if at_goal else _gap(hx, si[r, M_HEAD])
         drop = True
         for j in range(1, k):
-            kind = okind[j]
-            if kind == K_TURN:
-                if li[x, TURNS] + gap > li[a, TURNS]:
+            if okind[j] == K_TURN:
+                if tx + gap > si[r, M_TURNS]:
                     drop = False
                     break
-            elif not _le(_g(li, lg, x, kind, ocol[j], cell_size), _g(li, lg, a, kind, ocol[j], cell_size)):
+            elif not _le(q[qr, j], sv[r, j]):
                 drop = False
                 break
-        if drop:
-            if prev < 0:
-                first = nxt
-            else:
-                li[prev, NEXT] = nxt
+        if not drop:
+            if wr != i:
+                for c in range(sv.shape[1]):
+                    sv[off + wr, c] = sv[r, c]
+                si[off + wr, 0] = si[r, 0]
+                si[off + wr, 1] = si[r, 1]
+            wr += 1
+    cnt = wr
+    if cnt + 1 > cap:  # move to a block twice as large
+        ncap = 4 if cap == 0 else 2 * cap
+        c = _block_class(ncap)
+        if sfree[c] >= 0:
+            noff = sfree[c]
+            sfree[c] = si[noff, 0]
         else:
-            prev = a
-        a = nxt
-    li[x, NEXT] = first
-    return x
+            noff = st[S_PTOP]
+            st[S_PTOP] += ncap
+        for i in range(cnt):
+            for cc in range(sv.shape[1]):
+                sv[noff + i, cc] = sv[off + i, cc]
+            si[noff + i, 0] = si[off + i, 0]
+            si[noff + i, 1] = si[off + i, 1]
+        if cap > 0:
+            oc = _block_class(cap)
+            si[off, 0] = sfree[oc]
+            sfree[oc] = off
+        off, cap = noff, ncap
+        sidx[s, B_OFF] = off
+        sidx[s, B_CAP] = cap
+    # its place: after the members with g_1 <= its own
+    pos = cnt
+    if k > 1:
+        lo, hi = 0, cnt
+        while lo < hi:
+            m = (lo + hi) >> 1
+            if sv[off + m, 1] <= q[qr, 1]:
+                lo = m + 1
+            else:
+                hi = m
+        pos = lo
+    if wr < n_before or k <= 2:  # members dropped: shift, recompute the minima after them
+        for i in range(cnt, pos, -1):
+            for cc in range(k):
+                sv[off + i, cc] = sv[off + i - 1, cc]
+            si[off + i, 0] = si[off + i - 1, 0]
+            si[off + i, 1] = si[off + i - 1, 1]
+        for cc in range(k):
+            sv[off + pos, cc] = q[qr, cc]
+        si[off + pos, M_TURNS] = tx
+        si[off + pos, M_HEAD] = hx
+        cnt += 1
+        sidx[s, B_CNT] = cnt
+        if k > 2:
+            _prefix_min(sv, off, cnt, k, min(pos, first))
+        return
+    _shift_in(sv, si, off, cnt, pos, q, qr, k, tx, hx)
+    sidx[s, B_CNT] = cnt + 1
+
+
+@numba.njit(cache=True)
+def _shift_in(sv, si, off, cnt, pos, q, qr, k, tx, hx):
+    """Insert a member at ``pos`` of a block of ``cnt`` members (k > 2) and
+    update the prefix and chunk minima incrementally (nothing was dropped)."""
+    cm = k + k - 2
+    wid = sv.shape[1]
+    fv = sv.reshape(-1)  # whole rows move up one row (a memmove)
+    for t in range((off + cnt + 1) * wid - 1, (off + pos + 1) * wid - 1, -1):
+        fv[t] = fv[t - wid]
+    fi = si.reshape(-1)
+    for t in range(2 * (off + cnt + 1) - 1, 2 * (off + pos + 1) - 1, -1):
+        fi[t] = fi[t - 2]
+    r = off + pos
+    for cc in range(k):
+        sv[r, cc] = q[qr, cc]
+    si[r, M_TURNS] = tx
+    si[r, M_HEAD] = hx
+    for j in range(2, k):
+        v = q[qr, j]
+        if pos > 0 and sv[r - 1, k + j - 2] < v:
+            v = sv[r - 1, k + j - 2]
+        sv[r, k + j - 2] = v
+    for i in range(pos + 1, cnt + 1):  # the prefix minima after it: min with its values
+        r = off + i
+        same = True
+        for j in range(2, k):
+            if sv[r, k + j - 2] > q[qr, j]:
+                sv[r, k + j - 2] = q[qr, j]
+                same = False
+        if same:
+            break
+    n = cnt + 1
+    cp = pos // CHUNK
+    for c in range(cp, (n - 1) // CHUNK + 1):
+        c0 = off + c * CHUNK
+        end = min((c + 1) * CHUNK, n)
+        old = c * CHUNK < cnt  # the chunk existed: its minima are in its old first row
+        o0 = c0 + 1 if c * CHUNK >= pos else c0
+        out = (c + 1) * CHUNK < n  # a member left it for the next chunk
+        for j in range(2, k):
+            if old:
+                m = sv[o0, cm + j - 2]
+                inc = q[qr, j] if c == cp else sv[c0, j]
+                if out and sv[off + (c + 1) * CHUNK, j] <= m:
+                    m = sv[c0, j]  # the least may have left: recompute
+                    for i in range(c * CHUNK + 1, end):
+                        if sv[off + i, j] < m:
+                            m = sv[off + i, j]
+                elif inc < m:
+                    m = inc
+            else:
+                m = sv[c0, j]
+                for i in range(c * CHUNK + 1, end):
+                    if sv[off + i, j] < m:
+                        m = sv[off + i, j]
+            sv[c0, cm + j - 2] = m
+
+
+@numba.njit(cache=True, inline="always")
+def _gvec(li, lg, x, okind, ocol, cell_size, q, qr):
+    for o in range(okind.shape[0]):
+        q[qr, o] = _g(li, lg, x, okind[o], ocol[o], cell_size)
 
 
 # -- the search -----------------------------------------------------------------------
@@ -385,7 +562,7 @@ def _insert(li, lg, first, x, okind, ocol, cell_size, at_goal):
 @numba.njit(cache=True)
 def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, timed, n_float):
     """The state of a new search: the start label alone on the open list.
-    Returns ``(li, lg, lf, hid, sols, st)``."""
+    Returns ``(li, lg, lf, hid, sols, st, sv, si, sfree)``."""
     k = okind.shape[0]
     li = np.empty((1024, N_INT), np.int32)
     lg = np.zeros((1024, max(n_float, 1)))
@@ -410,7 +587,10 @@ def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, t
     st[S_GENERATED] = 1
     st[S_FREE] = -1
     st[S_SPAN] = 1
-    return li, lg, lf, hid, sols, st
+    sv = np.empty((1024, k + 2 * max(k - 2, 0)))
+    si = np.empty((1024, 2), np.int32)
+    sfree = np.full(N_CLASS, -1, np.int64)
+    return li, lg, lf, hid, sols, st, sv, si, sfree
 
 
 @numba.njit(cache=True, inline="always")
@@ -453,20 +633,23 @@ def _k_run(
     timed,
     smooth,
     ties,
-    heads,
+    sidx,
     li,
     lg,
     lf,
     hid,
     sols,
     st,
+    sv,
+    si,
+    sfree,
     n_steps,
     max_labels,
 ):
-    """Advance the search by at most ``n_steps`` pops. Returns ``(heads, li,
-    lg, lf, hid, sols, status)``, status DONE (open list empty), PAUSED,
-    OVER_BUDGET or STEP_LIMIT; the arrays may have been reallocated (grown
-    by doubling)."""
+    """Advance the search by at most ``n_steps`` pops. Returns ``(sidx, li,
+    lg, lf, hid, sols, sv, si, status)``, status DONE (open list empty),
+    PAUSED, OVER_BUDGET or STEP_LIMIT; the arrays may have been reallocated
+    (grown by doubling)."""
     pops0 = st[S_POPS]
     n_cells = mask.shape[0]
     while True:
@@ -488,18 +671,21 @@ def _k_run(
             timed,
             smooth,
             ties,
-            heads,
+            sidx,
             li,
             lg,
             lf,
             hid,
             sols,
             st,
+            sv,
+            si,
+            sfree,
             n_steps - (st[S_POPS] - pops0),
             max_labels,
         )
         if status != NEED_ROOM:
-            return heads, li, lg, lf, hid, sols, status
+            return sidx, li, lg, lf, hid, sols, sv, si, status
         if st[S_N] + 8 > li.shape[0]:
             cap = 2 * li.shape[0]
             li2 = np.empty((cap, li.shape[1]), li.dtype)
@@ -517,16 +703,26 @@ def _k_run(
             sols2 = np.empty(2 * sols.shape[0], sols.dtype)
             sols2[: sols.shape[0]] = sols
             sols = sols2
+        need = st[S_PTOP] + 2 * max(sidx[:, B_CAP].max(), 4) + 4
+        if need > sv.shape[0]:
+            cap = 2 * sv.shape[0]
+            while cap < need:
+                cap *= 2
+            sv2 = np.empty((cap, sv.shape[1]))
+            sv2[: sv.shape[0]] = sv
+            si2 = np.empty((cap, 2), si.dtype)
+            si2[: si.shape[0]] = si
+            sv, si = sv2, si2
         if timed:
             x = hid[0]
             span = st[S_SPAN]
             while li[x, NS] + li[x, ND] + 1 >= span:
                 span *= 2
             if span > st[S_SPAN]:
-                heads2 = np.full(span * n_cells + 1, -1, np.int32)
-                heads2[: heads.shape[0] - 1] = heads[:-1]
-                heads2[-1] = heads[-1]  # the goal's set
-                heads = heads2
+                sidx2 = np.zeros((span * n_cells + 1, 3), np.int64)
+                sidx2[: sidx.shape[0] - 1] = sidx[:-1]
+                sidx2[-1] = sidx[-1]  # the goal's set
+                sidx = sidx2
                 st[S_SPAN] = span
 
 
@@ -549,13 +745,16 @@ def _k_steps(
     timed,
     smooth,
     ties,
-    heads,
+    sidx,
     li,
     lg,
     lf,
     hid,
     sols,
     st,
+    sv,
+    si,
+    sfree,
     n_steps,
     max_labels,
 ):
@@ -572,9 +771,13 @@ def _k_steps(
     span = st[S_SPAN]
     n_table = table.shape[0]
     use_ht = ht.shape[0] > 1
+    gs = sidx.shape[0] - 1  # the goal's set
+    gq = np.empty((1, k))
     status = DONE
     steps = 0
     pops0 = st[S_POPS]
+    t_state = 0
+    t_goal = 0
     while size > 0:
         if steps == n_steps:
             status = PAUSED
@@ -594,34 +797,47 @@ def _k_steps(
             if n_x + 1 >= span:
                 status = NEED_ROOM
                 break
-        steps += 1
-        size = _pop(hid, size, lf, k)
         c = li[x, CELL]
         s = n_x * n_cells + c if timed else c
+        tgt = gs if c == goal else s
+        if st[S_PTOP] + 2 * max(sidx[tgt, B_CAP], 4) + 4 > sv.shape[0]:
+            status = NEED_ROOM
+            break
+        steps += 1
+        size = _pop(hid, size, lf, k)
+        hx = li[x, HEAD]
+        tx = li[x, TURNS]
+        _gvec(li, lg, x, okind, ocol, cell_size, gq, 0)
 
         # lazy checks: the sets may have grown since x was generated
-        covered = c != goal and _state_covered(li, lg, heads, s, x, okind, ocol, cell_size, ties, smooth)
+        covered = False
+        if c != goal:
+            covered, nt = _covered(
+                sv, si, sidx[s, B_OFF], sidx[s, B_CNT], gq, 0, okind, tx, hx, False, 0, ties, smooth
+            )
+            t_state += nt
         if not covered:
             to_go = 0
             if use_ht:
-                hx = li[x, HEAD]
                 to_go = ht[c * 9 + (hx if hx >= 0 else 8)]
-            covered = _goal_covered(li, lg, lf, heads, x, okind, ocol, cell_size, ties, smooth, to_go)
+            covered, nt = _covered(
+                sv, si, sidx[gs, B_OFF], sidx[gs, B_CNT], lf, x, okind, tx, hx, True, to_go, ties, smooth
+            )
+            t_goal += nt
         if covered:
             li[x, NEXT] = free  # nothing refers to x: recycle its row
             free = x
             n_free += 1
             continue
         if c == goal:  # a solution: recorded, never expanded
-            heads[-1] = _insert(li, lg, heads[-1], x, okind, ocol, cell_size, True)
+            _insert(sv, si, sidx, sfree, st, gs, gq, 0, okind, tx, hx, True)
             sols[n_sols] = x
             n_sols += 1
             continue
 
         n_expanded += 1
-        heads[s] = _insert(li, lg, heads[s], x, okind, ocol, cell_size, False)
+        _insert(sv, si, sidx, sfree, st, s, gq, 0, okind, tx, hx, False)
         r, col = c // w, c % w
-        head = li[x, HEAD]
         mk = mask[c]
         for d in range(8):
             if not (mk >> d) & 1:
@@ -635,7 +851,8 @@ def _k_steps(
             li[j, PARENT] = x
             li[j, NS] = li[x, NS] + (1 - d % 2)
             li[j, ND] = li[x, ND] + d % 2
-            li[j, TURNS] = li[x, TURNS] + (turn(head, d) if head >= 0 else 0)
+            tj = tx + (turn(hx, d) if hx >= 0 else 0)
+            li[j, TURNS] = tj
             for o in range(k):
                 kind = okind[o]
                 if kind == K_CELL:
@@ -645,10 +862,20 @@ def _k_steps(
             _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, timed)
             n_generated += 1
             s2 = (n_x + 1) * n_cells + cell if timed else cell
-            if cell != goal and _state_covered(li, lg, heads, s2, j, okind, ocol, cell_size, ties, smooth):
-                continue
+            if cell != goal and sidx[s2, B_CNT] > 0:
+                _gvec(li, lg, j, okind, ocol, cell_size, gq, 0)
+                cov, nt = _covered(
+                    sv, si, sidx[s2, B_OFF], sidx[s2, B_CNT], gq, 0, okind, tj, d, False, 0, ties, smooth
+                )
+                t_state += nt
+                if cov:
+                    continue
             to_go = ht[cell * 9 + d] if use_ht else 0
-            if _goal_covered(li, lg, lf, heads, j, okind, ocol, cell_size, ties, smooth, to_go):
+            cov, nt = _covered(
+                sv, si, sidx[gs, B_OFF], sidx[gs, B_CNT], lf, j, okind, tj, d, True, to_go, ties, smooth
+            )
+            t_goal += nt
+            if cov:
                 continue
             if j == free:
                 free = li[j, NEXT]
@@ -666,6 +893,8 @@ def _k_steps(
     st[S_FREE] = free
     st[S_N_FREE] = n_free
     st[S_POPS] = pops0 + steps
+    st[S_STATE_TESTS] += t_state
+    st[S_GOAL_TESTS] += t_goal
     return status
 
 
