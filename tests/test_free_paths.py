@@ -179,6 +179,31 @@ def test_cached_and_fresh_decodes_agree():
         assert first[0].shape[0] == 20
 
 
+@pytest.mark.parametrize("name", ["via", "field"])
+def test_parallel_and_serial_decodes_agree(name):
+    """The paths do not depend on the number of threads."""
+    ws = room(seed=4)
+    enc = make_free_encoding(name, ws)
+    X = np.random.default_rng(7).random((21, enc.n_var))
+    if name == "field":
+        gy, gx = enc.field_shape
+        args = (X, gy, gx, enc.beta, enc._occ, enc._extra, enc._s, enc._t, enc._cc, *enc.lam_range)
+        args += (enc._hlen, enc._hext)
+        serial, par = K.decode_field, K.decode_field_par
+    else:
+        args = (X, enc.n_via, enc._occ, enc._extra, enc._snap, enc._s, enc._t, enc._cc, *enc.lam_range)
+        args += (enc._hlen, enc._hext, enc._pmin, enc._flen, enc._fext)
+        serial, par = K.decode_via, K.decode_via_par
+    want = serial(*args)
+    for nt in (1, 2, 5):
+        for a, b in zip(want, par(*args, nt)):
+            np.testing.assert_array_equal(a, b)
+    P, L = enc.decode(X)  # whichever kernel the encoding picks
+    for i in range(len(X)):
+        cells = P[i, : L[i], 0] * ws.shape[1] + P[i, : L[i], 1]
+        np.testing.assert_array_equal(cells, want[0][want[1][i] : want[1][i + 1]])
+
+
 def test_path_keys_identify_paths():
     ws = room()
     enc = ViaPointEncoding(ws)
