@@ -9,7 +9,7 @@ and a label budget (``--max-labels``), and cached as ``.npz`` in
 ``--cache``. Then one GA run as a user runs it: :func:`gapath.solver.solve`
 with ``paths="free"`` (FastNSGA2, field genome, weighted-sum seeds, the
 free-path archive with its default refinement), population ``--pop``,
-seed ``--seed``, for ``--gen`` generations or until ``--ga-cap`` seconds,
+seed ``--seed``, for ``--gen`` generations or until ``--ga-cap`` CPU seconds,
 recording after every generation the HV ratio of the run's front (the
 archive's) against the exact front and the wall time since the call, minus
 the time spent measuring the HV ratio (``ga_seconds`` is the GA's own time).
@@ -25,9 +25,11 @@ Instances (``--instances``, comma-separated)::
 
 (MovingAI maps with ``corner_cutting=False``.) One JSON line per instance:
 exact front size and seconds (or ``exact_finished: false``), the GA's
-per-generation ``trace`` ``[gen, seconds, hv_ratio]``, the seconds and
-generation at which the HV ratio first reached 0.95 and 0.99, the final
-ratio and sizes. ``--throughput`` instead prints decode+evaluate throughput
+per-generation ``trace`` ``[gen, wall seconds, CPU seconds, hv_ratio]``, the
+seconds and generation at which the HV ratio first reached 0.95 and 0.99,
+the final ratio and sizes. Where exact search did not finish, the ratios
+are against the run's own final front (the best known front; every 5th
+generation), and ``reference`` says so. ``--throughput`` instead prints decode+evaluate throughput
 (paths per second of wall time and of process CPU time, ``--pop`` random
 genomes, cache cold) and the seconds per
 generation of a short GA run (``--throughput-gens`` generations after the
@@ -56,6 +58,7 @@ from gapath.convergence import HypervolumeRatioCallback
 from gapath.generators import random_workspace
 from gapath.loaders import load_movingai, load_scenarios
 from gapath.metrics import coverage, hv_ratio
+from gapath.operators.archive import run_archive
 from gapath.planners.exact import free_front
 from gapath.problems import FreePathProblem
 from gapath.solver import solve
@@ -138,47 +141,81 @@ def exact(name, ws, cache: Path, cap: float, max_labels):
     return F, rec
 
 
-class _Trace(HypervolumeRatioCallback):
-    """HV ratio of the run's front every generation, with the GA's own wall
-    time (the time spent here is subtracted)."""
+class _Trace(Callback):
+    """The run's front (the archive's) every generation, with the GA's own
+    wall and CPU time (the time spent here is subtracted); its HV ratio
+    against ``reference`` at once, or, without one, the fronts themselves
+    (every ``keep`` generations) to be measured against the run's final
+    front afterwards."""
 
-    def __init__(self, reference, cap):
-        super().__init__(reference)
-        self.t0 = time.perf_counter()
-        self.spent = 0.0
-        self.cap = cap
+    def __init__(self, reference, cap, keep=5, progress=None):
+        super().__init__()
+        self.progress = progress
+        self.hv = None if reference is None else HypervolumeRatioCallback(reference)
+        self.t0, self.c0 = time.perf_counter(), time.process_time()
+        self.spent = self.cpu_spent = 0.0
+        self.cap, self.keep = cap, keep
         self.trace: list[list[float]] = []
+        self.fronts: list = []
+
+    def initialize(self, algorithm):
+        if self.hv is not None:
+            self.hv.initialize(algorithm)
 
     def notify(self, algorithm):
-        t = time.perf_counter()
-        super().notify(algorithm)
-        g, _, h = self.history[-1]
+        t, c = time.perf_counter(), time.process_time()
+        g = int(algorithm.n_gen)
+        if self.hv is not None:
+            self.hv.notify(algorithm)
+            h = self.hv.history[-1][2]
+        else:
+            h = float("nan")
+            if g % self.keep == 1 or self.keep == 1:
+                self.fronts.append((len(self.trace), run_archive(algorithm).F.copy()))
         self.spent += time.perf_counter() - t
+        self.cpu_spent += time.process_time() - c
         ga = time.perf_counter() - self.t0 - self.spent
-        self.trace.append([g, round(ga, 3), round(h, 6)])
-        if ga > self.cap:
+        cpu = time.process_time() - self.c0 - self.cpu_spent
+        self.trace.append([g, round(ga, 3), round(cpu, 3), round(h, 6)])
+        if self.progress:  # partial figures of a run that may not finish
+            with open(self.progress, "a") as f:
+                f.write(json.dumps(self.trace[-1]) + "\n")
+        if cpu > self.cap:
             algorithm.termination.force_termination = True
 
 
-def anytime(ws, F, pop, gen, seed, cap):
-    tracker = _Trace(F, cap)
+def anytime(ws, F, pop, gen, seed, cap, progress=None):
+    """One GA run's trace against the exact front ``F`` (or, when None,
+    against the run's own final front)."""
+    tracker = _Trace(F, cap, progress=progress)
     res = solve(ws, objectives=OBJECTIVES, paths="free", pop_size=pop, n_gen=gen, seed=seed, callback=tracker)
     tr = tracker.trace
+    ref = F
+    if F is None:  # the best known front: the run's own archive at the end
+        ref = res.front.F
+        for row in tr:
+            row[3] = None
+        for i, Fi in tracker.fronts:
+            tr[i][3] = round(hv_ratio(Fi, ref), 6) if len(Fi) else 0.0
+        tr[-1][3] = 1.0
+        tr = [row for row in tr if row[3] is not None]
 
     def reach(level):
-        for g, t, h in tr:
+        for g, t, c, h in tr:
             if h >= level:
-                return dict(gen=g, seconds=t)
+                return dict(gen=g, seconds=t, cpu_seconds=c)
         return None
 
     return dict(
         pop=pop,
-        gen_run=len(tr),
+        gen_run=len(tracker.trace),
         seed=seed,
-        ga_seconds=tr[-1][1] if tr else None,
+        reference="exact" if F is not None else "final GA front",
+        ga_seconds=tracker.trace[-1][1] if tr else None,
+        ga_cpu_seconds=tracker.trace[-1][2] if tr else None,
         ga_size=len(res.front),
-        hv_ratio=hv_ratio(res.front.F, F),
-        coverage=coverage(res.front.F, F),
+        hv_ratio=hv_ratio(res.front.F, ref),
+        coverage=coverage(res.front.F, ref),
         n_eval=res.n_eval,
         to_095=reach(0.95),
         to_099=reach(0.99),
@@ -234,7 +271,7 @@ def main(argv=None):
     ap.add_argument("--pop", type=int, default=200)
     ap.add_argument("--gen", type=int, default=300)
     ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--ga-cap", type=float, default=900.0, help="stop the GA after this many seconds")
+    ap.add_argument("--ga-cap", type=float, default=900.0, help="stop the GA after this many CPU seconds")
     ap.add_argument("--exact-cap", type=float, default=900.0, help="give up exact search after this many s")
     ap.add_argument("--max-labels", type=int, default=80_000_000)
     ap.add_argument("--exact-only", action="store_true")
@@ -244,6 +281,7 @@ def main(argv=None):
     ap.add_argument("--data", default=None)
     ap.add_argument("--label", default=None, help="a tag added to every line (e.g. before/after)")
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
+    ap.add_argument("--progress", default=None, help="append each trace row to PROGRESS.<instance>")
     a = ap.parse_args(argv)
     data = data_dir(a.data)
     out = open(a.out, "a") if a.out else None
@@ -256,8 +294,9 @@ def main(argv=None):
             F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels)
             if a.label:
                 rec["label"] = a.label
-            if not a.exact_only and F is not None:
-                rec.update(anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap))
+            if not a.exact_only:
+                progress = f"{a.progress}.{name}" if a.progress else None
+                rec.update(anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress))
         line = json.dumps(rec)
         print(line, flush=True)
         if out:

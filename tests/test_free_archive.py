@@ -70,7 +70,7 @@ def test_parallel_and_serial_reroutes_agree(turns):
     tail = (enc._occ, enc._extra, enc._cc, -3.0, 12.0)
     if turns:
         kern, par = K.reroute_turns, K.reroute_turns_par
-        rest = (-2.0, 2.0, 3)
+        rest = (-2.0, 2.0, 3, enc._pmin, enc._hlen, enc._hext, enc._flen, enc._fext)
     else:
         kern, par = K.reroute, K.reroute_par
         rest = (enc._t, enc._hlen, enc._hext, enc._pmin, enc._flen, enc._fext, 3)

@@ -1140,14 +1140,37 @@ def _eighths(k1, k2):
 
 @numba.njit(cache=True)
 def _turn_segment(
-    occ, h, w, extra, s, kin, t, kout, a, b, c, corner_cutting, state, g, came, heap, touched, buf, win
+    occ,
+    h,
+    w,
+    extra,
+    s,
+    kin,
+    t,
+    kout,
+    a,
+    b,
+    c,
+    corner_cutting,
+    state,
+    g,
+    came,
+    heap,
+    touched,
+    buf,
+    win,
+    pmin,
+    hlen,
+    hext,
+    flen,
+    fext,
 ):
     """A* from cell ``s`` (entered by move ``kin``, 8: none) to cell ``t``
     (left by move ``kout``, 8: none) over (cell, last move) states: a step
     into ``v`` by move ``k`` after move ``k0`` costs ``a * STEP[k] + b *
     extra[v] + c * pi/4 * eighths(k0, k)``, plus the turn onto ``kout`` on
-    the step into ``t``. Heuristic ``a`` times the octile distance
-    (consistent). Writes the cells ``s .. t`` into ``buf`` (a cell may
+    the step into ``t``. Heuristic: the landmark bounds of :func:`_segment`
+    on the length and the cell cost (turns count 0; consistent). Writes the cells ``s .. t`` into ``buf`` (a cell may
     repeat: the caller cuts loops); returns their number, 0 if unreachable.
     The search stays inside the window ``win`` (see :func:`_segment`).
     Scratch arrays of ``9 * H * W`` states (``state`` zero on entry and on
@@ -1160,8 +1183,7 @@ def _turn_segment(
     came[s_id] = 8
     touched[0] = s_id
     n_touched = 1
-    sr = s // w
-    hs = a * octile(sr, s - sr * w, tr, tc)
+    hs = _landmark_h(s, t, tr, tc, w, a, b, pmin, hlen, hext, flen, fext)
     size, held = open_push(heap, state, 0, NOT_HELD, hs, hs, s_id)
     goal = -1
     while True:
@@ -1197,7 +1219,7 @@ def _turn_segment(
                 continue
             g[y] = ng
             came[y] = k0
-            hv = a * octile(vr, vc, tr, tc)
+            hv = _landmark_h(v, t, tr, tc, w, a, b, pmin, hlen, hext, flen, fext)
             if sy == _UNSEEN:
                 touched[n_touched] = y
                 n_touched += 1
@@ -1246,6 +1268,11 @@ def _reroute_turns_one(
     tau_lo,
     tau_hi,
     margin,
+    pmin,
+    hlen,
+    hext,
+    flen,
+    fext,
     state,
     g,
     came,
@@ -1299,6 +1326,11 @@ def _reroute_turns_one(
             touched,
             buf,
             _window(u, v, w, h, margin),
+            pmin,
+            hlen,
+            hext,
+            flen,
+            fext,
         )
     if cnt == 0:
         for j in range(p0 + 1, p1 + 1):
@@ -1342,6 +1374,11 @@ def reroute_turns(
     tau_lo,
     tau_hi,
     margin,
+    pmin,
+    hlen,
+    hext,
+    flen,
+    fext,
 ):
     """:func:`reroute` with turns weighed too: the segment search
     (:func:`_turn_segment`) adds ``c * angle`` per turn, ``c / a = 10 **
@@ -1361,7 +1398,8 @@ def reroute_turns(
     for r in range(n):
         m = _reroute_turns_one(
             flat, offsets, pick, i0, i1, genes, tgenes, r, flat_occ, h, w, extra, corner_cutting, lam_lo,
-            lam_hi, tau_lo, tau_hi, margin, state[0], g[0], came[0], heap[0], touched[0], buf[0], pos, cur,
+            lam_hi, tau_lo, tau_hi, margin, pmin, hlen, hext, flen, fext, state[0], g[0], came[0], heap[0],
+            touched[0], buf[0], pos, cur,
         )  # fmt: skip
         out = _store(cur, m, r, out, out_off, keys)
     return out[: out_off[n]], out_off, keys
@@ -1384,6 +1422,11 @@ def reroute_turns_par(
     tau_lo,
     tau_hi,
     margin,
+    pmin,
+    hlen,
+    hext,
+    flen,
+    fext,
     nt,
 ):
     """:func:`reroute_turns` on ``nt`` threads (the same paths for any ``nt``)."""
@@ -1405,8 +1448,8 @@ def reroute_turns_par(
             for r in range(lo + k, hi, nt):
                 cnts[r - lo] = _reroute_turns_one(
                     flat, offsets, pick, i0, i1, genes, tgenes, r, flat_occ, h, w, extra, corner_cutting,
-                    lam_lo, lam_hi, tau_lo, tau_hi, margin, state[k], g[k], came[k], heap[k], touched[k],
-                    buf[k], pos[k], rows[r - lo],
+                    lam_lo, lam_hi, tau_lo, tau_hi, margin, pmin, hlen, hext, flen, fext, state[k], g[k],
+                    came[k], heap[k], touched[k], buf[k], pos[k], rows[r - lo],
                 )  # fmt: skip
         for r in range(lo, hi):
             out = _store(rows[r - lo], cnts[r - lo], r, out, out_off, keys)

@@ -393,6 +393,11 @@ class FreeEncoding:
                 float(turn_range[0]),
                 float(turn_range[1]),
                 margin,
+                self._pmin,
+                self._hlen,
+                self._hext,
+                self._flen,
+                self._fext,
             )
             return K.reroute_turns_par(*args, nt) if nt else K.reroute_turns(*args)
         args = (
