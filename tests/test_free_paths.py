@@ -437,3 +437,17 @@ def test_bad_genomes_and_paths():
         FreeSampling("astar")
     with pytest.raises(ConfigError, match="path set"):
         path_problem(ws, paths="curvy")
+
+
+def test_search_threads_setting(monkeypatch):
+    from gapath.encodings.free import search_threads
+
+    monkeypatch.delenv("GAPATH_THREADS", raising=False)
+    assert search_threads(1000) == 0  # serial by default
+    monkeypatch.setenv("GAPATH_THREADS", "1")
+    assert search_threads(1000) == 0
+    monkeypatch.setenv("GAPATH_THREADS", "auto")
+    assert search_threads(1) == 0  # too few searches to split
+    monkeypatch.setenv("GAPATH_THREADS", "two")
+    with pytest.raises(ConfigError, match="GAPATH_THREADS"):
+        search_threads(1000)

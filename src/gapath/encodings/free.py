@@ -55,6 +55,7 @@ Examples
 from __future__ import annotations
 
 import math
+import os
 import threading
 
 import numba
@@ -75,15 +76,32 @@ REROUTE_MARGIN = 64
 #: Most threads a batch of searches uses (numba ``prange``, one genome or
 #: re-routed path per thread at a time, with its own scratch arrays).
 MAX_THREADS = 4
+#: Environment variable that switches the parallel searches on: a number of
+#: threads, or ``auto`` (numba's thread count); unset or 1: serial.
+THREADS_ENV = "GAPATH_THREADS"
 
 
 def search_threads(n: int) -> int:
-    """Threads for a batch of ``n`` searches: numba's thread count (at most
-    :data:`MAX_THREADS`), or 0 (the serial kernels) with one thread, fewer
-    than two searches per thread, or outside the main thread (numba's
-    ``workqueue`` threading layer must not be entered from two threads at
-    once). The paths do not depend on it."""
-    nt = min(numba.get_num_threads(), MAX_THREADS)
+    """Threads for a batch of ``n`` searches: 0 (the serial kernels) unless
+    the environment variable ``GAPATH_THREADS`` asks for more than one
+    (``auto``: numba's thread count; at most :data:`MAX_THREADS` and
+    numba's count), and also with fewer than two searches per thread or
+    outside the main thread (numba's ``workqueue`` threading layer must not
+    be entered from two threads at once). The paths do not depend on it.
+
+    Serial is the default because the parallel batches wait for their
+    slowest thread: on a machine whose cores are all busy (several runs at
+    once, ``gapath multirun`` workers) they lost wall time in
+    docs/results/free_paths.md ("Large maps").
+    """
+    want = os.environ.get(THREADS_ENV, "1").strip().lower()
+    nt = numba.get_num_threads()
+    if want != "auto":
+        try:
+            nt = min(nt, int(want))
+        except ValueError:
+            raise ConfigError(f"{THREADS_ENV} must be a number of threads or 'auto', got {want!r}") from None
+    nt = min(nt, MAX_THREADS)
     if nt < 2 or n < 2 * nt or threading.current_thread() is not threading.main_thread():
         return 0
     return nt
@@ -706,6 +724,7 @@ __all__ = [
     "FREE_ENCODINGS",
     "MAX_THREADS",
     "REROUTE_MARGIN",
+    "THREADS_ENV",
     "FieldEncoding",
     "FreeEncoding",
     "ViaPointEncoding",
