@@ -16,6 +16,12 @@ whole population at once:
 * :func:`to_padded` -- flat paths to the padded ``(N, L, 2)`` cell arrays of
   :func:`gapath.objectives.evaluate_paths`.
 
+The batch kernels (:func:`decode_via`, :func:`decode_field`,
+:func:`reroute`, :func:`reroute_turns`) have ``*_par`` twins that run the
+batch on ``nt`` threads (``numba.prange``; each item searched by one thread
+with its own scratch arrays, results stored in order): the same output for
+any ``nt``. :func:`gapath.encodings.free.search_threads` picks one.
+
 Loops are cut while segments are joined: when a segment enters a cell the
 path already holds, the path is cut back to that cell, so every decoded path
 is simple; every step is a move of the search, so it respects the corner
