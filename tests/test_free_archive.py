@@ -12,6 +12,7 @@ from test_free_paths import TOL, check_path, dominates, room, workspaces
 
 from gapath.algorithms import FastNSGA2
 from gapath.convergence import HypervolumeRatioCallback
+from gapath.encodings import _free_kernels as K
 from gapath.encodings.free import FieldEncoding, ViaPointEncoding
 from gapath.errors import ConfigError
 from gapath.front import path_front
@@ -44,12 +45,40 @@ def test_rerouted_paths_are_simple_feasible_paths(data):
     i1 = i0 + rng.integers(-1, 14, k)
     lam = data.draw(st.sampled_from([None, (-3.0, 12.0), (0.0, 1.0)]))
     turns = rng.random(k) if data.draw(st.booleans()) else None
-    f2, o2, keys = enc.reroute(flat, offsets, pick, i0, i1, rng.random(k), lam, turns)
+    margin = data.draw(st.sampled_from([-1, 0, 1, 3, 64]))  # the window around a stretch
+    f2, o2, keys = enc.reroute(flat, offsets, pick, i0, i1, rng.random(k), lam, turns, margin=margin)
     P, L = enc.padded(f2, o2)
     assert len(L) == k
     for i in range(k):
         check_path(ws, P[i, : L[i]])
     assert (keys[:, 0] == L).all()
+
+
+@pytest.mark.parametrize("turns", [False, True])
+def test_parallel_and_serial_reroutes_agree(turns):
+    ws = room(seed=5)
+    enc = FieldEncoding(ws)
+    rng = np.random.default_rng(2)
+    flat, offsets, _ = enc.decode_flat(rng.random((6, enc.n_var)))
+    k = 13
+    pick = rng.integers(0, 6, k)
+    m = np.diff(offsets)[pick]
+    i0 = (rng.random(k) * m // 2).astype(np.int64)
+    i1 = i0 + (rng.random(k) * m // 2).astype(np.int64)
+    args = [flat, offsets, pick, i0, i1, rng.random(k)]
+    extra = [rng.random(k)] if turns else []
+    tail = (enc._occ, enc._extra, enc._cc, -3.0, 12.0)
+    if turns:
+        kern, par = K.reroute_turns, K.reroute_turns_par
+        rest = (-2.0, 2.0, 3, enc._pmin, enc._hlen, enc._hext, enc._flen, enc._fext)
+    else:
+        kern, par = K.reroute, K.reroute_par
+        rest = (enc._t, enc._hlen, enc._hext, enc._pmin, enc._flen, enc._fext, 3)
+    want = kern(*args, *extra, *tail, *rest)
+    for nt in (1, 2, 3):
+        got = par(*args, *extra, *tail, *rest, nt)
+        for a, b in zip(want, got):
+            np.testing.assert_array_equal(a, b)
 
 
 def test_rerouting_a_whole_path_gives_the_weighted_path():

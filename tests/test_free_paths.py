@@ -179,6 +179,31 @@ def test_cached_and_fresh_decodes_agree():
         assert first[0].shape[0] == 20
 
 
+@pytest.mark.parametrize("name", ["via", "field"])
+def test_parallel_and_serial_decodes_agree(name):
+    """The paths do not depend on the number of threads."""
+    ws = room(seed=4)
+    enc = make_free_encoding(name, ws)
+    X = np.random.default_rng(7).random((21, enc.n_var))
+    if name == "field":
+        gy, gx = enc.field_shape
+        args = (X, gy, gx, enc.beta, enc._occ, enc._extra, enc._s, enc._t, enc._cc, *enc.lam_range)
+        args += (enc._hlen, enc._hext)
+        serial, par = K.decode_field, K.decode_field_par
+    else:
+        args = (X, enc.n_via, enc._occ, enc._extra, enc._snap, enc._s, enc._t, enc._cc, *enc.lam_range)
+        args += (enc._hlen, enc._hext, enc._pmin, enc._flen, enc._fext)
+        serial, par = K.decode_via, K.decode_via_par
+    want = serial(*args)
+    for nt in (1, 2, 5):
+        for a, b in zip(want, par(*args, nt)):
+            np.testing.assert_array_equal(a, b)
+    P, L = enc.decode(X)  # whichever kernel the encoding picks
+    for i in range(len(X)):
+        cells = P[i, : L[i], 0] * ws.shape[1] + P[i, : L[i], 1]
+        np.testing.assert_array_equal(cells, want[0][want[1][i] : want[1][i + 1]])
+
+
 def test_path_keys_identify_paths():
     ws = room()
     enc = ViaPointEncoding(ws)
@@ -412,3 +437,17 @@ def test_bad_genomes_and_paths():
         FreeSampling("astar")
     with pytest.raises(ConfigError, match="path set"):
         path_problem(ws, paths="curvy")
+
+
+def test_search_threads_setting(monkeypatch):
+    from gapath.encodings.free import search_threads
+
+    monkeypatch.delenv("GAPATH_THREADS", raising=False)
+    assert search_threads(1000) == 0  # serial by default
+    monkeypatch.setenv("GAPATH_THREADS", "1")
+    assert search_threads(1000) == 0
+    monkeypatch.setenv("GAPATH_THREADS", "auto")
+    assert search_threads(1) == 0  # too few searches to split
+    monkeypatch.setenv("GAPATH_THREADS", "two")
+    with pytest.raises(ConfigError, match="GAPATH_THREADS"):
+        search_threads(1000)

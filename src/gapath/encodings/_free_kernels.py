@@ -16,6 +16,12 @@ whole population at once:
 * :func:`to_padded` -- flat paths to the padded ``(N, L, 2)`` cell arrays of
   :func:`gapath.objectives.evaluate_paths`.
 
+The batch kernels (:func:`decode_via`, :func:`decode_field`,
+:func:`reroute`, :func:`reroute_turns`) have ``*_par`` twins that run the
+batch on ``nt`` threads (``numba.prange``; each item searched by one thread
+with its own scratch arrays, results stored in order): the same output for
+any ``nt``. :func:`gapath.encodings.free.search_threads` picks one.
+
 Loops are cut while segments are joined: when a segment enters a cell the
 path already holds, the path is cut back to that cell, so every decoded path
 is simple; every step is a move of the search, so it respects the corner
@@ -196,6 +202,7 @@ def _segment(
     touched,
     mcache,
     buf,
+    win,
 ):
     """A* from cell ``s`` to cell ``t``; a step into ``v`` by move ``k`` costs
     ``a * STEP[k] * m(v) + b * extra[v]``, ``m(v) = exp(beta * (2 f(v) - 1))``
@@ -209,6 +216,9 @@ def _segment(
     ``flen``/``fext`` the costs from the start) and ``he`` the same for the
     cell cost, at least ``pmin`` (a floor of ``extra``) per step. All are
     consistent (``mmin`` bounds ``m``).
+
+    The search stays inside the window ``win = (r0, r1, c0, c1)`` (rows
+    ``r0 .. r1``, columns ``c0 .. c1``; the whole grid for the decoders).
 
     Writes the cells ``s .. t`` into ``buf``; returns their number (0 when
     ``t`` is unreachable). Scratch arrays as in :mod:`gapath.planners.astar`
@@ -250,6 +260,8 @@ def _segment(
                 continue
             vr = ur + DR[k]
             vc = uc + DC[k]
+            if vr < win[0] or vr > win[1] or vc < win[2] or vc > win[3]:
+                continue
             if use_field:
                 if sv == _UNSEEN:
                     mcache[v] = math.exp(beta * (2.0 * _field_value(fgenes, gy, gx, h, w, vr, vc) - 1.0))
@@ -349,10 +361,111 @@ def _scratch(n):
 
 
 @numba.njit(cache=True)
+def _scratch2(nt, n):
+    """One row of :func:`_scratch` arrays per thread."""
+    return (
+        np.zeros((nt, n), np.int64),
+        np.empty((nt, n)),
+        np.empty((nt, n), np.uint8),
+        np.empty((nt, 3 * n)),
+        np.empty((nt, n), np.int64),
+        np.empty((nt, n)),
+        np.empty((nt, n), np.int64),
+    )
+
+
+@numba.njit(cache=True)
+def _block(nt, n):
+    """Genomes decoded per parallel block: 8 per thread, fewer on huge maps
+    (a block keeps one ``n``-cell path row per genome, at most 64 MB)."""
+    return nt * max(1, min(8, (1 << 23) // max(1, n * nt)))
+
+
+@numba.njit(cache=True)
 def _via_cell(u, v, h, w, snap):
     r = min(max(int(u * h), 0), h - 1)
     c = min(max(int(v * w), 0), w - 1)
     return snap[r * w + c]
+
+
+@numba.njit(cache=True)
+def _via_one(
+    X,
+    i,
+    n_via,
+    flat_occ,
+    h,
+    w,
+    extra,
+    snap,
+    s,
+    t,
+    corner_cutting,
+    lam_lo,
+    lam_hi,
+    hlen,
+    hext,
+    pmin,
+    flen,
+    fext,
+    state,
+    g,
+    came,
+    heap,
+    touched,
+    mcache,
+    buf,
+    pos,
+    cur,
+):
+    """The path of via-point genome ``X[i]`` into ``cur``; returns its
+    number of cells (``pos`` all -1 on entry and on return)."""
+    dummy = np.zeros(1)
+    pos[s] = 0
+    cur[0] = s
+    m = 1
+    prev = s
+    for k in range(n_via + 1):
+        nxt = t if k == n_via else _via_cell(X[i, 2 * k], X[i, 2 * k + 1], h, w, snap)
+        if nxt == prev:
+            continue
+        a, b = _weights(X[i, 2 * n_via + k], lam_lo, lam_hi)
+        cnt = _segment(
+            flat_occ,
+            h,
+            w,
+            extra,
+            prev,
+            nxt,
+            a,
+            b,
+            corner_cutting,
+            dummy,
+            0,
+            0,
+            0.0,
+            1.0,
+            hlen,
+            hext,
+            nxt == t,
+            pmin,
+            flen,
+            fext,
+            state,
+            g,
+            came,
+            heap,
+            touched,
+            mcache,
+            buf,
+            (0, h - 1, 0, w - 1),
+        )
+        for j in range(1, cnt):
+            m = _append(buf[j], cur, pos, m)
+        prev = nxt
+    for j in range(m):
+        pos[cur[j]] = -1
+    return m
 
 
 @numba.njit(cache=True)
@@ -365,7 +478,8 @@ def decode_via(
 
     Returns ``(flat, offsets, keys)``: the cells of path ``i`` are
     ``flat[offsets[i]:offsets[i + 1]]`` (row-major indices), ``keys[i]`` its
-    identity (length, two hashes)."""
+    identity (length, two hashes). :func:`decode_via_par` gives the same on
+    ``nt`` threads."""
     h, w = occ.shape
     flat_occ = occ.ravel()
     n = X.shape[0]
@@ -375,53 +489,113 @@ def decode_via(
     flat = np.empty(max(16, n * (h + w)), np.int64)
     offsets = np.zeros(n + 1, np.int64)
     keys = np.empty((n, 3), np.int64)
-    dummy = np.zeros(1)
     for i in range(n):
-        pos[s] = 0
-        cur[0] = s
-        m = 1
-        prev = s
-        for k in range(n_via + 1):
-            nxt = t if k == n_via else _via_cell(X[i, 2 * k], X[i, 2 * k + 1], h, w, snap)
-            if nxt == prev:
-                continue
-            a, b = _weights(X[i, 2 * n_via + k], lam_lo, lam_hi)
-            cnt = _segment(
-                flat_occ,
-                h,
-                w,
-                extra,
-                prev,
-                nxt,
-                a,
-                b,
-                corner_cutting,
-                dummy,
-                0,
-                0,
-                0.0,
-                1.0,
-                hlen,
-                hext,
-                nxt == t,
-                pmin,
-                flen,
-                fext,
-                state,
-                g,
-                came,
-                heap,
-                touched,
-                mcache,
-                buf,
-            )
-            for j in range(1, cnt):
-                m = _append(buf[j], cur, pos, m)
-            prev = nxt
-        for j in range(m):
-            pos[cur[j]] = -1
+        m = _via_one(
+            X, i, n_via, flat_occ, h, w, extra, snap, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext,
+            pmin, flen, fext, state, g, came, heap, touched, mcache, buf, pos, cur,
+        )  # fmt: skip
         flat = _store(cur, m, i, flat, offsets, keys)
     return flat[: offsets[n]], offsets, keys
+
+
+@numba.njit(cache=True, parallel=True)
+def decode_via_par(
+    X, n_via, occ, extra, snap, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext, pmin, flen, fext, nt
+):
+    """:func:`decode_via` on ``nt`` threads (each genome decoded by one
+    thread with its own scratch arrays: the same paths for any ``nt``)."""
+    h, w = occ.shape
+    hw = h * w
+    flat_occ = occ.ravel()
+    n = X.shape[0]
+    state, g, came, heap, touched, mcache, buf = _scratch2(nt, hw)
+    pos = np.full((nt, hw), -1, np.int64)
+    bsz = _block(nt, hw)
+    rows = np.empty((bsz, hw), np.int64)
+    cnts = np.zeros(bsz, np.int64)
+    flat = np.empty(max(16, n * (h + w)), np.int64)
+    offsets = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    for lo in range(0, n, bsz):
+        hi = min(n, lo + bsz)
+        for k in numba.prange(nt):
+            for i in range(lo + k, hi, nt):
+                cnts[i - lo] = _via_one(
+                    X, i, n_via, flat_occ, h, w, extra, snap, s, t, corner_cutting, lam_lo, lam_hi, hlen,
+                    hext, pmin, flen, fext, state[k], g[k], came[k], heap[k], touched[k], mcache[k], buf[k],
+                    pos[k], rows[i - lo],
+                )  # fmt: skip
+        for i in range(lo, hi):
+            flat = _store(rows[i - lo], cnts[i - lo], i, flat, offsets, keys)
+    return flat[: offsets[n]], offsets, keys
+
+
+@numba.njit(cache=True)
+def _field_one(
+    X,
+    i,
+    gy,
+    gx,
+    beta,
+    flat_occ,
+    h,
+    w,
+    extra,
+    s,
+    t,
+    corner_cutting,
+    lam_lo,
+    lam_hi,
+    hlen,
+    hext,
+    genes,
+    state,
+    g,
+    came,
+    heap,
+    touched,
+    mcache,
+    buf,
+):
+    """The path of cost-field genome ``X[i]`` into ``buf``; returns its
+    number of cells."""
+    nf = gy * gx
+    gmin = 1.0
+    for j in range(nf):
+        genes[j] = min(max(X[i, j], 0.0), 1.0)
+        gmin = min(gmin, genes[j])
+    a, b = _weights(X[i, nf], lam_lo, lam_hi)
+    mmin = math.exp(beta * (2.0 * gmin - 1.0))
+    return _segment(
+        flat_occ,
+        h,
+        w,
+        extra,
+        s,
+        t,
+        a,
+        b,
+        corner_cutting,
+        genes,
+        gy,
+        gx,
+        beta,
+        mmin,
+        hlen,
+        hext,
+        True,
+        0.0,
+        hlen,
+        hext,
+        state,
+        g,
+        came,
+        heap,
+        touched,
+        mcache,
+        buf,
+        (0, h - 1, 0, w - 1),
+    )
 
 
 @numba.njit(cache=True)
@@ -429,53 +603,51 @@ def decode_field(X, gy, gx, beta, occ, extra, s, t, corner_cutting, lam_lo, lam_
     """Paths of cost-field genomes ``X`` (N, gy * gx + 1): genes ``0 ..
     gy * gx - 1`` are the control points of the cost multiplier field (row
     major), the last gene weights the cell cost against the length. One A*
-    search per genome. Returns ``(flat, offsets, keys)`` as :func:`decode_via`."""
+    search per genome. Returns ``(flat, offsets, keys)`` as :func:`decode_via`;
+    :func:`decode_field_par` gives the same on ``nt`` threads."""
     h, w = occ.shape
     flat_occ = occ.ravel()
     n = X.shape[0]
-    nf = gy * gx
     state, g, came, heap, touched, mcache, buf = _scratch(h * w)
     flat = np.empty(max(16, n * (h + w)), np.int64)
     offsets = np.zeros(n + 1, np.int64)
     keys = np.empty((n, 3), np.int64)
-    genes = np.empty(nf)
+    genes = np.empty(gy * gx)
     for i in range(n):
-        gmin = 1.0
-        for j in range(nf):
-            genes[j] = min(max(X[i, j], 0.0), 1.0)
-            gmin = min(gmin, genes[j])
-        a, b = _weights(X[i, nf], lam_lo, lam_hi)
-        mmin = math.exp(beta * (2.0 * gmin - 1.0))
-        cnt = _segment(
-            flat_occ,
-            h,
-            w,
-            extra,
-            s,
-            t,
-            a,
-            b,
-            corner_cutting,
-            genes,
-            gy,
-            gx,
-            beta,
-            mmin,
-            hlen,
-            hext,
-            True,
-            0.0,
-            hlen,
-            hext,
-            state,
-            g,
-            came,
-            heap,
-            touched,
-            mcache,
-            buf,
-        )
+        cnt = _field_one(
+            X, i, gy, gx, beta, flat_occ, h, w, extra, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext,
+            genes, state, g, came, heap, touched, mcache, buf,
+        )  # fmt: skip
         flat = _store(buf, cnt, i, flat, offsets, keys)
+    return flat[: offsets[n]], offsets, keys
+
+
+@numba.njit(cache=True, parallel=True)
+def decode_field_par(X, gy, gx, beta, occ, extra, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext, nt):
+    """:func:`decode_field` on ``nt`` threads (each genome decoded by one
+    thread with its own scratch arrays: the same paths for any ``nt``)."""
+    h, w = occ.shape
+    hw = h * w
+    flat_occ = occ.ravel()
+    n = X.shape[0]
+    state, g, came, heap, touched, mcache, buf = _scratch2(nt, hw)
+    genes = np.empty((nt, gy * gx))
+    bsz = _block(nt, hw)
+    rows = np.empty((bsz, hw), np.int64)
+    cnts = np.zeros(bsz, np.int64)
+    flat = np.empty(max(16, n * (h + w)), np.int64)
+    offsets = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    for lo in range(0, n, bsz):
+        hi = min(n, lo + bsz)
+        for k in numba.prange(nt):
+            for i in range(lo + k, hi, nt):
+                cnts[i - lo] = _field_one(
+                    X, i, gy, gx, beta, flat_occ, h, w, extra, s, t, corner_cutting, lam_lo, lam_hi, hlen,
+                    hext, genes[k], state[k], g[k], came[k], heap[k], touched[k], mcache[k], rows[i - lo],
+                )  # fmt: skip
+        for i in range(lo, hi):
+            flat = _store(rows[i - lo], cnts[i - lo], i, flat, offsets, keys)
     return flat[: offsets[n]], offsets, keys
 
 
@@ -521,6 +693,7 @@ def weighted_paths(occ, extra, s, t, corner_cutting, genes, lam_lo, lam_hi, hlen
             touched,
             mcache,
             buf,
+            (0, h - 1, 0, w - 1),
         )
         flat = _store(buf, cnt, i, flat, offsets, keys)
     return flat[: offsets[n]], offsets, keys
@@ -600,6 +773,7 @@ def fit_segment_weights(
                     touched,
                     mcache,
                     buf,
+                    (0, h - 1, 0, w - 1),
                 )
                 miss = 0
                 for j in range(cnt):
@@ -673,6 +847,116 @@ def row_hash(X):
     return out
 
 
+@numba.njit(cache=True, inline="always")
+def _window(u, v, w, h, margin):
+    """Rows and columns ``(r0, r1, c0, c1)`` of the box around cells ``u``
+    and ``v`` widened by ``max(margin, extent)`` on every side (``extent``
+    the larger side of their box); the whole grid when ``margin < 0``."""
+    if margin < 0:
+        return (0, h - 1, 0, w - 1)
+    ur = u // w
+    uc = u - ur * w
+    vr = v // w
+    vc = v - vr * w
+    m = max(margin, max(abs(ur - vr), abs(uc - vc)))
+    return (
+        max(0, min(ur, vr) - m),
+        min(h - 1, max(ur, vr) + m),
+        max(0, min(uc, vc) - m),
+        min(w - 1, max(uc, vc) + m),
+    )
+
+
+@numba.njit(cache=True)
+def _reroute_one(
+    flat,
+    offsets,
+    pick,
+    i0,
+    i1,
+    genes,
+    r,
+    flat_occ,
+    h,
+    w,
+    extra,
+    corner_cutting,
+    lam_lo,
+    lam_hi,
+    t,
+    hlen,
+    hext,
+    pmin,
+    flen,
+    fext,
+    margin,
+    state,
+    g,
+    came,
+    heap,
+    touched,
+    mcache,
+    buf,
+    pos,
+    cur,
+):
+    """Row ``r`` of :func:`reroute` into ``cur``; returns its number of
+    cells (``pos`` all -1 on entry and on return)."""
+    dummy = np.zeros(1)
+    base = offsets[pick[r]]
+    m_old = offsets[pick[r] + 1] - base
+    p0 = min(max(i0[r], 0), m_old - 1)
+    p1 = min(max(i1[r], p0), m_old - 1)
+    m = 0
+    for j in range(p0 + 1):
+        m = _append(flat[base + j], cur, pos, m)
+    if p1 > p0:
+        a, b = _weights(genes[r], lam_lo, lam_hi)
+        u = flat[base + p0]
+        v = flat[base + p1]
+        cnt = _segment(
+            flat_occ,
+            h,
+            w,
+            extra,
+            u,
+            v,
+            a,
+            b,
+            corner_cutting,
+            dummy,
+            0,
+            0,
+            0.0,
+            1.0,
+            hlen,
+            hext,
+            v == t,
+            pmin,
+            flen,
+            fext,
+            state,
+            g,
+            came,
+            heap,
+            touched,
+            mcache,
+            buf,
+            _window(u, v, w, h, margin),
+        )
+        if cnt == 0:  # cannot happen between cells of one path; keep the old cells
+            for j in range(p0 + 1, p1 + 1):
+                m = _append(flat[base + j], cur, pos, m)
+        else:
+            for j in range(1, cnt):
+                m = _append(buf[j], cur, pos, m)
+    for j in range(p1 + 1, m_old):
+        m = _append(flat[base + j], cur, pos, m)
+    for j in range(m):
+        pos[cur[j]] = -1
+    return m
+
+
 @numba.njit(cache=True)
 def reroute(
     flat,
@@ -692,14 +976,17 @@ def reroute(
     pmin,
     flen,
     fext,
+    margin,
 ):
     """Paths made from others by re-routing one segment: row ``r`` takes
     path ``pick[r]`` (cells ``flat[offsets[p]:offsets[p + 1]]``), replaces
     its cells between positions ``i0[r] < i1[r]`` by the optimal path
     between them under the weight gene ``genes[r]`` (the decoders' step
-    cost, neutral field) and cuts the loops the splice makes, so every
-    result is a simple path with the same ends. Returns ``(flat, offsets,
-    keys)`` as :func:`decode_via`."""
+    cost, neutral field) inside the window of :func:`_window` (``margin``)
+    and cuts the loops the splice makes, so every result is a simple path
+    with the same ends. Returns ``(flat, offsets, keys)`` as
+    :func:`decode_via`; :func:`reroute_par` gives the same on ``nt``
+    threads."""
     h, w = occ.shape
     flat_occ = occ.ravel()
     n = pick.shape[0]
@@ -709,59 +996,61 @@ def reroute(
     out = np.empty(max(16, n * (h + w)), np.int64)
     out_off = np.zeros(n + 1, np.int64)
     keys = np.empty((n, 3), np.int64)
-    dummy = np.zeros(1)
     for r in range(n):
-        base = offsets[pick[r]]
-        m_old = offsets[pick[r] + 1] - base
-        p0 = min(max(i0[r], 0), m_old - 1)
-        p1 = min(max(i1[r], p0), m_old - 1)
-        m = 0
-        for j in range(p0 + 1):
-            m = _append(flat[base + j], cur, pos, m)
-        if p1 > p0:
-            a, b = _weights(genes[r], lam_lo, lam_hi)
-            u = flat[base + p0]
-            v = flat[base + p1]
-            cnt = _segment(
-                flat_occ,
-                h,
-                w,
-                extra,
-                u,
-                v,
-                a,
-                b,
-                corner_cutting,
-                dummy,
-                0,
-                0,
-                0.0,
-                1.0,
-                hlen,
-                hext,
-                v == t,
-                pmin,
-                flen,
-                fext,
-                state,
-                g,
-                came,
-                heap,
-                touched,
-                mcache,
-                buf,
-            )
-            if cnt == 0:  # cannot happen between cells of one path; keep the old cells
-                for j in range(p0 + 1, p1 + 1):
-                    m = _append(flat[base + j], cur, pos, m)
-            else:
-                for j in range(1, cnt):
-                    m = _append(buf[j], cur, pos, m)
-        for j in range(p1 + 1, m_old):
-            m = _append(flat[base + j], cur, pos, m)
-        for j in range(m):
-            pos[cur[j]] = -1
+        m = _reroute_one(
+            flat, offsets, pick, i0, i1, genes, r, flat_occ, h, w, extra, corner_cutting, lam_lo, lam_hi, t,
+            hlen, hext, pmin, flen, fext, margin, state, g, came, heap, touched, mcache, buf, pos, cur,
+        )  # fmt: skip
         out = _store(cur, m, r, out, out_off, keys)
+    return out[: out_off[n]], out_off, keys
+
+
+@numba.njit(cache=True, parallel=True)
+def reroute_par(
+    flat,
+    offsets,
+    pick,
+    i0,
+    i1,
+    genes,
+    occ,
+    extra,
+    corner_cutting,
+    lam_lo,
+    lam_hi,
+    t,
+    hlen,
+    hext,
+    pmin,
+    flen,
+    fext,
+    margin,
+    nt,
+):
+    """:func:`reroute` on ``nt`` threads (the same paths for any ``nt``)."""
+    h, w = occ.shape
+    hw = h * w
+    flat_occ = occ.ravel()
+    n = pick.shape[0]
+    state, g, came, heap, touched, mcache, buf = _scratch2(nt, hw)
+    pos = np.full((nt, hw), -1, np.int64)
+    bsz = _block(nt, hw)
+    rows = np.empty((bsz, hw), np.int64)
+    cnts = np.zeros(bsz, np.int64)
+    out = np.empty(max(16, n * (h + w)), np.int64)
+    out_off = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    for lo in range(0, n, bsz):
+        hi = min(n, lo + bsz)
+        for k in numba.prange(nt):
+            for r in range(lo + k, hi, nt):
+                cnts[r - lo] = _reroute_one(
+                    flat, offsets, pick, i0, i1, genes, r, flat_occ, h, w, extra, corner_cutting, lam_lo,
+                    lam_hi, t, hlen, hext, pmin, flen, fext, margin, state[k], g[k], came[k], heap[k],
+                    touched[k], mcache[k], buf[k], pos[k], rows[r - lo],
+                )  # fmt: skip
+        for r in range(lo, hi):
+            out = _store(rows[r - lo], cnts[r - lo], r, out, out_off, keys)
     return out[: out_off[n]], out_off, keys
 
 
@@ -857,15 +1146,39 @@ def _eighths(k1, k2):
 
 @numba.njit(cache=True)
 def _turn_segment(
-    occ, h, w, extra, s, kin, t, kout, a, b, c, corner_cutting, state, g, came, heap, touched, buf
+    occ,
+    h,
+    w,
+    extra,
+    s,
+    kin,
+    t,
+    kout,
+    a,
+    b,
+    c,
+    corner_cutting,
+    state,
+    g,
+    came,
+    heap,
+    touched,
+    buf,
+    win,
+    pmin,
+    hlen,
+    hext,
+    flen,
+    fext,
 ):
     """A* from cell ``s`` (entered by move ``kin``, 8: none) to cell ``t``
     (left by move ``kout``, 8: none) over (cell, last move) states: a step
     into ``v`` by move ``k`` after move ``k0`` costs ``a * STEP[k] + b *
     extra[v] + c * pi/4 * eighths(k0, k)``, plus the turn onto ``kout`` on
-    the step into ``t``. Heuristic ``a`` times the octile distance
-    (consistent). Writes the cells ``s .. t`` into ``buf`` (a cell may
+    the step into ``t``. Heuristic: the landmark bounds of :func:`_segment`
+    on the length and the cell cost (turns count 0; consistent). Writes the cells ``s .. t`` into ``buf`` (a cell may
     repeat: the caller cuts loops); returns their number, 0 if unreachable.
+    The search stays inside the window ``win`` (see :func:`_segment`).
     Scratch arrays of ``9 * H * W`` states (``state`` zero on entry and on
     return)."""
     eighth = math.pi / 4.0
@@ -876,8 +1189,7 @@ def _turn_segment(
     came[s_id] = 8
     touched[0] = s_id
     n_touched = 1
-    sr = s // w
-    hs = a * octile(sr, s - sr * w, tr, tc)
+    hs = _landmark_h(s, t, tr, tc, w, a, b, pmin, hlen, hext, flen, fext)
     size, held = open_push(heap, state, 0, NOT_HELD, hs, hs, s_id)
     goal = -1
     while True:
@@ -899,6 +1211,8 @@ def _turn_segment(
                 continue
             vr = ur + DR[k]
             vc = uc + DC[k]
+            if vr < win[0] or vr > win[1] or vc < win[2] or vc > win[3]:
+                continue
             v = vr * w + vc
             y = v * 9 + k
             sy = state[y]
@@ -911,7 +1225,7 @@ def _turn_segment(
                 continue
             g[y] = ng
             came[y] = k0
-            hv = a * octile(vr, vc, tr, tc)
+            hv = _landmark_h(v, t, tr, tc, w, a, b, pmin, hlen, hext, flen, fext)
             if sy == _UNSEEN:
                 touched[n_touched] = y
                 n_touched += 1
@@ -941,81 +1255,208 @@ def _turn_segment(
 
 
 @numba.njit(cache=True)
+def _reroute_turns_one(
+    flat,
+    offsets,
+    pick,
+    i0,
+    i1,
+    genes,
+    tgenes,
+    r,
+    flat_occ,
+    h,
+    w,
+    extra,
+    corner_cutting,
+    lam_lo,
+    lam_hi,
+    tau_lo,
+    tau_hi,
+    margin,
+    pmin,
+    hlen,
+    hext,
+    flen,
+    fext,
+    state,
+    g,
+    came,
+    heap,
+    touched,
+    buf,
+    pos,
+    cur,
+):
+    """Row ``r`` of :func:`reroute_turns` into ``cur``; returns its number
+    of cells (``pos`` all -1 on entry and on return)."""
+    base = offsets[pick[r]]
+    m_old = offsets[pick[r] + 1] - base
+    p0 = min(max(i0[r], 0), m_old - 1)
+    p1 = min(max(i1[r], p0), m_old - 1)
+    m = 0
+    for j in range(p0 + 1):
+        m = _append(flat[base + j], cur, pos, m)
+    cnt = 0
+    if p1 > p0:
+        u = flat[base + p0]
+        v = flat[base + p1]
+        kin = 8
+        if p0 > 0:
+            q = flat[base + p0 - 1]
+            kin = _move_index(u // w - q // w, (u - (u // w) * w) - (q - (q // w) * w))
+        kout = 8
+        if p1 < m_old - 1:
+            q = flat[base + p1 + 1]
+            kout = _move_index(q // w - v // w, (q - (q // w) * w) - (v - (v // w) * w))
+        a, b = _weights(genes[r], lam_lo, lam_hi)
+        x = min(max(tgenes[r], 0.0), 1.0)
+        c = a * 10.0 ** (tau_lo + (tau_hi - tau_lo) * x)
+        cnt = _turn_segment(
+            flat_occ,
+            h,
+            w,
+            extra,
+            u,
+            kin,
+            v,
+            kout,
+            a,
+            b,
+            c,
+            corner_cutting,
+            state,
+            g,
+            came,
+            heap,
+            touched,
+            buf,
+            _window(u, v, w, h, margin),
+            pmin,
+            hlen,
+            hext,
+            flen,
+            fext,
+        )
+    if cnt == 0:
+        for j in range(p0 + 1, p1 + 1):
+            m = _append(flat[base + j], cur, pos, m)
+    else:
+        for j in range(1, cnt):
+            m = _append(buf[j], cur, pos, m)
+    for j in range(p1 + 1, m_old):
+        m = _append(flat[base + j], cur, pos, m)
+    for j in range(m):
+        pos[cur[j]] = -1
+    return m
+
+
+@numba.njit(cache=True)
+def _turn_scratch(nt, ns):
+    return (
+        np.zeros((nt, ns), np.int64),
+        np.empty((nt, ns)),
+        np.empty((nt, ns), np.uint8),
+        np.empty((nt, 3 * ns)),
+        np.empty((nt, ns), np.int64),
+        np.empty((nt, ns), np.int64),
+    )
+
+
+@numba.njit(cache=True)
 def reroute_turns(
-    flat, offsets, pick, i0, i1, genes, tgenes, occ, extra, corner_cutting, lam_lo, lam_hi, tau_lo, tau_hi
+    flat,
+    offsets,
+    pick,
+    i0,
+    i1,
+    genes,
+    tgenes,
+    occ,
+    extra,
+    corner_cutting,
+    lam_lo,
+    lam_hi,
+    tau_lo,
+    tau_hi,
+    margin,
+    pmin,
+    hlen,
+    hext,
+    flen,
+    fext,
 ):
     """:func:`reroute` with turns weighed too: the segment search
     (:func:`_turn_segment`) adds ``c * angle`` per turn, ``c / a = 10 **
     (tau_lo + (tau_hi - tau_lo) * tgenes[r])``, including the turns where
-    the segment meets the rest of the path. Returns ``(flat, offsets,
-    keys)``."""
+    the segment meets the rest of the path; it stays inside the window of
+    :func:`_window` (``margin``). Returns ``(flat, offsets, keys)``;
+    :func:`reroute_turns_par` gives the same on ``nt`` threads."""
     h, w = occ.shape
     flat_occ = occ.ravel()
     n = pick.shape[0]
-    ns = 9 * h * w
-    state = np.zeros(ns, np.int64)
-    g = np.empty(ns)
-    came = np.empty(ns, np.uint8)
-    heap = np.empty(3 * ns)
-    touched = np.empty(ns, np.int64)
-    buf = np.empty(ns, np.int64)
+    state, g, came, heap, touched, buf = _turn_scratch(1, 9 * h * w)
     pos = np.full(h * w, -1, np.int64)
     cur = np.empty(h * w, np.int64)
     out = np.empty(max(16, n * (h + w)), np.int64)
     out_off = np.zeros(n + 1, np.int64)
     keys = np.empty((n, 3), np.int64)
     for r in range(n):
-        base = offsets[pick[r]]
-        m_old = offsets[pick[r] + 1] - base
-        p0 = min(max(i0[r], 0), m_old - 1)
-        p1 = min(max(i1[r], p0), m_old - 1)
-        m = 0
-        for j in range(p0 + 1):
-            m = _append(flat[base + j], cur, pos, m)
-        cnt = 0
-        if p1 > p0:
-            u = flat[base + p0]
-            v = flat[base + p1]
-            kin = 8
-            if p0 > 0:
-                q = flat[base + p0 - 1]
-                kin = _move_index(u // w - q // w, (u - (u // w) * w) - (q - (q // w) * w))
-            kout = 8
-            if p1 < m_old - 1:
-                q = flat[base + p1 + 1]
-                kout = _move_index(q // w - v // w, (q - (q // w) * w) - (v - (v // w) * w))
-            a, b = _weights(genes[r], lam_lo, lam_hi)
-            x = min(max(tgenes[r], 0.0), 1.0)
-            c = a * 10.0 ** (tau_lo + (tau_hi - tau_lo) * x)
-            cnt = _turn_segment(
-                flat_occ,
-                h,
-                w,
-                extra,
-                u,
-                kin,
-                v,
-                kout,
-                a,
-                b,
-                c,
-                corner_cutting,
-                state,
-                g,
-                came,
-                heap,
-                touched,
-                buf,
-            )
-        if cnt == 0:
-            for j in range(p0 + 1, p1 + 1):
-                m = _append(flat[base + j], cur, pos, m)
-        else:
-            for j in range(1, cnt):
-                m = _append(buf[j], cur, pos, m)
-        for j in range(p1 + 1, m_old):
-            m = _append(flat[base + j], cur, pos, m)
-        for j in range(m):
-            pos[cur[j]] = -1
+        m = _reroute_turns_one(
+            flat, offsets, pick, i0, i1, genes, tgenes, r, flat_occ, h, w, extra, corner_cutting, lam_lo,
+            lam_hi, tau_lo, tau_hi, margin, pmin, hlen, hext, flen, fext, state[0], g[0], came[0], heap[0],
+            touched[0], buf[0], pos, cur,
+        )  # fmt: skip
         out = _store(cur, m, r, out, out_off, keys)
+    return out[: out_off[n]], out_off, keys
+
+
+@numba.njit(cache=True, parallel=True)
+def reroute_turns_par(
+    flat,
+    offsets,
+    pick,
+    i0,
+    i1,
+    genes,
+    tgenes,
+    occ,
+    extra,
+    corner_cutting,
+    lam_lo,
+    lam_hi,
+    tau_lo,
+    tau_hi,
+    margin,
+    pmin,
+    hlen,
+    hext,
+    flen,
+    fext,
+    nt,
+):
+    """:func:`reroute_turns` on ``nt`` threads (the same paths for any ``nt``)."""
+    h, w = occ.shape
+    hw = h * w
+    flat_occ = occ.ravel()
+    n = pick.shape[0]
+    state, g, came, heap, touched, buf = _turn_scratch(nt, 9 * hw)
+    pos = np.full((nt, hw), -1, np.int64)
+    bsz = _block(nt, hw)
+    rows = np.empty((bsz, hw), np.int64)
+    cnts = np.zeros(bsz, np.int64)
+    out = np.empty(max(16, n * (h + w)), np.int64)
+    out_off = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    for lo in range(0, n, bsz):
+        hi = min(n, lo + bsz)
+        for k in numba.prange(nt):
+            for r in range(lo + k, hi, nt):
+                cnts[r - lo] = _reroute_turns_one(
+                    flat, offsets, pick, i0, i1, genes, tgenes, r, flat_occ, h, w, extra, corner_cutting,
+                    lam_lo, lam_hi, tau_lo, tau_hi, margin, pmin, hlen, hext, flen, fext, state[k], g[k],
+                    came[k], heap[k], touched[k], buf[k], pos[k], rows[r - lo],
+                )  # fmt: skip
+        for r in range(lo, hi):
+            out = _store(rows[r - lo], cnts[r - lo], r, out, out_off, keys)
     return out[: out_off[n]], out_off, keys

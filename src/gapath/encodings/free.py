@@ -55,7 +55,10 @@ Examples
 from __future__ import annotations
 
 import math
+import os
+import threading
 
+import numba
 import numpy as np
 
 from gapath.encodings import _free_kernels as K
@@ -65,6 +68,43 @@ from gapath.errors import ConfigError, NoPathError
 LAM_RANGE = (-3.0, 5.0)
 #: Candidate weight genes tried when fitting segments of a given path.
 FIT_CANDIDATES = np.linspace(0.0, 1.0, 33)
+#: Re-routing searches stay within this many cells (or the stretch's own
+#: extent, if larger) of the box around the stretch's ends (see
+#: :meth:`FreeEncoding.reroute`); 64 leaves every search on maps up to
+#: 65 x 65 unbounded.
+REROUTE_MARGIN = 64
+#: Most threads a batch of searches uses (numba ``prange``, one genome or
+#: re-routed path per thread at a time, with its own scratch arrays).
+MAX_THREADS = 4
+#: Environment variable that switches the parallel searches on: a number of
+#: threads, or ``auto`` (numba's thread count); unset or 1: serial.
+THREADS_ENV = "GAPATH_THREADS"
+
+
+def search_threads(n: int) -> int:
+    """Threads for a batch of ``n`` searches: 0 (the serial kernels) unless
+    the environment variable ``GAPATH_THREADS`` asks for more than one
+    (``auto``: numba's thread count; at most :data:`MAX_THREADS` and
+    numba's count), and also with fewer than two searches per thread or
+    outside the main thread (numba's ``workqueue`` threading layer must not
+    be entered from two threads at once). The paths do not depend on it.
+
+    Serial is the default because the parallel batches wait for their
+    slowest thread: on a machine whose cores are all busy (several runs at
+    once, ``gapath multirun`` workers) they lost wall time in
+    docs/results/free_paths.md ("Large maps").
+    """
+    want = os.environ.get(THREADS_ENV, "1").strip().lower()
+    nt = numba.get_num_threads()
+    if want != "auto":
+        try:
+            nt = min(nt, int(want))
+        except ValueError:
+            raise ConfigError(f"{THREADS_ENV} must be a number of threads or 'auto', got {want!r}") from None
+    nt = min(nt, MAX_THREADS)
+    if nt < 2 or n < 2 * nt or threading.current_thread() is not threading.main_thread():
+        return 0
+    return nt
 
 
 def default_n_via(shape) -> int:
@@ -304,7 +344,17 @@ class FreeEncoding:
         return np.concatenate([flat_a, flat_b]), np.concatenate([off_a, off_b[1:] + off_a[-1]])
 
     def reroute(
-        self, flat, offsets, pick, i0, i1, genes, lam_range=None, turn_genes=None, turn_range=(-2.0, 2.0)
+        self,
+        flat,
+        offsets,
+        pick,
+        i0,
+        i1,
+        genes,
+        lam_range=None,
+        turn_genes=None,
+        turn_range=(-2.0, 2.0),
+        margin=REROUTE_MARGIN,
     ):
         """Paths made by re-routing one segment of given paths.
 
@@ -320,7 +370,11 @@ class FreeEncoding:
         (one per row in [0, 1]) the searches run over (cell, last move)
         states and also weigh turns: ``c`` per radian of turn, ``log10(c /
         a)`` spread over ``turn_range`` by the gene, the turns where the
-        segment meets the rest of the path included.
+        segment meets the rest of the path included. Each search stays
+        inside the box around the stretch's two ends widened by ``max(margin,
+        extent)`` cells on every side (``extent`` the larger side of that
+        box; ``margin < 0``: the whole map), which bounds its cost on large
+        maps; the result is the optimal path inside that box.
 
         Returns
         -------
@@ -338,8 +392,10 @@ class FreeEncoding:
         """
         i = lambda a: np.ascontiguousarray(a, np.int64)  # noqa: E731
         lo, hi = self.lam_range if lam_range is None else (float(v) for v in lam_range)
+        margin = int(margin)
+        nt = search_threads(len(pick))
         if turn_genes is not None:
-            return K.reroute_turns(
+            args = (
                 i(flat),
                 i(offsets),
                 i(pick),
@@ -354,8 +410,15 @@ class FreeEncoding:
                 hi,
                 float(turn_range[0]),
                 float(turn_range[1]),
+                margin,
+                self._pmin,
+                self._hlen,
+                self._hext,
+                self._flen,
+                self._fext,
             )
-        return K.reroute(
+            return K.reroute_turns_par(*args, nt) if nt else K.reroute_turns(*args)
+        args = (
             i(flat),
             i(offsets),
             i(pick),
@@ -373,7 +436,9 @@ class FreeEncoding:
             self._pmin,
             self._flen,
             self._fext,
+            margin,
         )
+        return K.reroute_par(*args, nt) if nt else K.reroute(*args)
 
     def shortcut(self, flat, offsets, pick, i0, i1, diagonal_first):
         """Paths made by straightening one segment of given paths: as
@@ -474,7 +539,7 @@ class ViaPointEncoding(FreeEncoding):
         self._setup_bounds()
 
     def _decode_kernel(self, X):
-        return K.decode_via(
+        args = (
             X,
             self.n_via,
             self._occ,
@@ -490,6 +555,8 @@ class ViaPointEncoding(FreeEncoding):
             self._flen,
             self._fext,
         )
+        nt = search_threads(len(X))
+        return K.decode_via_par(*args, nt) if nt else K.decode_via(*args)
 
     def encode(self, paths, weights=None) -> np.ndarray:
         """Genomes of paths (workspace cells, start to goal).
@@ -576,7 +643,7 @@ class FieldEncoding(FreeEncoding):
 
     def _decode_kernel(self, X):
         gy, gx = self.field_shape
-        return K.decode_field(
+        args = (
             X,
             gy,
             gx,
@@ -590,6 +657,8 @@ class FieldEncoding(FreeEncoding):
             self._hlen,
             self._hext,
         )
+        nt = search_threads(len(X))
+        return K.decode_field_par(*args, nt) if nt else K.decode_field(*args)
 
     def encode(self, paths, weights=None) -> np.ndarray:
         """Genomes of paths: a neutral field (control genes 0.5) and the
@@ -653,10 +722,14 @@ def make_free_encoding(name: str, workspace, **options):
 __all__ = [
     "DEFAULT_FREE_ENCODING",
     "FREE_ENCODINGS",
+    "MAX_THREADS",
+    "REROUTE_MARGIN",
+    "THREADS_ENV",
     "FieldEncoding",
     "FreeEncoding",
     "ViaPointEncoding",
     "default_field_shape",
     "default_n_via",
     "make_free_encoding",
+    "search_threads",
 ]

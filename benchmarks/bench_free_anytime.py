@@ -1,0 +1,311 @@
+"""Anytime: the free-path GA against exact search on large maps (issue 14).
+
+"Where the GA must win": three objectives (length, vulnerability,
+smoothness) on large maps. For each instance the exact free front
+(:func:`gapath.planners.exact.free_front`, NAMOA*-dr) is computed once, with
+a wall-clock cap (``--exact-cap`` seconds, default 900: the search is ended
+through its ``progress`` hook and the instance is reported as "not finished")
+and a label budget (``--max-labels``), and cached as ``.npz`` in
+``--cache``. Then one GA run as a user runs it: :func:`gapath.solver.solve`
+with ``paths="free"`` (FastNSGA2, field genome, weighted-sum seeds, the
+free-path archive with its default refinement), population ``--pop``,
+seed ``--seed``, for ``--gen`` generations or until ``--ga-cap`` CPU seconds,
+recording after every generation the HV ratio of the run's front (the
+archive's) against the exact front and the wall time since the call, minus
+the time spent measuring the HV ratio (``ga_seconds`` is the GA's own time).
+
+Instances (``--instances``, comma-separated)::
+
+    gen128-sK   random_workspace((128, 128), 20 % obstacles, seed K),
+                start bottom-left, goal top-right
+    gen256-sK   the same on 256 x 256
+    gen512-sK   the same on 512 x 512
+    berlin      MovingAI Berlin_1_256, its longest .scen query
+    random512   MovingAI random512-10-0, its longest .scen query
+
+(MovingAI maps with ``corner_cutting=False``.) One JSON line per instance:
+exact front size and seconds (or ``exact_finished: false``), the GA's
+per-generation ``trace`` ``[gen, wall seconds, CPU seconds, hv_ratio]``, the
+seconds and generation at which the HV ratio first reached 0.95 and 0.99,
+the final ratio and sizes. Where exact search did not finish, the ratios
+are against the run's own final front (the best known front; every 5th
+generation), and ``reference`` says so. ``--throughput`` instead prints decode+evaluate throughput
+(paths per second of wall time and of process CPU time, ``--pop`` random
+genomes, cache cold) and the seconds per
+generation of a short GA run (``--throughput-gens`` generations after the
+first population; median), one line per instance.
+
+Usage::
+
+    python benchmarks/bench_free_anytime.py --instances gen128-s1,berlin [--gen 300]
+    python benchmarks/bench_free_anytime.py --exact-only --instances gen256-s1
+    python benchmarks/bench_free_anytime.py --throughput --instances random512 --pop 200
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+from pymoo.core.callback import Callback
+
+from gapath.convergence import HypervolumeRatioCallback
+from gapath.generators import random_workspace
+from gapath.loaders import load_movingai, load_scenarios
+from gapath.metrics import coverage, hv_ratio
+from gapath.operators.archive import run_archive
+from gapath.planners.exact import free_front
+from gapath.problems import FreePathProblem
+from gapath.solver import solve
+
+try:  # the parallel searches (absent before them: serial)
+    from gapath.encodings.free import search_threads
+except ImportError:  # pragma: no cover
+
+    def search_threads(n: int) -> int:
+        return 0
+
+
+ROOT = Path(__file__).resolve().parents[1]
+OBJECTIVES = ("length", "vulnerability", "smoothness")
+
+
+def data_dir(arg=None) -> Path:
+    if arg:
+        return Path(arg)
+    env = os.environ.get("GAPATH_SHARED_DATA")
+    return Path(env) if env else ROOT.parent / "shared" / "data"
+
+
+def _longest(scen_path):
+    return sorted(load_scenarios(scen_path), key=lambda s: -s.optimal)[0]
+
+
+def workspace(name: str, data: Path):
+    """The workspace of instance ``name`` (see the module docstring)."""
+    if name.startswith("gen"):
+        size, seed = name[3:].split("-s")
+        n = int(size)
+        return random_workspace((n, n), int(round(0.2 * n * n)), seed=int(seed), name=name)
+    if name == "berlin":
+        d = data / "movingai" / "mapf"
+        sc = _longest(d / "Berlin_1_256-random-1.scen")
+        return load_movingai(d / "Berlin_1_256.map", start=sc.start, goal=sc.goal, corner_cutting=False)
+    if name == "random512":
+        d = data / "movingai" / "grid"
+        sc = _longest(d / "random512-10-0.map.scen")
+        return load_movingai(d / "random512-10-0.map", start=sc.start, goal=sc.goal, corner_cutting=False)
+    raise SystemExit(f"unknown instance {name!r}")
+
+
+class _Stop(Exception):
+    pass
+
+
+def exact(name, ws, cache: Path, cap: float, max_labels):
+    """The cached exact front of ``name``: ``(F or None, record)``."""
+    f = cache / f"{name}.npz"
+    if f.exists():
+        z = np.load(f, allow_pickle=False)
+        rec = json.loads(str(z["record"]))
+        return (z["F"] if rec["exact_finished"] else None), rec
+    t0 = time.perf_counter()
+    last: dict = {}
+
+    def progress(info):
+        last.update(info)
+        if time.perf_counter() - t0 > cap:
+            raise _Stop
+
+    rec = dict(instance=name, shape=list(ws.shape), start=list(ws.start), goal=list(ws.goal))
+    F = None
+    try:
+        front = free_front(ws, OBJECTIVES, max_labels=max_labels, progress=progress)
+        F = np.asarray(front.F, float)
+        rec.update(exact_finished=True, exact_size=len(F), exact_seconds=time.perf_counter() - t0)
+        rec["exact_stats"] = {k: v for k, v in front.stats.items() if isinstance(v, (int, float))}
+    except (_Stop, Exception) as e:  # the cap, the label budget or memory: not finished
+        rec.update(
+            exact_finished=False,
+            exact_seconds=time.perf_counter() - t0,
+            exact_stopped_by="cap" if isinstance(e, _Stop) else f"{type(e).__name__}: {e}",
+            exact_progress={k: v for k, v in last.items() if isinstance(v, (int, float))},
+        )
+    cache.mkdir(parents=True, exist_ok=True)
+    np.savez(f, F=np.zeros((0, 3)) if F is None else F, record=json.dumps(rec))
+    return F, rec
+
+
+class _Trace(Callback):
+    """The run's front (the archive's) every generation, with the GA's own
+    wall and CPU time (the time spent here is subtracted); its HV ratio
+    against ``reference`` at once, or, without one, the fronts themselves
+    (every ``keep`` generations) to be measured against the run's final
+    front afterwards."""
+
+    def __init__(self, reference, cap, keep=5, progress=None):
+        super().__init__()
+        self.progress = progress
+        self.hv = None if reference is None else HypervolumeRatioCallback(reference)
+        self.t0, self.c0 = time.perf_counter(), time.process_time()
+        self.spent = self.cpu_spent = 0.0
+        self.cap, self.keep = cap, keep
+        self.trace: list[list[float]] = []
+        self.fronts: list = []
+
+    def initialize(self, algorithm):
+        if self.hv is not None:
+            self.hv.initialize(algorithm)
+
+    def notify(self, algorithm):
+        t, c = time.perf_counter(), time.process_time()
+        g = int(algorithm.n_gen)
+        if self.hv is not None:
+            self.hv.notify(algorithm)
+            h = self.hv.history[-1][2]
+        else:
+            h = float("nan")
+            if g % self.keep == 1 or self.keep == 1:
+                self.fronts.append((len(self.trace), run_archive(algorithm).F.copy()))
+        self.spent += time.perf_counter() - t
+        self.cpu_spent += time.process_time() - c
+        ga = time.perf_counter() - self.t0 - self.spent
+        cpu = time.process_time() - self.c0 - self.cpu_spent
+        self.trace.append([g, round(ga, 3), round(cpu, 3), round(h, 6)])
+        if self.progress:  # partial figures of a run that may not finish
+            with open(self.progress, "a") as f:
+                f.write(json.dumps(self.trace[-1]) + "\n")
+        if cpu > self.cap:
+            algorithm.termination.force_termination = True
+
+
+def anytime(ws, F, pop, gen, seed, cap, progress=None):
+    """One GA run's trace against the exact front ``F`` (or, when None,
+    against the run's own final front)."""
+    tracker = _Trace(F, cap, progress=progress)
+    res = solve(ws, objectives=OBJECTIVES, paths="free", pop_size=pop, n_gen=gen, seed=seed, callback=tracker)
+    tr = tracker.trace
+    ref = F
+    if F is None:  # the best known front: the run's own archive at the end
+        ref = res.front.F
+        for row in tr:
+            row[3] = None
+        for i, Fi in tracker.fronts:
+            tr[i][3] = round(hv_ratio(Fi, ref), 6) if len(Fi) else 0.0
+        tr[-1][3] = 1.0
+        tr = [row for row in tr if row[3] is not None]
+
+    def reach(level):
+        for g, t, c, h in tr:
+            if h >= level:
+                return dict(gen=g, seconds=t, cpu_seconds=c)
+        return None
+
+    return dict(
+        pop=pop,
+        gen_run=len(tracker.trace),
+        seed=seed,
+        reference="exact" if F is not None else "final GA front",
+        ga_seconds=tracker.trace[-1][1] if tr else None,
+        ga_cpu_seconds=tracker.trace[-1][2] if tr else None,
+        ga_size=len(res.front),
+        hv_ratio=hv_ratio(res.front.F, ref),
+        coverage=coverage(res.front.F, ref),
+        n_eval=res.n_eval,
+        to_095=reach(0.95),
+        to_099=reach(0.99),
+        trace=tr,
+    )
+
+
+class _Clock(Callback):
+    """Wall time after every generation."""
+
+    def __init__(self):
+        super().__init__()
+        self.t0 = time.perf_counter()
+        self.c0 = time.process_time()
+        self.times: list[float] = []
+        self.cpu: list[float] = []
+
+    def notify(self, algorithm):
+        self.times.append(time.perf_counter() - self.t0)
+        self.cpu.append(time.process_time() - self.c0)
+
+
+def throughput(ws, pop, seed, gens):
+    problem = FreePathProblem(ws, OBJECTIVES)
+    X = np.random.default_rng(seed).random((pop, problem.n_var))
+    problem.evaluate(X[:2], return_as_dictionary=True)  # compiled
+    problem.encoding._cache.clear()
+    t0, c0 = time.perf_counter(), time.process_time()
+    problem.evaluate(X, return_as_dictionary=True)
+    rate = pop / (time.perf_counter() - t0)
+    cpu_rate = pop / (time.process_time() - c0)
+    clock = _Clock()
+    res = solve(ws, objectives=OBJECTIVES, paths="free", pop_size=pop, n_gen=gens, seed=seed, callback=clock)
+    per_gen = np.diff(clock.times)  # generation 1 is the initial population
+    cpu_gen = np.diff(clock.cpu)
+    return dict(
+        threads=search_threads(pop),
+        paths_per_second=rate,
+        paths_per_cpu_second=cpu_rate,
+        n_var=problem.n_var,
+        gens=gens,
+        first_population_seconds=clock.times[0],
+        seconds_per_gen=float(np.median(per_gen)) if len(per_gen) else None,
+        gen_seconds=[round(float(x), 3) for x in per_gen],
+        cpu_seconds_per_gen=float(np.median(cpu_gen)) if len(cpu_gen) else None,
+        ga_size=len(res.front),
+    )
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--instances", default="gen128-s1,berlin,gen256-s1")
+    ap.add_argument("--pop", type=int, default=200)
+    ap.add_argument("--gen", type=int, default=300)
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--ga-cap", type=float, default=900.0, help="stop the GA after this many CPU seconds")
+    ap.add_argument("--exact-cap", type=float, default=900.0, help="give up exact search after this many s")
+    ap.add_argument("--max-labels", type=int, default=80_000_000)
+    ap.add_argument("--exact-only", action="store_true")
+    ap.add_argument("--throughput", action="store_true")
+    ap.add_argument("--throughput-gens", type=int, default=3)
+    ap.add_argument("--cache", default=str(ROOT / "build" / "anytime"))
+    ap.add_argument("--data", default=None)
+    ap.add_argument("--label", default=None, help="a tag added to every line (e.g. before/after)")
+    ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
+    ap.add_argument("--progress", default=None, help="append each trace row to PROGRESS.<instance>")
+    a = ap.parse_args(argv)
+    data = data_dir(a.data)
+    out = open(a.out, "a") if a.out else None
+    for name in a.instances.split(","):
+        ws = workspace(name, data)
+        if a.throughput:
+            rec = dict(instance=name, shape=list(ws.shape), pop=a.pop, label=a.label)
+            rec.update(throughput(ws, a.pop, a.seed, a.throughput_gens))
+        else:
+            F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels)
+            if a.label:
+                rec["label"] = a.label
+            if not a.exact_only:
+                progress = f"{a.progress}.{name}" if a.progress else None
+                rec.update(anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress))
+        line = json.dumps(rec)
+        print(line, flush=True)
+        if out:
+            out.write(line + "\n")
+            out.flush()
+    if out:
+        out.close()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
