@@ -88,8 +88,8 @@ CELL, F_HEAD, F_PARENT, NS, ND, TURNS, NEXT = range(7)  # int table
 F_VUL, RUNMIN = range(2)  # float table
 # CELL: row * W + col; F_HEAD: heading of the last step (-1 at the start);
 # NS/ND: straight/diagonal step counts; TURNS: total turn in eighths; NEXT:
-# link to the next label of the same state's list; RUNMIN: the state's
-# smallest second objective once this label was accepted.
+# link of the free list of recycled rows (MODE_THREE's staircases are in their
+# own pool, :func:`_stair_pool`); RUNMIN: unused here (BOA*'s, in _boa_kernels).
 
 OBJ_LEN, OBJ_VUL, OBJ_SMOOTH = range(3)
 #: Search modes: BOA* on (length, vulnerability) with cells as states and
@@ -235,28 +235,6 @@ def _f(li, lf, i, o, cell_size, hs, hd, hv, ht):
 # -- 3. dominance checks --------------------------------------------------------
 
 
-@numba.njit(cache=True, inline="always")
-def _stair_insert(li, lf, first, s, x):
-    """Insert label ``x`` (not covered by staircase ``s``) into it, dropping
-    the entries it makes redundant: as many turns or more and as vulnerable
-    or more."""
-    t = li[x, TURNS]
-    v = lf[x, F_VUL]
-    keep = -1  # the last entry before x that stays
-    a = first[s]
-    while a >= 0 and li[a, TURNS] > t:
-        if lf[a, F_VUL] < v:
-            keep = a
-        a = li[a, NEXT]
-    if a >= 0 and li[a, TURNS] == t:  # x is less vulnerable, or it were covered
-        a = li[a, NEXT]
-    li[x, NEXT] = a
-    if keep < 0:
-        first[s] = x
-    else:
-        li[keep, NEXT] = x
-
-
 @numba.njit(cache=True)
 def _goal_insert(li, lf, gmin, base, first, goal_state, x):
     """Record solution ``x`` in MODE_THREE's goal front.
@@ -284,20 +262,114 @@ def _goal_insert(li, lf, gmin, base, first, goal_state, x):
         gmin[base + u] = v
 
 
+#: MODE_THREE's staircases live in a pool of floats (``sp``, made by
+#: :func:`_stair_pool`, grown by :func:`_free_run`): ``sp[SP_USED]`` floats
+#: are in use, ``sp[SP_MAXCAP]`` is the largest block capacity so far. A
+#: state ``s`` with a staircase owns the block at ``o = first[s]``:
+#: ``sp[o]`` entries of ``sp[o + 1]`` capacity, their turns at ``sp[o + 2
+#: + i]`` (decreasing) and their vulnerabilities at ``sp[o + 2 + cap + i]``
+#: (increasing), ``i`` from the head (most turns, least vulnerable) to the
+#: tail. A full block is replaced by one twice as large at the end of the
+#: pool (the old one is left unused).
+SP_USED, SP_MAXCAP, SP_HEADER = 0, 1, 2
+STAIR_CAP0 = 2
+
+
 @numba.njit(cache=True)
-def _three_insert(li, lf, first, gmin, s, x):
-    """:func:`_stair_insert` of label ``x`` into staircase ``s`` (MODE_THREE),
-    and the summaries of ``s`` and its cell updated (see THREE_BLOCK). The
-    head's vulnerability never increases (a new head is less vulnerable than
-    every entry), and ``x`` is the tail exactly when nothing follows it."""
-    _stair_insert(li, lf, first, s, x)
+def _stair_pool(n):
+    """An empty staircase pool of ``n`` floats (at least the header)."""
+    sp = np.empty(max(n, SP_HEADER + 2 + 2 * STAIR_CAP0))
+    sp[SP_USED] = SP_HEADER
+    sp[SP_MAXCAP] = STAIR_CAP0
+    return sp
+
+
+@numba.njit(cache=True, inline="always")
+def _stair_room(sp):
+    """Floats that one insertion may append to the pool."""
+    return 2 + 4 * int(sp[SP_MAXCAP])
+
+
+@numba.njit(cache=True, inline="always")
+def _stair_covered(sp, o, bound, v):
+    """True if the first entry of the staircase at ``o`` with at most
+    ``bound`` turns is not more vulnerable than ``v`` (tolerance); the
+    caller knows that the head has more turns than ``bound`` and the tail
+    not (binary search over the entries in between). Vulnerability grows
+    along the staircase, so that entry decides."""
+    lo = 1
+    hi = int(sp[o]) - 1  # the tail is within the bound
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if sp[o + 2 + mid] <= bound:
+            hi = mid
+        else:
+            lo = mid + 1
+    return _le(sp[o + 2 + int(sp[o + 1]) + lo], v)
+
+
+@numba.njit(cache=True)
+def _three_insert(sp, first, gmin, s, t, v):
+    """Insert an expanded label with ``t`` turns and vulnerability ``v``,
+    which staircase ``s`` does not cover, into it (MODE_THREE), dropping
+    the entries it makes redundant (as many turns or more and as
+    vulnerable or more), and update the summaries of ``s`` and its cell
+    (see THREE_BLOCK). The head's vulnerability never increases (a new head
+    is less vulnerable than every entry)."""
+    o = first[s]
+    if o < 0:  # a new staircase
+        o = int(sp[SP_USED])
+        sp[SP_USED] = o + 2 + 2 * STAIR_CAP0
+        sp[o] = 0
+        sp[o + 1] = STAIR_CAP0
+        first[s] = o
+    n = int(sp[o])
+    cap = int(sp[o + 1])
+    tt = o + 2
+    vv = o + 2 + cap
+    p = 0  # the first entry with at most t turns
+    while p < n and sp[tt + p] > t:
+        p += 1
+    q = p  # entries before q stay (less vulnerable than x)
+    while q > 0 and not sp[vv + q - 1] < v:
+        q -= 1
+    r = p  # entries from r on stay (x is less vulnerable than one with t turns)
+    if r < n and sp[tt + r] == t:
+        r += 1
+    m = q + 1 + n - r
+    if m > cap:  # a block twice as large at the end of the pool
+        cap2 = 2 * cap
+        o2 = int(sp[SP_USED])
+        sp[SP_USED] = o2 + 2 + 2 * cap2
+        if cap2 > sp[SP_MAXCAP]:
+            sp[SP_MAXCAP] = cap2
+        tt2 = o2 + 2
+        vv2 = o2 + 2 + cap2
+        for i in range(q):
+            sp[tt2 + i] = sp[tt + i]
+            sp[vv2 + i] = sp[vv + i]
+        for i in range(r, n):
+            sp[tt2 + i - r + q + 1] = sp[tt + i]
+            sp[vv2 + i - r + q + 1] = sp[vv + i]
+        sp[o2 + 1] = cap2
+        o, tt, vv = o2, tt2, vv2
+        first[s] = o
+    elif q + 1 < r:  # entries dropped: move the rest forward
+        for i in range(r, n):
+            sp[tt + i - r + q + 1] = sp[tt + i]
+            sp[vv + i - r + q + 1] = sp[vv + i]
+    elif q + 1 > r:  # nothing dropped: move the rest back by one
+        for i in range(n - 1, r - 1, -1):
+            sp[tt + i + 1] = sp[tt + i]
+            sp[vv + i + 1] = sp[vv + i]
+    sp[tt + q] = t
+    sp[vv + q] = v
+    sp[o] = m
     c = s // N_SLOTS
     b = c * THREE_BLOCK + 1 + 3 * (s % N_SLOTS)
-    a = first[s]
-    gmin[b] = lf[a, F_VUL]
-    gmin[b + 1] = li[a, TURNS]
-    if li[x, NEXT] < 0:
-        gmin[b + 2] = li[x, TURNS]
+    gmin[b] = sp[vv]
+    gmin[b + 1] = sp[tt]
+    gmin[b + 2] = sp[tt + m - 1]
     gmin[c * THREE_BLOCK] = min(gmin[c * THREE_BLOCK], gmin[b])
 
 
@@ -351,7 +423,7 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
     :func:`_free_run` resumes from."""
     # BOA*: g2_min of each state; MODE_THREE: staircase summaries and goal front (THREE_BLOCK)
     gmin = np.full(n_states * (4 if mode == MODE_THREE else 1), np.inf)
-    first = np.full(n_states + 1, -1, np.int32)  # newest label / staircase head
+    first = np.full(n_states + 1, -1, np.int32)  # MODE_THREE: staircase block (_stair_pool)
     li = np.empty((1024, 7), np.int32)
     lf = np.empty((1024, 2))
     sols = np.empty(64, np.int32)
@@ -411,6 +483,7 @@ def _free_run(
     hid,
     st,
     stf,
+    sp,
     n_steps,
     max_labels,
 ):
@@ -424,12 +497,13 @@ def _free_run(
     ``mask``: the allowed moves of each cell
     (:func:`gapath.planners._exact_heuristics._move_masks`).
 
-    The state is the arrays made by :func:`_free_init` and the scalars in
-    ``st``/``stf`` (updated in place). A label dropped when it leaves the
+    The state is the arrays made by :func:`_free_init`, the scalars in
+    ``st``/``stf`` (updated in place) and MODE_THREE's staircase pool ``sp``
+    (:func:`_stair_pool`; any small one in the other mode). A label dropped when it leaves the
     open list is referenced by nothing (it has no children and belongs to
     no state's set): its row is recycled through a free list linked by
     ``NEXT``. Stops before a pop that could take the label rows in use
-    beyond ``max_labels``. Returns ``(li, lf, sols, hk, hid, status)``,
+    beyond ``max_labels``. Returns ``(li, lf, sols, hk, hid, sp, status)``,
     status DONE (open list empty), PAUSED or OVER_BUDGET.
 
     The search itself is :func:`_free_steps`, which never reallocates (an
@@ -462,11 +536,12 @@ def _free_run(
             hid,
             st,
             stf,
+            sp,
             n_steps - (st[S_POPS] - pops0),
             max_labels,
         )
         if status != NEED_ROOM:
-            return li, lf, sols, hk, hid, status
+            return li, lf, sols, hk, hid, sp, status
         if st[S_N] + 8 > li.shape[0]:
             li = _grow(li, st[S_N] + 8)
             lf = _grow(lf, st[S_N] + 8)
@@ -475,6 +550,8 @@ def _free_run(
             hid = _grow1(hid, st[S_SIZE] + 8)
         if st[S_SOLS] + 1 > sols.shape[0]:
             sols = _grow1(sols, st[S_SOLS] + 1)
+        if mode == MODE_THREE and sp[SP_USED] + _stair_room(sp) > sp.shape[0]:
+            sp = _grow1(sp, int(sp[SP_USED]) + _stair_room(sp))
 
 
 @numba.njit(cache=True)
@@ -501,6 +578,7 @@ def _free_steps(
     hid,
     st,
     stf,
+    sp,
     n_steps,
     max_labels,
 ):
@@ -534,6 +612,9 @@ def _free_steps(
         if n + 8 > li.shape[0] or size + 8 > hid.shape[0] or n_sols + 1 > sols.shape[0]:
             status = NEED_ROOM
             break
+        if mode == MODE_THREE and sp[SP_USED] + _stair_room(sp) > sp.shape[0]:
+            status = NEED_ROOM
+            break
         steps += 1
         # 2. the lexicographically smallest label
         x, size = _heap_pop(hk, hid, size)
@@ -559,12 +640,8 @@ def _free_steps(
                     if gmin[b + 1] <= bound:  # the head: the least vulnerable is within it
                         covered = True
                         break
-                    # walk to the first entry within the bound; vulnerability grows along
-                    # the list, so stop at the first entry more vulnerable than x
-                    a = first[c * N_SLOTS + k]
-                    while li[a, TURNS] > bound and _le(lf[a, F_VUL], v):
-                        a = li[a, NEXT]
-                    if li[a, TURNS] <= bound and _le(lf[a, F_VUL], v):
+                    # the first entry within the bound (vulnerability grows along it)
+                    if _stair_covered(sp, first[c * N_SLOTS + k], bound, v):
                         covered = True
                         break
             tmax = first[goal_state]
@@ -596,7 +673,7 @@ def _free_steps(
         n_expanded += 1
         s = c * N_SLOTS + _slot(li[x, F_HEAD])
         if mode == MODE_THREE:
-            _three_insert(li, lf, first, gmin, s, x)
+            _three_insert(sp, first, gmin, s, li[x, TURNS], lf[x, F_VUL])
         else:
             gmin[s] = min(gmin[s], _g(li, lf, x, Q, cell_size))  # MODE_HEADING: g2_min only
         r, col = c // w, c % w
@@ -643,10 +720,7 @@ def _free_steps(
                         if gmin[b + 1] <= bound:  # the head: the least vulnerable is within it
                             covered = True
                             break
-                        a = first[cell * N_SLOTS + k]  # as at the pop (above)
-                        while li[a, TURNS] > bound and _le(lf[a, F_VUL], v):
-                            a = li[a, NEXT]
-                        if li[a, TURNS] <= bound and _le(lf[a, F_VUL], v):
+                        if _stair_covered(sp, first[cell * N_SLOTS + k], bound, v):  # as at the pop
                             covered = True
                             break
                 tmax = first[goal_state]

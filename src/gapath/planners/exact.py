@@ -96,6 +96,7 @@ from gapath.planners._exact_kernels import (
     S_SOLS,
     TURNS,
     _free_run,
+    _stair_pool,
     _tolerant_front,
     _trace,
 )
@@ -1043,9 +1044,10 @@ def _search_pass(
     gmin, first, li, lf, sols, hk, hid, st, stf = state
     fixed = hs.nbytes + hd.nbytes + hv.nbytes + ht.nbytes + gmin.nbytes + first.nbytes
     slices = _Slices(1 << 14, 1 << 10, 1 << 26)
+    sp = _stair_pool(1 << 16 if mode == MODE_THREE else 0)  # MODE_THREE's staircases
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
-        li, lf, sols, hk, hid, status = _free_run(
+        li, lf, sols, hk, hid, sp, status = _free_run(
             occ,
             pot,
             gr,
@@ -1068,6 +1070,7 @@ def _search_pass(
             hid,
             st,
             stf,
+            sp,
             slices.n,
             budget,
         )
@@ -1097,7 +1100,7 @@ def _search_pass(
     total["labels"] = max(total["labels"], int(st[S_N]))  # rows used at the peak
     total["peak_bytes"] = max(
         total["peak_bytes"],
-        int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes),
+        int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + sp.nbytes),
     )
     return li, lf, sols[: st[S_SOLS]], st
 
