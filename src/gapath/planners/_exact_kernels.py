@@ -85,11 +85,11 @@ def _heading_gap(ha, hb):
 # Labels live in two growable tables, like the monotone DP's:
 
 CELL, F_HEAD, F_PARENT, NS, ND, TURNS, NEXT = range(7)  # int table
-F_VUL, RUNMIN = range(2)  # float table
+F_VUL = 0  # float table (one column)
 # CELL: row * W + col; F_HEAD: heading of the last step (-1 at the start);
 # NS/ND: straight/diagonal step counts; TURNS: total turn in eighths; NEXT:
 # link of the free list of recycled rows (MODE_THREE's staircases are in their
-# own pool, :func:`_stair_pool`); RUNMIN: unused here (BOA*'s, in _boa_kernels).
+# own pool, :func:`_stair_pool`).
 
 OBJ_LEN, OBJ_VUL, OBJ_SMOOTH = range(3)
 #: Search modes: BOA* on (length, vulnerability) with cells as states and
@@ -425,7 +425,7 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
     gmin = np.full(n_states * (4 if mode == MODE_THREE else 1), np.inf)
     first = np.full(n_states + 1, -1, np.int32)  # MODE_THREE: staircase block (_stair_pool)
     li = np.empty((1024, 7), np.int32)
-    lf = np.empty((1024, 2))
+    lf = np.empty((1024, 1))
     sols = np.empty(64, np.int32)
     hk = np.empty((1024, 3))
     hid = np.empty(1024, np.int32)
@@ -438,7 +438,6 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
     li[0, TURNS] = 0
     li[0, NEXT] = -1
     lf[0, F_VUL] = pot[sr, sc]
-    lf[0, RUNMIN] = np.inf
     st = np.zeros(N_ST, np.int64)
     st[S_N] = 1
     st[S_SIZE] = 1
@@ -678,6 +677,7 @@ def _free_steps(
             gmin[s] = min(gmin[s], _g(li, lf, x, Q, cell_size))  # MODE_HEADING: g2_min only
         r, col = c // w, c % w
         head = li[x, F_HEAD]
+        x_ns, x_nd, x_t, x_v = li[x, NS], li[x, ND], li[x, TURNS], lf[x, F_VUL]
         mk = mask[c]
         for d in range(8):
             if not (mk >> d) & 1:
@@ -690,23 +690,28 @@ def _free_steps(
                 j = free
             else:
                 j = n
-            li[j, CELL] = cell
-            li[j, F_HEAD] = d
-            li[j, F_PARENT] = x
-            li[j, NS] = li[x, NS] + (1 - d % 2)
-            li[j, ND] = li[x, ND] + d % 2
-            li[j, TURNS] = li[x, TURNS] + (turn(head, d) if head >= 0 else 0)
-            lf[j, F_VUL] = lf[x, F_VUL] + pot[r2, c2]
+            # the new label's values; MODE_THREE writes its row only once it is kept
+            # (most generated labels are not)
+            ns_j = x_ns + (1 - d % 2)
+            nd_j = x_nd + d % 2
+            t = x_t + (turn(head, d) if head >= 0 else 0)
+            v = x_v + pot[r2, c2]
+            if mode != MODE_THREE:  # the checks below read the row
+                li[j, CELL] = cell
+                li[j, F_HEAD] = d
+                li[j, F_PARENT] = x
+                li[j, NS] = ns_j
+                li[j, ND] = nd_j
+                li[j, TURNS] = t
+                lf[j, F_VUL] = v
             n_generated += 1
             # the f-vector, written out (helper calls on the arrays cost reference counting)
-            f_len = ((li[j, NS] + hs[cell]) + SQRT2 * (li[j, ND] + hd[cell])) * cell_size
-            f_vul = lf[j, F_VUL] + hv[cell]
-            f_turn = np.float64(li[j, TURNS] + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0))
+            f_len = ((ns_j + hs[cell]) + SQRT2 * (nd_j + hd[cell])) * cell_size
+            f_vul = v + hv[cell]
+            f_turn = np.float64(t + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0))
             # 3. eager dominance checks (prune before the open list)
             if mode == MODE_THREE:
-                # the (turns, vulnerability) staircases, walked here (see above)
-                t = li[j, TURNS]
-                v = lf[j, F_VUL]
+                # the (turns, vulnerability) staircases, searched here (see above)
                 covered = False
                 base = cell * THREE_BLOCK
                 if cell != goal and gmin[base] < np.inf and _le(gmin[base], v):
@@ -740,6 +745,14 @@ def _free_steps(
                 n_free -= 1
             else:
                 n += 1
+            if mode == MODE_THREE:
+                li[j, CELL] = cell
+                li[j, F_HEAD] = d
+                li[j, F_PARENT] = x
+                li[j, NS] = ns_j
+                li[j, ND] = nd_j
+                li[j, TURNS] = t
+                lf[j, F_VUL] = v
             li[j, NEXT] = -1
             k1 = f_len if P == OBJ_LEN else (f_vul if P == OBJ_VUL else f_turn)
             k2 = f_len if second == OBJ_LEN else (f_vul if second == OBJ_VUL else f_turn)
