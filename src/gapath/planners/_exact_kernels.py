@@ -410,7 +410,10 @@ def _goal_covered(li, lf, x, Q, goal_min, cell_size, hs, hd, hv, ht):
 
 # scalars of the search state (int array ``st`` and float array ``stf``)
 S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_FREE, S_N_FREE, S_POPS = range(9)
-N_ST = 9
+#: MODE_THREE's count of staircase searches (:func:`_stair_covered`: the checks the
+#: summaries could not decide), at pops and at generation
+S_SEARCHES = 9
+N_ST = 10
 SF_GOAL_MIN = 0
 
 
@@ -600,6 +603,7 @@ def _free_steps(
     status = DONE
     steps = 0
     pops0 = st[S_POPS]
+    n_searches = st[S_SEARCHES]
 
     while size > 0:
         if steps == n_steps:
@@ -640,6 +644,7 @@ def _free_steps(
                         covered = True
                         break
                     # the first entry within the bound (vulnerability grows along it)
+                    n_searches += 1
                     if _stair_covered(sp, first[c * N_SLOTS + k], bound, v):
                         covered = True
                         break
@@ -725,6 +730,7 @@ def _free_steps(
                         if gmin[b + 1] <= bound:  # the head: the least vulnerable is within it
                             covered = True
                             break
+                        n_searches += 1
                         if _stair_covered(sp, first[cell * N_SLOTS + k], bound, v):  # as at the pop
                             covered = True
                             break
@@ -766,6 +772,7 @@ def _free_steps(
     st[S_FREE] = free
     st[S_N_FREE] = n_free
     st[S_POPS] = pops0 + steps
+    st[S_SEARCHES] = n_searches
     stf[SF_GOAL_MIN] = goal_min
     return status
 

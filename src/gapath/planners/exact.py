@@ -92,8 +92,10 @@ from gapath.planners._exact_kernels import (
     S_N,
     S_N_FREE,
     S_POPS,
+    S_SEARCHES,
     S_SIZE,
     S_SOLS,
+    SP_USED,
     TURNS,
     _free_run,
     _stair_pool,
@@ -689,7 +691,10 @@ def free_front(
         ``stats`` has ``expansions``, ``generated``, ``labels``,
         ``peak_bytes``, ``heuristic_seconds``, ``seconds`` (and
         ``tie_edges``, the ties recorded, with the default tie-break on
-        length and vulnerability).
+        length and vulnerability; with length, vulnerability and smoothness,
+        ``stair_searches``, the staircase searches that the per-cell
+        summaries left open, and ``stair_floats``, the size of the
+        staircase pool).
 
     Raises
     ------
@@ -1102,6 +1107,9 @@ def _search_pass(
         total["peak_bytes"],
         int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + sp.nbytes),
     )
+    if mode == MODE_THREE:
+        total["stair_searches"] = total.get("stair_searches", 0) + int(st[S_SEARCHES])
+        total["stair_floats"] = max(total.get("stair_floats", 0), int(sp[SP_USED]))
     return li, lf, sols[: st[S_SOLS]], st
 
 
