@@ -195,6 +195,65 @@ def _heap_pop(hk, hid, size):
     return top, size
 
 
+@numba.njit(cache=True, inline="always")
+def _heap4_push(hk, size, k1, k2, k3, node):
+    """:func:`_heap_push` on a heap whose rows hold the label too (column 3,
+    as a float: exact below 2**53), one row per level touched instead of
+    two arrays (MODE_THREE); the same order."""
+    i = size
+    fn = np.float64(node)
+    while i > 0:
+        p = (i - 1) >> 1
+        if not _key_less(k1, k2, k3, fn, hk[p, 0], hk[p, 1], hk[p, 2], hk[p, 3]):
+            break
+        hk[i, 0] = hk[p, 0]
+        hk[i, 1] = hk[p, 1]
+        hk[i, 2] = hk[p, 2]
+        hk[i, 3] = hk[p, 3]
+        i = p
+    hk[i, 0] = k1
+    hk[i, 1] = k2
+    hk[i, 2] = k3
+    hk[i, 3] = fn
+
+
+@numba.njit(cache=True, inline="always")
+def _heap4_pop(hk, size):
+    """:func:`_heap_pop` on a heap of :func:`_heap4_push`."""
+    top = np.int64(hk[0, 3])
+    size -= 1
+    if size > 0:
+        k1, k2, k3, node = hk[size, 0], hk[size, 1], hk[size, 2], hk[size, 3]
+        i = 0
+        while True:
+            ch = 2 * i + 1
+            if ch >= size:
+                break
+            if ch + 1 < size and _key_less(
+                hk[ch + 1, 0],
+                hk[ch + 1, 1],
+                hk[ch + 1, 2],
+                hk[ch + 1, 3],
+                hk[ch, 0],
+                hk[ch, 1],
+                hk[ch, 2],
+                hk[ch, 3],
+            ):
+                ch += 1
+            if not _key_less(hk[ch, 0], hk[ch, 1], hk[ch, 2], hk[ch, 3], k1, k2, k3, node):
+                break
+            hk[i, 0] = hk[ch, 0]
+            hk[i, 1] = hk[ch, 1]
+            hk[i, 2] = hk[ch, 2]
+            hk[i, 3] = hk[ch, 3]
+            i = ch
+        hk[i, 0] = k1
+        hk[i, 1] = k2
+        hk[i, 2] = k3
+        hk[i, 3] = node
+    return top, size
+
+
 # -- 1. heuristics: gapath/planners/_exact_heuristics.py ---------------------
 
 
@@ -506,7 +565,10 @@ def _free_run(
     no state's set): its row is recycled through a free list linked by
     ``NEXT``. Stops before a pop that could take the label rows in use
     beyond ``max_labels``. Returns ``(li, lf, sols, hk, hid, sp, status)``,
-    status DONE (open list empty), PAUSED or OVER_BUDGET.
+    status DONE (open list empty), PAUSED or OVER_BUDGET. MODE_THREE keeps
+    each label in its heap row (column 3, :func:`_heap4_push`): the
+    3-column heap of :func:`_free_init` is widened at the first call (``hid``
+    then only sets the heap's capacity).
 
     The search itself is :func:`_free_steps`, which never reallocates (an
     array reassigned inside a numba loop is reference-counted at every
@@ -514,6 +576,12 @@ def _free_run(
     and this loop doubles it.
     """
     pops0 = st[S_POPS]
+    if mode == MODE_THREE and hk.shape[1] == 3:  # a new search: labels into the heap rows
+        hk4 = np.empty((hk.shape[0], 4))
+        for i in range(st[S_SIZE]):
+            hk4[i, :3] = hk[i]
+            hk4[i, 3] = hid[i]
+        hk = hk4
     while True:
         status = _free_steps(
             occ,
@@ -620,7 +688,10 @@ def _free_steps(
             break
         steps += 1
         # 2. the lexicographically smallest label
-        x, size = _heap_pop(hk, hid, size)
+        if mode == MODE_THREE:
+            x, size = _heap4_pop(hk, size)
+        else:
+            x, size = _heap_pop(hk, hid, size)
         c = li[x, CELL]
 
         # 3. dominance checks (lazy: the sets changed since x was generated)
@@ -762,7 +833,10 @@ def _free_steps(
             li[j, NEXT] = -1
             k1 = f_len if P == OBJ_LEN else (f_vul if P == OBJ_VUL else f_turn)
             k2 = f_len if second == OBJ_LEN else (f_vul if second == OBJ_VUL else f_turn)
-            _heap_push(hk, hid, size, k1, k2, f_turn, j)
+            if mode == MODE_THREE:
+                _heap4_push(hk, size, k1, k2, f_turn, j)
+            else:
+                _heap_push(hk, hid, size, k1, k2, f_turn, j)
             size += 1
     st[S_N] = n
     st[S_SIZE] = size
