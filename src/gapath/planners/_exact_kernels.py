@@ -329,7 +329,8 @@ def _goal_insert(li, lf, gmin, base, first, goal_state, x):
 #: + i]`` (decreasing) and their vulnerabilities at ``sp[o + 2 + cap + i]``
 #: (increasing), ``i`` from the head (most turns, least vulnerable) to the
 #: tail. A full block is replaced by one twice as large at the end of the
-#: pool (the old one is left unused).
+#: pool (the old one is left unused). Offsets are int32 (``first``): 2**31
+#: floats, 17 GB of staircases, far beyond the label table of such a search.
 SP_USED, SP_MAXCAP, SP_HEADER = 0, 1, 2
 STAIR_CAP0 = 2
 
