@@ -2,9 +2,12 @@
 128x128 maps (issue 15, item 2: <= 10 s).
 
 Prints one JSON line per map: map, size, front_size, expansions, generated,
-labels, peak_mb, cpu_s (thread CPU time of ``free_front``, the minimum of
+labels, stair_searches (staircase searches that the per-cell summaries left
+open; absent before they were counted), stair_mb (the staircase pool),
+peak_mb, cpu_s (thread CPU time of ``free_front``, the minimum of
 ``--repeats`` runs after a warm-up call that also compiles), wall_s (the
-wall time of the same run) and runs.
+wall time of the same run), runs, the 1-minute load average after the runs
+(``load``) and ``--label`` if given.
 
 Maps: random 128x128 workspaces with 20 % obstacles, corner to corner
 (``random_workspace``'s default start and goal, seeds 0-2), the 17 % map of
@@ -92,6 +95,8 @@ def run(name, ws, repeats):
         "expansions": front.stats["expansions"],
         "generated": front.stats["generated"],
         "labels": front.stats["labels"],
+        "stair_searches": front.stats.get("stair_searches"),
+        "stair_mb": round(front.stats.get("stair_floats", 0) * 8 / 1e6, 1),
         "peak_mb": round(front.stats["peak_bytes"] / 1e6, 1),
         "cpu_s": round(best[0], 3),
         "wall_s": round(best[1], 3),
@@ -103,13 +108,18 @@ def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--repeats", type=int, default=1, help="timed runs per map (default 1)")
     ap.add_argument("--maps", default=None, help="comma-separated map keys (default: all)")
+    ap.add_argument("--label", default=None, help="a tag added to every line (e.g. the commit)")
     args = ap.parse_args(argv)
     free_front(random_workspace((16, 16), 40, seed=1), LVS)  # compile / load the cache
     chosen = maps()
     if args.maps:
         chosen = {k: chosen[k] for k in args.maps.split(",")}
     for name, ws in chosen.items():
-        print(json.dumps(run(name, ws, args.repeats)), flush=True)
+        row = run(name, ws, args.repeats)
+        if args.label:
+            row["label"] = args.label
+        row["load"] = round(os.getloadavg()[0], 2)
+        print(json.dumps(row), flush=True)
 
 
 if __name__ == "__main__":

@@ -1,10 +1,10 @@
 """The three-objective free search's dominance structures (issue 15 item 2).
 
 MODE_THREE keeps, besides each state's (turns, vulnerability) staircase (a
-linked list of labels), per-cell summaries of the staircases and the goal
+sorted block in a pool of floats), per-cell summaries of the staircases and the goal
 front as a prefix minimum over turn counts, both in ``gmin``; the checks
 read the summaries first. These tests run the search kernels to the end and
-recompute every summary from the lists and the solutions. The fronts themselves are checked against brute force and an
+recompute every summary from the staircases and the solutions. The fronts themselves are checked against brute force and an
 independent label-setting search in ``test_exact_free.py``; the kernel was
 compared with the implementation before the summaries on 584 random cases
 (identical ``F``, smoothness and expansions; docs/results/exact_speed.md).
@@ -35,13 +35,14 @@ def _run(ws: Workspace, n_steps: int = 1 << 30):
     hs, hd, hv, ht = H._free_heuristics(occ, pot, gr, gc, ws.corner_cutting, True, mask)
     state = K._free_init(pot, sr, sc, w, 1.0, mode, P, Q, hs, hd, hv, ht, h * w * K.N_SLOTS)
     gmin, first, li, lf, sols, hk, hid, st, stf = state
+    sp = K._stair_pool(16)  # small: the pool grows while the search runs
     while True:
-        li, lf, sols, hk, hid, status = K._free_run(
+        li, lf, sols, hk, hid, sp, status = K._free_run(
             occ, pot, gr, gc, 1.0, mask, mode, P, Q, hs, hd, hv, ht, gmin, first,
-            li, lf, sols, hk, hid, st, stf, n_steps, 1 << 30,
+            li, lf, sols, hk, hid, st, stf, sp, n_steps, 1 << 30,
         )  # fmt: skip
         if status == K.DONE:
-            return gmin, first, li, lf, sols[: st[K.S_SOLS]]
+            return gmin, first, sp, li, lf, sols[: st[K.S_SOLS]]
 
 
 def _maps():
@@ -59,7 +60,7 @@ def _maps():
 @pytest.mark.parametrize("ws", _maps(), ids=lambda ws: ws.name)
 @pytest.mark.parametrize("n_steps", [1 << 30, 5])
 def test_summaries_match_the_staircases(ws, n_steps):
-    gmin, first, li, lf, sols = _run(ws, n_steps)
+    gmin, first, sp, li, lf, sols = _run(ws, n_steps)
     h, w = ws.shape
     n_cells = h * w
     assert gmin.shape[0] >= (K.THREE_BLOCK + 4) * n_cells + 1
@@ -69,16 +70,14 @@ def test_summaries_match_the_staircases(ws, n_steps):
         heads = []
         for k in range(K.N_SLOTS):
             b = base + 1 + 3 * k
-            a = first[c * K.N_SLOTS + k]
-            if a < 0:
+            o = first[c * K.N_SLOTS + k]
+            if o < 0:
                 assert gmin[b] == np.inf
                 continue
-            turns, vul = [], []
-            while a >= 0:
-                turns.append(li[a, K.TURNS])
-                vul.append(lf[a, K.F_VUL])
-                assert li[a, K.CELL] == c
-                a = li[a, K.NEXT]
+            n, cap = int(sp[o]), int(sp[o + 1])
+            assert 1 <= n <= cap and o + 2 + 2 * cap <= sp[K.SP_USED] <= sp.shape[0]
+            assert cap <= sp[K.SP_MAXCAP]
+            turns, vul = sp[o + 2 : o + 2 + n], sp[o + 2 + cap : o + 2 + cap + n]
             # a staircase: turns strictly decreasing, vulnerability strictly increasing
             assert all(np.diff(turns) < 0) and all(np.diff(vul) > 0)
             assert (gmin[b], gmin[b + 1], gmin[b + 2]) == (vul[0], turns[0], turns[-1])
@@ -103,7 +102,7 @@ def test_front_does_not_depend_on_slicing(ws):
     """The summaries live across kernel calls: a search resumed every 3 pops
     gives the front of one call."""
     one = free_front(ws, LVS)
-    _, _, li, lf, sols = _run(ws, 3)
+    _, _, _, li, lf, sols = _run(ws, 3)
     F = np.column_stack(
         [(li[sols, K.NS] + np.sqrt(2) * li[sols, K.ND]), lf[sols, K.F_VUL], li[sols, K.TURNS] * np.pi / 4]
     )

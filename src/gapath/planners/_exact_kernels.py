@@ -85,11 +85,11 @@ def _heading_gap(ha, hb):
 # Labels live in two growable tables, like the monotone DP's:
 
 CELL, F_HEAD, F_PARENT, NS, ND, TURNS, NEXT = range(7)  # int table
-F_VUL, RUNMIN = range(2)  # float table
+F_VUL = 0  # float table (one column)
 # CELL: row * W + col; F_HEAD: heading of the last step (-1 at the start);
 # NS/ND: straight/diagonal step counts; TURNS: total turn in eighths; NEXT:
-# link to the next label of the same state's list; RUNMIN: the state's
-# smallest second objective once this label was accepted.
+# link of the free list of recycled rows (MODE_THREE's staircases are in their
+# own pool, :func:`_stair_pool`).
 
 OBJ_LEN, OBJ_VUL, OBJ_SMOOTH = range(3)
 #: Search modes: BOA* on (length, vulnerability) with cells as states and
@@ -195,6 +195,65 @@ def _heap_pop(hk, hid, size):
     return top, size
 
 
+@numba.njit(cache=True, inline="always")
+def _heap4_push(hk, size, k1, k2, k3, node):
+    """:func:`_heap_push` on a heap whose rows hold the label too (column 3,
+    as a float: exact below 2**53), one row per level touched instead of
+    two arrays (MODE_THREE); the same order."""
+    i = size
+    fn = np.float64(node)
+    while i > 0:
+        p = (i - 1) >> 1
+        if not _key_less(k1, k2, k3, fn, hk[p, 0], hk[p, 1], hk[p, 2], hk[p, 3]):
+            break
+        hk[i, 0] = hk[p, 0]
+        hk[i, 1] = hk[p, 1]
+        hk[i, 2] = hk[p, 2]
+        hk[i, 3] = hk[p, 3]
+        i = p
+    hk[i, 0] = k1
+    hk[i, 1] = k2
+    hk[i, 2] = k3
+    hk[i, 3] = fn
+
+
+@numba.njit(cache=True, inline="always")
+def _heap4_pop(hk, size):
+    """:func:`_heap_pop` on a heap of :func:`_heap4_push`."""
+    top = np.int64(hk[0, 3])
+    size -= 1
+    if size > 0:
+        k1, k2, k3, node = hk[size, 0], hk[size, 1], hk[size, 2], hk[size, 3]
+        i = 0
+        while True:
+            ch = 2 * i + 1
+            if ch >= size:
+                break
+            if ch + 1 < size and _key_less(
+                hk[ch + 1, 0],
+                hk[ch + 1, 1],
+                hk[ch + 1, 2],
+                hk[ch + 1, 3],
+                hk[ch, 0],
+                hk[ch, 1],
+                hk[ch, 2],
+                hk[ch, 3],
+            ):
+                ch += 1
+            if not _key_less(hk[ch, 0], hk[ch, 1], hk[ch, 2], hk[ch, 3], k1, k2, k3, node):
+                break
+            hk[i, 0] = hk[ch, 0]
+            hk[i, 1] = hk[ch, 1]
+            hk[i, 2] = hk[ch, 2]
+            hk[i, 3] = hk[ch, 3]
+            i = ch
+        hk[i, 0] = k1
+        hk[i, 1] = k2
+        hk[i, 2] = k3
+        hk[i, 3] = node
+    return top, size
+
+
 # -- 1. heuristics: gapath/planners/_exact_heuristics.py ---------------------
 
 
@@ -235,28 +294,6 @@ def _f(li, lf, i, o, cell_size, hs, hd, hv, ht):
 # -- 3. dominance checks --------------------------------------------------------
 
 
-@numba.njit(cache=True, inline="always")
-def _stair_insert(li, lf, first, s, x):
-    """Insert label ``x`` (not covered by staircase ``s``) into it, dropping
-    the entries it makes redundant: as many turns or more and as vulnerable
-    or more."""
-    t = li[x, TURNS]
-    v = lf[x, F_VUL]
-    keep = -1  # the last entry before x that stays
-    a = first[s]
-    while a >= 0 and li[a, TURNS] > t:
-        if lf[a, F_VUL] < v:
-            keep = a
-        a = li[a, NEXT]
-    if a >= 0 and li[a, TURNS] == t:  # x is less vulnerable, or it were covered
-        a = li[a, NEXT]
-    li[x, NEXT] = a
-    if keep < 0:
-        first[s] = x
-    else:
-        li[keep, NEXT] = x
-
-
 @numba.njit(cache=True)
 def _goal_insert(li, lf, gmin, base, first, goal_state, x):
     """Record solution ``x`` in MODE_THREE's goal front.
@@ -284,20 +321,115 @@ def _goal_insert(li, lf, gmin, base, first, goal_state, x):
         gmin[base + u] = v
 
 
+#: MODE_THREE's staircases live in a pool of floats (``sp``, made by
+#: :func:`_stair_pool`, grown by :func:`_free_run`): ``sp[SP_USED]`` floats
+#: are in use, ``sp[SP_MAXCAP]`` is the largest block capacity so far. A
+#: state ``s`` with a staircase owns the block at ``o = first[s]``:
+#: ``sp[o]`` entries of ``sp[o + 1]`` capacity, their turns at ``sp[o + 2
+#: + i]`` (decreasing) and their vulnerabilities at ``sp[o + 2 + cap + i]``
+#: (increasing), ``i`` from the head (most turns, least vulnerable) to the
+#: tail. A full block is replaced by one twice as large at the end of the
+#: pool (the old one is left unused). Offsets are int32 (``first``): 2**31
+#: floats, 17 GB of staircases, far beyond the label table of such a search.
+SP_USED, SP_MAXCAP, SP_HEADER = 0, 1, 2
+STAIR_CAP0 = 2
+
+
 @numba.njit(cache=True)
-def _three_insert(li, lf, first, gmin, s, x):
-    """:func:`_stair_insert` of label ``x`` into staircase ``s`` (MODE_THREE),
-    and the summaries of ``s`` and its cell updated (see THREE_BLOCK). The
-    head's vulnerability never increases (a new head is less vulnerable than
-    every entry), and ``x`` is the tail exactly when nothing follows it."""
-    _stair_insert(li, lf, first, s, x)
+def _stair_pool(n):
+    """An empty staircase pool of ``n`` floats (at least the header)."""
+    sp = np.empty(max(n, SP_HEADER + 2 + 2 * STAIR_CAP0))
+    sp[SP_USED] = SP_HEADER
+    sp[SP_MAXCAP] = STAIR_CAP0
+    return sp
+
+
+@numba.njit(cache=True, inline="always")
+def _stair_room(sp):
+    """Floats that one insertion may append to the pool."""
+    return 2 + 4 * int(sp[SP_MAXCAP])
+
+
+@numba.njit(cache=True, inline="always")
+def _stair_covered(sp, o, bound, v):
+    """True if the first entry of the staircase at ``o`` with at most
+    ``bound`` turns is not more vulnerable than ``v`` (tolerance); the
+    caller knows that the head has more turns than ``bound`` and the tail
+    not (binary search over the entries in between). Vulnerability grows
+    along the staircase, so that entry decides."""
+    lo = 1
+    hi = int(sp[o]) - 1  # the tail is within the bound
+    while lo < hi:
+        mid = (lo + hi) >> 1
+        if sp[o + 2 + mid] <= bound:
+            hi = mid
+        else:
+            lo = mid + 1
+    return _le(sp[o + 2 + int(sp[o + 1]) + lo], v)
+
+
+@numba.njit(cache=True)
+def _three_insert(sp, first, gmin, s, t, v):
+    """Insert an expanded label with ``t`` turns and vulnerability ``v``,
+    which staircase ``s`` does not cover, into it (MODE_THREE), dropping
+    the entries it makes redundant (as many turns or more and as
+    vulnerable or more), and update the summaries of ``s`` and its cell
+    (see THREE_BLOCK). The head's vulnerability never increases (a new head
+    is less vulnerable than every entry)."""
+    o = first[s]
+    if o < 0:  # a new staircase
+        o = int(sp[SP_USED])
+        sp[SP_USED] = o + 2 + 2 * STAIR_CAP0
+        sp[o] = 0
+        sp[o + 1] = STAIR_CAP0
+        first[s] = o
+    n = int(sp[o])
+    cap = int(sp[o + 1])
+    tt = o + 2
+    vv = o + 2 + cap
+    p = 0  # the first entry with at most t turns
+    while p < n and sp[tt + p] > t:
+        p += 1
+    q = p  # entries before q stay (less vulnerable than x)
+    while q > 0 and not sp[vv + q - 1] < v:
+        q -= 1
+    r = p  # entries from r on stay (x is less vulnerable than one with t turns)
+    if r < n and sp[tt + r] == t:
+        r += 1
+    m = q + 1 + n - r
+    if m > cap:  # a block twice as large at the end of the pool
+        cap2 = 2 * cap
+        o2 = int(sp[SP_USED])
+        sp[SP_USED] = o2 + 2 + 2 * cap2
+        if cap2 > sp[SP_MAXCAP]:
+            sp[SP_MAXCAP] = cap2
+        tt2 = o2 + 2
+        vv2 = o2 + 2 + cap2
+        for i in range(q):
+            sp[tt2 + i] = sp[tt + i]
+            sp[vv2 + i] = sp[vv + i]
+        for i in range(r, n):
+            sp[tt2 + i - r + q + 1] = sp[tt + i]
+            sp[vv2 + i - r + q + 1] = sp[vv + i]
+        sp[o2 + 1] = cap2
+        o, tt, vv = o2, tt2, vv2
+        first[s] = o
+    elif q + 1 < r:  # entries dropped: move the rest forward
+        for i in range(r, n):
+            sp[tt + i - r + q + 1] = sp[tt + i]
+            sp[vv + i - r + q + 1] = sp[vv + i]
+    elif q + 1 > r:  # nothing dropped: move the rest back by one
+        for i in range(n - 1, r - 1, -1):
+            sp[tt + i + 1] = sp[tt + i]
+            sp[vv + i + 1] = sp[vv + i]
+    sp[tt + q] = t
+    sp[vv + q] = v
+    sp[o] = m
     c = s // N_SLOTS
     b = c * THREE_BLOCK + 1 + 3 * (s % N_SLOTS)
-    a = first[s]
-    gmin[b] = lf[a, F_VUL]
-    gmin[b + 1] = li[a, TURNS]
-    if li[x, NEXT] < 0:
-        gmin[b + 2] = li[x, TURNS]
+    gmin[b] = sp[vv]
+    gmin[b + 1] = sp[tt]
+    gmin[b + 2] = sp[tt + m - 1]
     gmin[c * THREE_BLOCK] = min(gmin[c * THREE_BLOCK], gmin[b])
 
 
@@ -338,7 +470,10 @@ def _goal_covered(li, lf, x, Q, goal_min, cell_size, hs, hd, hv, ht):
 
 # scalars of the search state (int array ``st`` and float array ``stf``)
 S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_FREE, S_N_FREE, S_POPS = range(9)
-N_ST = 9
+#: MODE_THREE's count of staircase searches (:func:`_stair_covered`: the checks the
+#: summaries could not decide), at pops and at generation
+S_SEARCHES = 9
+N_ST = 10
 SF_GOAL_MIN = 0
 
 
@@ -351,9 +486,9 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
     :func:`_free_run` resumes from."""
     # BOA*: g2_min of each state; MODE_THREE: staircase summaries and goal front (THREE_BLOCK)
     gmin = np.full(n_states * (4 if mode == MODE_THREE else 1), np.inf)
-    first = np.full(n_states + 1, -1, np.int32)  # newest label / staircase head
+    first = np.full(n_states + 1, -1, np.int32)  # MODE_THREE: staircase block (_stair_pool)
     li = np.empty((1024, 7), np.int32)
-    lf = np.empty((1024, 2))
+    lf = np.empty((1024, 1))
     sols = np.empty(64, np.int32)
     hk = np.empty((1024, 3))
     hid = np.empty(1024, np.int32)
@@ -366,7 +501,6 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
     li[0, TURNS] = 0
     li[0, NEXT] = -1
     lf[0, F_VUL] = pot[sr, sc]
-    lf[0, RUNMIN] = np.inf
     st = np.zeros(N_ST, np.int64)
     st[S_N] = 1
     st[S_SIZE] = 1
@@ -411,6 +545,7 @@ def _free_run(
     hid,
     st,
     stf,
+    sp,
     n_steps,
     max_labels,
 ):
@@ -424,13 +559,17 @@ def _free_run(
     ``mask``: the allowed moves of each cell
     (:func:`gapath.planners._exact_heuristics._move_masks`).
 
-    The state is the arrays made by :func:`_free_init` and the scalars in
-    ``st``/``stf`` (updated in place). A label dropped when it leaves the
+    The state is the arrays made by :func:`_free_init`, the scalars in
+    ``st``/``stf`` (updated in place) and MODE_THREE's staircase pool ``sp``
+    (:func:`_stair_pool`; any small one in the other mode). A label dropped when it leaves the
     open list is referenced by nothing (it has no children and belongs to
     no state's set): its row is recycled through a free list linked by
     ``NEXT``. Stops before a pop that could take the label rows in use
-    beyond ``max_labels``. Returns ``(li, lf, sols, hk, hid, status)``,
-    status DONE (open list empty), PAUSED or OVER_BUDGET.
+    beyond ``max_labels``. Returns ``(li, lf, sols, hk, hid, sp, status)``,
+    status DONE (open list empty), PAUSED or OVER_BUDGET. MODE_THREE keeps
+    each label in its heap row (column 3, :func:`_heap4_push`): the
+    3-column heap of :func:`_free_init` is widened at the first call (``hid``
+    then only sets the heap's capacity).
 
     The search itself is :func:`_free_steps`, which never reallocates (an
     array reassigned inside a numba loop is reference-counted at every
@@ -438,6 +577,12 @@ def _free_run(
     and this loop doubles it.
     """
     pops0 = st[S_POPS]
+    if mode == MODE_THREE and hk.shape[1] == 3:  # a new search: labels into the heap rows
+        hk4 = np.empty((hk.shape[0], 4))
+        for i in range(st[S_SIZE]):
+            hk4[i, :3] = hk[i]
+            hk4[i, 3] = hid[i]
+        hk = hk4
     while True:
         status = _free_steps(
             occ,
@@ -462,11 +607,12 @@ def _free_run(
             hid,
             st,
             stf,
+            sp,
             n_steps - (st[S_POPS] - pops0),
             max_labels,
         )
         if status != NEED_ROOM:
-            return li, lf, sols, hk, hid, status
+            return li, lf, sols, hk, hid, sp, status
         if st[S_N] + 8 > li.shape[0]:
             li = _grow(li, st[S_N] + 8)
             lf = _grow(lf, st[S_N] + 8)
@@ -475,6 +621,8 @@ def _free_run(
             hid = _grow1(hid, st[S_SIZE] + 8)
         if st[S_SOLS] + 1 > sols.shape[0]:
             sols = _grow1(sols, st[S_SOLS] + 1)
+        if mode == MODE_THREE and sp[SP_USED] + _stair_room(sp) > sp.shape[0]:
+            sp = _grow1(sp, int(sp[SP_USED]) + _stair_room(sp))
 
 
 @numba.njit(cache=True)
@@ -501,6 +649,7 @@ def _free_steps(
     hid,
     st,
     stf,
+    sp,
     n_steps,
     max_labels,
 ):
@@ -523,6 +672,7 @@ def _free_steps(
     status = DONE
     steps = 0
     pops0 = st[S_POPS]
+    n_searches = st[S_SEARCHES]
 
     while size > 0:
         if steps == n_steps:
@@ -534,9 +684,15 @@ def _free_steps(
         if n + 8 > li.shape[0] or size + 8 > hid.shape[0] or n_sols + 1 > sols.shape[0]:
             status = NEED_ROOM
             break
+        if mode == MODE_THREE and sp[SP_USED] + _stair_room(sp) > sp.shape[0]:
+            status = NEED_ROOM
+            break
         steps += 1
         # 2. the lexicographically smallest label
-        x, size = _heap_pop(hk, hid, size)
+        if mode == MODE_THREE:
+            x, size = _heap4_pop(hk, size)
+        else:
+            x, size = _heap_pop(hk, hid, size)
         c = li[x, CELL]
 
         # 3. dominance checks (lazy: the sets changed since x was generated)
@@ -559,12 +715,9 @@ def _free_steps(
                     if gmin[b + 1] <= bound:  # the head: the least vulnerable is within it
                         covered = True
                         break
-                    # walk to the first entry within the bound; vulnerability grows along
-                    # the list, so stop at the first entry more vulnerable than x
-                    a = first[c * N_SLOTS + k]
-                    while li[a, TURNS] > bound and _le(lf[a, F_VUL], v):
-                        a = li[a, NEXT]
-                    if li[a, TURNS] <= bound and _le(lf[a, F_VUL], v):
+                    # the first entry within the bound (vulnerability grows along it)
+                    n_searches += 1
+                    if _stair_covered(sp, first[c * N_SLOTS + k], bound, v):
                         covered = True
                         break
             tmax = first[goal_state]
@@ -596,11 +749,12 @@ def _free_steps(
         n_expanded += 1
         s = c * N_SLOTS + _slot(li[x, F_HEAD])
         if mode == MODE_THREE:
-            _three_insert(li, lf, first, gmin, s, x)
+            _three_insert(sp, first, gmin, s, li[x, TURNS], lf[x, F_VUL])
         else:
             gmin[s] = min(gmin[s], _g(li, lf, x, Q, cell_size))  # MODE_HEADING: g2_min only
         r, col = c // w, c % w
         head = li[x, F_HEAD]
+        x_ns, x_nd, x_t, x_v = li[x, NS], li[x, ND], li[x, TURNS], lf[x, F_VUL]
         mk = mask[c]
         for d in range(8):
             if not (mk >> d) & 1:
@@ -613,23 +767,28 @@ def _free_steps(
                 j = free
             else:
                 j = n
-            li[j, CELL] = cell
-            li[j, F_HEAD] = d
-            li[j, F_PARENT] = x
-            li[j, NS] = li[x, NS] + (1 - d % 2)
-            li[j, ND] = li[x, ND] + d % 2
-            li[j, TURNS] = li[x, TURNS] + (turn(head, d) if head >= 0 else 0)
-            lf[j, F_VUL] = lf[x, F_VUL] + pot[r2, c2]
+            # the new label's values; MODE_THREE writes its row only once it is kept
+            # (most generated labels are not)
+            ns_j = x_ns + (1 - d % 2)
+            nd_j = x_nd + d % 2
+            t = x_t + (turn(head, d) if head >= 0 else 0)
+            v = x_v + pot[r2, c2]
+            if mode != MODE_THREE:  # the checks below read the row
+                li[j, CELL] = cell
+                li[j, F_HEAD] = d
+                li[j, F_PARENT] = x
+                li[j, NS] = ns_j
+                li[j, ND] = nd_j
+                li[j, TURNS] = t
+                lf[j, F_VUL] = v
             n_generated += 1
             # the f-vector, written out (helper calls on the arrays cost reference counting)
-            f_len = ((li[j, NS] + hs[cell]) + SQRT2 * (li[j, ND] + hd[cell])) * cell_size
-            f_vul = lf[j, F_VUL] + hv[cell]
-            f_turn = np.float64(li[j, TURNS] + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0))
+            f_len = ((ns_j + hs[cell]) + SQRT2 * (nd_j + hd[cell])) * cell_size
+            f_vul = v + hv[cell]
+            f_turn = np.float64(t + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0))
             # 3. eager dominance checks (prune before the open list)
             if mode == MODE_THREE:
-                # the (turns, vulnerability) staircases, walked here (see above)
-                t = li[j, TURNS]
-                v = lf[j, F_VUL]
+                # the (turns, vulnerability) staircases, searched here (see above)
                 covered = False
                 base = cell * THREE_BLOCK
                 if cell != goal and gmin[base] < np.inf and _le(gmin[base], v):
@@ -643,10 +802,8 @@ def _free_steps(
                         if gmin[b + 1] <= bound:  # the head: the least vulnerable is within it
                             covered = True
                             break
-                        a = first[cell * N_SLOTS + k]  # as at the pop (above)
-                        while li[a, TURNS] > bound and _le(lf[a, F_VUL], v):
-                            a = li[a, NEXT]
-                        if li[a, TURNS] <= bound and _le(lf[a, F_VUL], v):
+                        n_searches += 1
+                        if _stair_covered(sp, first[cell * N_SLOTS + k], bound, v):  # as at the pop
                             covered = True
                             break
                 tmax = first[goal_state]
@@ -666,10 +823,21 @@ def _free_steps(
                 n_free -= 1
             else:
                 n += 1
+            if mode == MODE_THREE:
+                li[j, CELL] = cell
+                li[j, F_HEAD] = d
+                li[j, F_PARENT] = x
+                li[j, NS] = ns_j
+                li[j, ND] = nd_j
+                li[j, TURNS] = t
+                lf[j, F_VUL] = v
             li[j, NEXT] = -1
             k1 = f_len if P == OBJ_LEN else (f_vul if P == OBJ_VUL else f_turn)
             k2 = f_len if second == OBJ_LEN else (f_vul if second == OBJ_VUL else f_turn)
-            _heap_push(hk, hid, size, k1, k2, f_turn, j)
+            if mode == MODE_THREE:
+                _heap4_push(hk, size, k1, k2, f_turn, j)
+            else:
+                _heap_push(hk, hid, size, k1, k2, f_turn, j)
             size += 1
     st[S_N] = n
     st[S_SIZE] = size
@@ -679,6 +847,7 @@ def _free_steps(
     st[S_FREE] = free
     st[S_N_FREE] = n_free
     st[S_POPS] = pops0 + steps
+    st[S_SEARCHES] = n_searches
     stf[SF_GOAL_MIN] = goal_min
     return status
 

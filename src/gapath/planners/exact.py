@@ -92,10 +92,13 @@ from gapath.planners._exact_kernels import (
     S_N,
     S_N_FREE,
     S_POPS,
+    S_SEARCHES,
     S_SIZE,
     S_SOLS,
+    SP_USED,
     TURNS,
     _free_run,
+    _stair_pool,
     _tolerant_front,
     _trace,
 )
@@ -688,7 +691,10 @@ def free_front(
         ``stats`` has ``expansions``, ``generated``, ``labels``,
         ``peak_bytes``, ``heuristic_seconds``, ``seconds`` (and
         ``tie_edges``, the ties recorded, with the default tie-break on
-        length and vulnerability).
+        length and vulnerability; with length, vulnerability and smoothness,
+        ``stair_searches``, the staircase searches that the per-cell
+        summaries left open, and ``stair_floats``, the size of the
+        staircase pool).
 
     Raises
     ------
@@ -852,9 +858,8 @@ def free_front(
     # Ctrl-C is held (a handler installed) only once the search takes more than one
     # kernel call: a small map is done before that, without the handler's cost
     with _DeferredInterrupt(lazy=True) as interrupt:
-        # masks, heuristics and the initial state in one kernel call; two objectives
-        # without smoothness: turns only break ties, and a zero turn heuristic expands
-        # as many labels as the exact one (measured) at none of its cost
+        # masks, heuristics and the initial state in one kernel call (MODE_HEADING or
+        # MODE_THREE: two objectives without smoothness are _boa_front's)
         mask, hs, hd, hv, ht, *state = _free_prepare(occ, pot, sr, sc, gr, gc, cs, cc, mode, P, Q)
         t_heur = time.perf_counter() - t0
         if hv[sr * w + sc] == np.inf:
@@ -875,8 +880,7 @@ def free_front(
             interrupt,
         )
         total = {"expansions": 0, "generated": 0, "labels": 0, "peak_bytes": 0}
-        ties = tie_break == "smoothest"
-        li, lf, sols, st, edges, n_edges = _search_pass(*args, ties, total, t0)
+        li, lf, sols, st = _search_pass(*args, total, t0)
 
     cells, offsets = _trace(li, sols, w)
     ns, nd, turns, vul = li[sols, NS], li[sols, ND], li[sols, TURNS], lf[sols, F_VUL]
@@ -1033,7 +1037,6 @@ def _search_pass(
     budget,
     progress,
     interrupt,
-    ties,
     total,
     t0,
 ):
@@ -1046,64 +1049,36 @@ def _search_pass(
     gmin, first, li, lf, sols, hk, hid, st, stf = state
     fixed = hs.nbytes + hd.nbytes + hv.nbytes + ht.nbytes + gmin.nbytes + first.nbytes
     slices = _Slices(1 << 14, 1 << 10, 1 << 26)
-    # two objectives: BOA* (_boa_run), which records the in-edges of tied labels
-    # (the smoothest tie-break, `ties`) for _smoothest
-    edges, est = np.empty((1024 if ties else 16, 3), np.int32), np.zeros(1, np.int64)
+    sp = _stair_pool(1 << 16 if mode == MODE_THREE else 0)  # MODE_THREE's staircases
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
-        if mode == MODE_CELL:
-            li, lf, sols, hk, hid, edges, status = _boa_run(
-                occ,
-                pot,
-                gr,
-                gc,
-                cs,
-                mask,
-                hs,
-                hd,
-                hv,
-                gmin,
-                first,
-                li,
-                lf,
-                sols,
-                hk,
-                hid,
-                st,
-                stf,
-                edges,
-                est,
-                slices.n,
-                budget,
-                ties,
-            )
-        else:
-            li, lf, sols, hk, hid, status = _free_run(
-                occ,
-                pot,
-                gr,
-                gc,
-                cs,
-                mask,
-                mode,
-                P,
-                Q,
-                hs,
-                hd,
-                hv,
-                ht,
-                gmin,
-                first,
-                li,
-                lf,
-                sols,
-                hk,
-                hid,
-                st,
-                stf,
-                slices.n,
-                budget,
-            )
+        li, lf, sols, hk, hid, sp, status = _free_run(
+            occ,
+            pot,
+            gr,
+            gc,
+            cs,
+            mask,
+            mode,
+            P,
+            Q,
+            hs,
+            hd,
+            hv,
+            ht,
+            gmin,
+            first,
+            li,
+            lf,
+            sols,
+            hk,
+            hid,
+            st,
+            stf,
+            sp,
+            slices.n,
+            budget,
+        )
         interrupt.check()
         if status == PAUSED:  # a longer search: hold Ctrl-C from now on
             interrupt.arm()
@@ -1130,11 +1105,12 @@ def _search_pass(
     total["labels"] = max(total["labels"], int(st[S_N]))  # rows used at the peak
     total["peak_bytes"] = max(
         total["peak_bytes"],
-        int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + edges.nbytes),
+        int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + sp.nbytes),
     )
-    if mode == MODE_CELL and ties:
-        total["tie_edges"] = int(est[0])
-    return li, lf, sols[: st[S_SOLS]], st, edges, int(est[0])
+    if mode == MODE_THREE:
+        total["stair_searches"] = total.get("stair_searches", 0) + int(st[S_SEARCHES])
+        total["stair_floats"] = max(total.get("stair_floats", 0), int(sp[SP_USED]))
+    return li, lf, sols[: st[S_SOLS]], st
 
 
 def _free_budget_error(budget, stats) -> LabelBudgetError:
