@@ -652,11 +652,7 @@ def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_
     gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
         pot, sr, sc, w, cell_size, MODE_CELL, OBJ_LEN, OBJ_VUL, hs, hd, hv, ht, h * w
     )
-    # one float per label (the vulnerability; _free_init's second column, RUNMIN, is
-    # not used by BOA*): twice as many labels per cache line
-    lf1 = np.empty((lf.shape[0], 1))
-    lf1[0, F_VUL] = lf[0, F_VUL]
-    lf = lf1
+    # lf: one float per label (the vulnerability), as _free_init allocates it
     edges = np.empty((1024 if ties else 16, 3), np.int32)
     est = np.zeros(1, np.int64)
     li, lf, sols, hk, hid, edges, status = _boa_run(
