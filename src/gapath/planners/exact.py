@@ -968,6 +968,22 @@ def _boa_front(workspace, names, occ, pot, budget, progress, ties, t0) -> ExactF
     )
 
 
+def _search_stats(st, seconds, total=None) -> dict:
+    """How far a free search has got, from its state vector ``st`` (the
+    ``S_*`` layout of :mod:`gapath.planners._exact_kernels`), for progress
+    reports and budget errors; ``total`` adds the expansions and generated
+    labels of earlier passes."""
+    done = total or {"expansions": 0, "generated": 0}
+    return {
+        "expansions": done["expansions"] + int(st[S_EXPANDED]),
+        "generated": done["generated"] + int(st[S_GENERATED]),
+        "labels": int(st[S_N] - st[S_N_FREE]),
+        "open": int(st[S_SIZE]),
+        "solutions": int(st[S_SOLS]),
+        "seconds": seconds,
+    }
+
+
 def _boa_slices(
     workspace, occ, pot, mask, hs, hd, hv, ties, len_first, budget, progress, interrupt,
     slices, status, result, state, t0, t1,
@@ -995,14 +1011,7 @@ def _boa_slices(
         if status == PAUSED:  # a longer search: hold Ctrl-C from now on
             interrupt.arm()
         slices.update(int(st[S_POPS]) - pops, now - t1)
-        stats = {
-            "expansions": int(st[S_EXPANDED]),
-            "generated": int(st[S_GENERATED]),
-            "labels": int(st[S_N] - st[S_N_FREE]),
-            "open": int(st[S_SIZE]),
-            "solutions": int(st[S_SOLS]),
-            "seconds": now - t0,
-        }
+        stats = _search_stats(st, now - t0)
         if status == OVER_BUDGET:
             raise _free_budget_error(budget, stats)
         if status == DONE:
@@ -1086,14 +1095,7 @@ def _search_pass(
         slices.update(st[S_POPS] - pops, now - t1)
         if status == DONE and progress is None:  # (the dict below costs microseconds)
             break
-        stats = {
-            "expansions": total["expansions"] + int(st[S_EXPANDED]),
-            "generated": total["generated"] + int(st[S_GENERATED]),
-            "labels": int(st[S_N] - st[S_N_FREE]),
-            "open": int(st[S_SIZE]),
-            "solutions": int(st[S_SOLS]),
-            "seconds": now - t0,
-        }
+        stats = _search_stats(st, now - t0, total)
         if status == OVER_BUDGET:
             raise _free_budget_error(budget, stats)
         if progress is not None:
