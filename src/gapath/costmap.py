@@ -165,23 +165,26 @@ def _normalise(arr: np.ndarray) -> np.ndarray:
 # ---------------------------------------------------------------------------
 
 
-def _dem_error(p: Path, exc: BaseException) -> ConfigError:
+def _dem_error(p: Path, exc: BaseException, what: str = "DEM file") -> ConfigError:
     if isinstance(exc, FileNotFoundError):
-        return ConfigError(f"DEM file {str(p)!r} does not exist")
+        return ConfigError(f"{what} {str(p)!r} does not exist")
     if isinstance(exc, OSError):
-        return ConfigError(f"DEM file {str(p)!r} cannot be read ({exc.strerror or exc})")
+        return ConfigError(f"{what} {str(p)!r} cannot be read ({exc.strerror or exc})")
     if str(exc) == "object array":
         return ConfigError(
-            f"DEM file {str(p)!r} holds Python objects (pickled), which gapath "
+            f"{what} {str(p)!r} holds Python objects (pickled), which gapath "
             f"does not load; save a numeric array with numpy.save"
         )
-    what = "a NumPy .npy array" if p.suffix == ".npy" else "a NumPy .npz archive of arrays"
-    return ConfigError(f"DEM file {str(p)!r} is not {what} (not that format, or truncated)")
+    kind = "a NumPy .npy array" if p.suffix == ".npy" else "a NumPy .npz archive of arrays"
+    return ConfigError(f"{what} {str(p)!r} is not {kind} (not that format, or truncated)")
 
 
-def check_dem_file(path) -> Path:
+def check_dem_file(path, *, what: str = "DEM file") -> Path:
     """Check that ``path`` names a readable ``.npy`` array (or ``.npz``
     archive) of numbers, reading only its header.
+
+    ``what`` names the file in messages (``"DEM file"``; ``"layer file"``
+    for a user layer).
 
     Raises
     ------
@@ -200,7 +203,7 @@ def check_dem_file(path) -> Path:
 
     p = Path(path)
     if p.suffix not in (".npy", ".npz"):
-        raise ConfigError(f"DEM file {str(p)!r} must be .npy or .npz, got {p.suffix!r}")
+        raise ConfigError(f"{what} {str(p)!r} must be .npy or .npz, got {p.suffix!r}")
     try:
         if p.suffix == ".npz":
             with zipfile.ZipFile(p) as z:
@@ -216,15 +219,16 @@ def check_dem_file(path) -> Path:
             )
             _, _, dtype = read(f)
     except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
-        raise _dem_error(p, exc) from None
+        raise _dem_error(p, exc, what) from None
     if dtype.hasobject:
-        raise _dem_error(p, ValueError("object array"))
+        raise _dem_error(p, ValueError("object array"), what)
     return p
 
 
-def load_dem(path) -> np.ndarray:
+def load_dem(path, *, what: str = "DEM file", member: str = "elevation") -> np.ndarray:
     """An elevation raster from a ``.npy`` file or a ``.npz`` archive (its
-    ``elevation`` member, else its first array).
+    ``member`` array, by default ``elevation``, else its first array).
+    ``what`` names the file in messages (see :func:`check_dem_file`).
 
     Raises
     ------
@@ -234,17 +238,18 @@ def load_dem(path) -> np.ndarray:
     """
     import zipfile
 
-    p = check_dem_file(path)
+    p = check_dem_file(path, what=what)
     try:
         if p.suffix == ".npy":
             arr = np.load(p, allow_pickle=False)
         else:
             with np.load(p, allow_pickle=False) as z:
-                key = "elevation" if "elevation" in z.files else z.files[0]
+                key = member if member in z.files else z.files[0]
                 arr = z[key]
     except (OSError, ValueError, EOFError, zipfile.BadZipFile, IndexError) as exc:
-        raise _dem_error(p, exc) from None
-    return _check_layer(f"dem {p.name}", arr, None, allow_negative=True)
+        raise _dem_error(p, exc, what) from None
+    label = f"dem {p.name}" if what == "DEM file" else p.name
+    return _check_layer(label, arr, None, allow_negative=True)
 
 
 def elevation_from_dem(
@@ -1003,8 +1008,10 @@ def build_costmap(
     terrain_seed: int = 1,
     risk: tuple[int, int] | None = None,
     solar_rate: float = 0.01,
+    user_layers: dict | None = None,
 ) -> Costmap:
-    """The costmap a planner uses for ``layers`` (``gapath plan --layers``).
+    """The costmap a planner uses for ``layers`` (``gapath plan --layers``,
+    and the costmap flags of ``gapath solve`` and ``gapath exact``).
 
     Parameters
     ----------
@@ -1024,6 +1031,11 @@ def build_costmap(
         The maximum-risk cell; default the centre of the grid.
     solar_rate : float, default 0.01
         Rotation of the solar vector per path step, radians.
+    user_layers : dict, optional
+        User layers ``{name: (H, W) array}`` (:meth:`Costmap.add_layer`:
+        finite, non-negative, the grid's shape, used as given); their names
+        may then appear in ``layers``. Every one is added, named in
+        ``layers`` or not.
 
     Returns
     -------
@@ -1045,10 +1057,11 @@ def build_costmap(
     ...
     gapath.errors.ConfigError: unknown layer 'slope'; expected some of elevation, solar, risk
     """
+    known = PLAN_LAYERS + tuple(n for n in (user_layers or {}) if n not in PLAN_LAYERS)
     for name in layers:
-        if name not in PLAN_LAYERS:
-            raise ConfigError(f"unknown layer {name!r}; expected some of {', '.join(PLAN_LAYERS)}")
-    cm = Costmap(workspace, solar_rate=solar_rate)
+        if name not in known:
+            raise ConfigError(f"unknown layer {name!r}; expected some of {', '.join(known)}")
+    cm = Costmap(workspace, solar_rate=solar_rate, layers=user_layers)
     if "elevation" in layers:
         if dem is not None:
             cm.set_elevation(Path(dem), method=dem_method)

@@ -25,6 +25,30 @@ naming a map, its start and goal and its corner rule
     ROS map and an occupancy image forbid corner cutting, text grids,
     ``.npy`` files and the bundled scenario allow it
     (:data:`gapath.loaders.CORNER_RULES`).
+
+The costmap flags (Lavin's cost layers and user layers) are shared the same
+way by ``gapath solve``, ``gapath exact`` and ``gapath plan``
+(:func:`add_costmap_arguments`, read by :func:`costmap_from_args`). The
+objectives name the layers; a flag sets how a layer is built:
+
+``--dem FILE`` / ``--dem-method bilinear|reflect`` / ``--terrain-seed N``
+    The ``elevation`` layer: a DEM raster (``.npy``/``.npz``) resampled to
+    the grid, or seeded fractal terrain (seed 1 by default); normalised to
+    [0, 1].
+``--risk ROW,COL``
+    The ``risk`` layer's maximum-risk cell (default: the grid's centre; an
+    obstacle cell is allowed, a hazard may sit in one).
+``--solar-rate RAD``
+    The ``solar`` layer's rotation of the solar vector per step (0.01).
+``--layer NAME=FILE``
+    A user layer: a ``.npy``/``.npz`` array of the grid's shape, finite and
+    non-negative, used as given (repeat the flag for several).
+
+Which objective names a command takes (:func:`layer_objectives`): the GA
+(``solve``) the means ``elevation``, ``risk``, ``NAME``, the worst cells
+``<layer>_max`` and ``solar``; the exact search (``exact --mode free``) the
+sums ``<layer>_sum`` and ``solar``; the planners (``plan --layers``) the
+layers themselves. A flag whose layer no objective uses is an error.
 """
 
 from __future__ import annotations
@@ -35,9 +59,13 @@ import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from gapath.errors import ConfigError
 from gapath.workspace import Workspace
+
+if TYPE_CHECKING:
+    from gapath.costmap import Costmap
 
 #: The tolerance a length must meet to match a MovingAI optimum (the
 #: ``.scen`` files print 6 significant digits or 8 decimals).
@@ -389,3 +417,437 @@ def update_summary(out_dir, entries: dict, settings: dict | None = None) -> None
     if settings:
         summary.setdefault("settings", {}).update(settings)
     atomic_write(path, dumps(summary, indent=1, sort_keys=True) + "\n")
+
+
+# ---------------------------------------------------------------------------
+# the costmap flags
+# ---------------------------------------------------------------------------
+
+#: Objectives that need no costmap.
+BASE_OBJECTIVES = ("length", "vulnerability", "smoothness")
+#: The built-in cell layers of the costmap flags (``--dem`` or fractal
+#: terrain, ``--risk``); ``solar`` is the step layer.
+CELL_LAYERS = ("elevation", "risk")
+#: Suffixes of the worst-cell (GA) and summed (exact search) objectives.
+MAX_SUFFIX, SUM_SUFFIX = "_max", "_sum"
+#: The values of the costmap flags when not given (``None`` in ``args``).
+COSTMAP_DEFAULTS = {"dem_method": "bilinear", "terrain_seed": 1, "solar_rate": 0.01}
+#: What each command's objective names mean (:func:`layer_objectives`).
+KINDS = ("ga", "exact", "plan")
+
+_LAYER_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_-]*$")
+
+
+def layer_file(text: str) -> tuple[str, Path]:
+    """``"NAME=FILE"`` as a user layer's (name, path) (an argparse ``type``).
+
+    The name starts with a letter (then letters, digits, ``_``, ``-``), is
+    not a built-in name (the SPEC objectives, ``distance``, ``heuristic``,
+    ``solar``, ``elevation``, ``risk``, ``interfering``) and does not end
+    in ``_max`` or ``_sum`` (those suffixes name a layer's worst-cell and
+    summed objectives).
+
+    Examples
+    --------
+    >>> layer_file("slope=maps/slope.npy")
+    ('slope', PosixPath('maps/slope.npy'))
+    >>> layer_file("risk=r.npy")
+    Traceback (most recent call last):
+    ...
+    argparse.ArgumentTypeError: layer name 'risk' is built in (--risk ROW,COL sets it); choose another name for a user layer
+    """
+    name, sep, file = str(text).partition("=")
+    name = name.strip()
+    if not sep or not name or not file:
+        raise argparse.ArgumentTypeError(f"expected NAME=FILE (a layer name and a .npy/.npz file), got {text!r}")
+    if name in CELL_LAYERS:
+        how = "--dem FILE or the fractal terrain" if name == "elevation" else "--risk ROW,COL"
+        raise argparse.ArgumentTypeError(
+            f"layer name {name!r} is built in ({how} sets it); choose another name for a user layer"
+        )
+    if name in BASE_OBJECTIVES + ("interfering", "distance", "heuristic", "solar"):
+        raise argparse.ArgumentTypeError(f"layer name {name!r} is reserved (computed by gapath); choose another name")
+    if not _LAYER_NAME.match(name):
+        raise argparse.ArgumentTypeError(
+            f"layer name {name!r} must start with a letter and hold only letters, digits, '_' and '-'"
+        )
+    if name.endswith((MAX_SUFFIX, SUM_SUFFIX)):
+        raise argparse.ArgumentTypeError(
+            f"layer name {name!r} must not end in {MAX_SUFFIX} or {SUM_SUFFIX} (those suffixes name a "
+            f"layer's worst-cell and summed objectives)"
+        )
+    return name, Path(file)
+
+
+def add_costmap_arguments(parser) -> None:
+    """``--dem``, ``--dem-method``, ``--terrain-seed``, ``--risk``,
+    ``--solar-rate`` and ``--layer NAME=FILE`` (see the module docstring).
+
+    Every default is ``None`` in the parsed namespace (so that a flag given
+    without its layer can be told apart); :data:`COSTMAP_DEFAULTS` gives the
+    values used.
+
+    Examples
+    --------
+    >>> p = argparse.ArgumentParser()
+    >>> add_costmap_arguments(p)
+    >>> a = p.parse_args(["--risk", "3,4", "--layer", "slope=s.npy"])
+    >>> a.risk, a.layer, a.terrain_seed
+    ((3, 4), [('slope', PosixPath('s.npy'))], None)
+    """
+    g = parser.add_argument_group(
+        "costmap layers",
+        "objectives elevation, risk, solar and user layers (their _max worst cell for the GA, "
+        "their _sum for the exact search); each flag sets how its layer is built",
+    )
+    g.add_argument(
+        "--dem",
+        metavar="FILE",
+        help="elevation layer: raster (.npy or .npz) resampled to the grid; default: seeded fractal terrain",
+    )
+    g.add_argument(
+        "--dem-method",
+        choices=("bilinear", "reflect"),
+        default=None,
+        help="bilinear: stretch the DEM over the grid; reflect: one pixel per cell, "
+        "tiled with reflection (default: bilinear)",
+    )
+    g.add_argument(
+        "--terrain-seed",
+        type=int,
+        default=None,
+        help="seed of the fractal terrain when no --dem is given (default: 1)",
+    )
+    g.add_argument(
+        "--risk",
+        type=cell,
+        metavar="ROW,COL",
+        help="risk layer: the maximum-risk cell (default: the centre of the grid)",
+    )
+    g.add_argument(
+        "--solar-rate",
+        type=float,
+        default=None,
+        help="solar layer: rotation of the solar vector per path step, radians (default: 0.01)",
+    )
+    g.add_argument(
+        "--layer",
+        type=layer_file,
+        action="append",
+        metavar="NAME=FILE",
+        help="a user layer NAME from a .npy/.npz array of the grid's shape (finite, >= 0, "
+        "used as given), then an objective NAME (NAME_max, NAME_sum); repeat for several",
+    )
+
+
+def _base(name: str, cell_layers) -> tuple[str | None, str]:
+    """The cell layer an objective name reads and its form: ``("risk",
+    "mean")`` for ``risk``, ``("risk", "max")``, ``("risk", "sum")``;
+    ``(None, "")`` for other names."""
+    if name in cell_layers:
+        return name, "mean"
+    for suffix, form in ((MAX_SUFFIX, "max"), (SUM_SUFFIX, "sum")):
+        if name.endswith(suffix) and name[: -len(suffix)] in cell_layers:
+            return name[: -len(suffix)], form
+    return None, ""
+
+
+def layer_objectives(objectives, user_layers=(), *, kind: str = "ga", flag: str = "--objectives") -> tuple:
+    """The costmap layers that objective names need, checked for the
+    command's kind of search.
+
+    Parameters
+    ----------
+    objectives : sequence of str
+        The objective names (``gapath plan``: the ``--layers`` names).
+    user_layers : sequence of str
+        The ``--layer`` names.
+    kind : {"ga", "exact", "plan"}
+        ``"ga"`` (``gapath solve``): ``solar``, the means ``elevation``,
+        ``risk``, a user layer's name, and the worst cells ``<layer>_max``;
+        ``"exact"``: ``solar`` and the sums ``<layer>_sum`` (a mean or a
+        worst cell is no sum along the path: refused with the reason);
+        ``"plan"``: the layers themselves (the planners minimise sums).
+    flag : str
+        The flag named in messages.
+
+    Returns
+    -------
+    tuple of str
+        The layers needed, in the order elevation, solar, risk, user layers.
+
+    Raises
+    ------
+    ConfigError
+        On an unknown or repeated name, or one the kind of search cannot
+        minimise, naming ``flag``, the value and what is expected.
+
+    Examples
+    --------
+    >>> layer_objectives(["length", "risk_max", "solar"])
+    ('solar', 'risk')
+    >>> layer_objectives(["length", "slope_sum"], ["slope"], kind="exact")
+    ('slope',)
+    >>> layer_objectives(["length", "risk"], kind="exact")
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: --objectives: 'risk' is the MEAN of layer 'risk' over the path's cells (the GA's objective); a mean is not additive along a path, so no exact label-setting front exists for it: use risk_sum (the layer summed over the path's cells)
+    """
+    if kind not in KINDS:
+        raise ConfigError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    names = list(objectives)
+    user = tuple(user_layers)
+    cells = CELL_LAYERS + user
+    if kind == "ga":
+        allowed = list(BASE_OBJECTIVES) + ["elevation", "solar", "risk", *user]
+        allowed += [n + MAX_SUFFIX for n in cells]
+    elif kind == "exact":
+        allowed = list(BASE_OBJECTIVES) + ["solar"] + [n + SUM_SUFFIX for n in cells]
+    else:
+        allowed = ["elevation", "solar", "risk", *user]
+    need = set()
+    for n in names:
+        if names.count(n) > 1:
+            what = "layer" if kind == "plan" else "objective"
+            raise ConfigError(f"{flag}: {what} {n!r} is given twice")
+        layer, form = _base(n, cells)
+        if n == "solar":
+            need.add("solar")
+            continue
+        if n in BASE_OBJECTIVES and kind != "plan":
+            continue
+        if kind == "exact" and n == "interfering":
+            continue  # the exact search's own message (a constraint, not an objective)
+        if layer is not None and (form, kind) in (("mean", "ga"), ("max", "ga"), ("sum", "exact"), ("mean", "plan")):
+            need.add(layer)
+            continue
+        if layer is not None and form == "max":
+            if kind == "exact":
+                why = "the exact search minimises sums, so it has no front for it"
+            else:
+                why = "the graph-search planners minimise sums"
+            raise ConfigError(
+                f"{flag}: {n!r} is the worst cell of the path, not a sum along it; {why} "
+                f"(the GA takes it: gapath solve --objectives length,{n})"
+            )
+        if layer is not None and form == "mean" and kind == "exact":
+            raise ConfigError(
+                f"{flag}: {n!r} is the MEAN of layer {layer!r} over the path's cells (the GA's "
+                f"objective); a mean is not additive along a path, so no exact label-setting front "
+                f"exists for it: use {layer + SUM_SUFFIX} (the layer summed over the path's cells)"
+            )
+        if layer is not None and form == "sum":
+            where = "the planners minimise layer sums already: name the layer" if kind == "plan" else (
+                f"the GA takes the mean {layer!r} or the worst cell {layer + MAX_SUFFIX!r}"
+            )
+            raise ConfigError(
+                f"{flag}: {n!r} (layer {layer!r} summed over the path's cells) is an objective of "
+                f"gapath exact --mode free; {where}"
+            )
+        if kind == "plan":
+            raise ConfigError(f"{flag}: unknown layer {n!r}; expected some of {', '.join(allowed)}")
+        hint = "" if user else "; a user layer is given with --layer NAME=FILE"
+        raise ConfigError(f"{flag}: unknown objective {n!r}; expected some of {', '.join(allowed)}{hint}")
+    order = ("elevation", "solar", "risk") + user
+    return tuple(n for n in order if n in need)
+
+
+def _add_hint(kind: str, objectives, layer: str) -> str:
+    """What to add so that ``layer`` is used: the ``--layers`` or
+    ``--objectives`` value."""
+    if kind == "plan":
+        return f"add --layers {','.join([*objectives, layer])}"
+    if layer == "solar":
+        return "add solar to --objectives"
+    if kind == "exact":
+        return f"add {layer + SUM_SUFFIX} to --objectives"
+    return f"add {layer} (or {layer + MAX_SUFFIX}) to --objectives"
+
+
+def costmap_from_args(args, workspace, objectives, *, kind: str = "ga", flag: str = "--objectives"):
+    """The costmap the parsed costmap flags (:func:`add_costmap_arguments`)
+    build for ``objectives`` on ``workspace``, or None when no objective is
+    a layer.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        With the costmap flags (missing ones count as not given).
+    workspace : Workspace
+    objectives : sequence of str
+        The objective names (see :func:`layer_objectives` for ``kind``).
+    kind : {"ga", "exact", "plan"}
+    flag : str
+        The flag of the objective names, for messages.
+
+    Returns
+    -------
+    Costmap or None
+        Holding every layer the objectives need, and only those.
+
+    Raises
+    ------
+    ConfigError
+        One message naming the flag and value: an objective the search
+        cannot take (:func:`layer_objectives`), a layer flag without an
+        objective that uses it (``--dem`` without ``elevation``,
+        ``--terrain-seed`` with ``--dem``, ...), a DEM or layer file that is
+        missing, unreadable, not numeric, holds NaN or inf (a user layer:
+        also negative values or another shape than the grid's), a risk cell
+        outside the grid, a non-finite solar rate.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gapath import Workspace
+    >>> ws = Workspace(np.zeros((5, 6), bool))
+    >>> args = argparse.Namespace(risk=(1, 2), solar_rate=0.5)
+    >>> cm = costmap_from_args(args, ws, ["length", "risk_max", "solar"])
+    >>> cm.risk_cells, cm.solar_rate, cm.names
+    ([(1, 2)], 0.5, ('distance', 'heuristic', 'solar', 'risk'))
+    >>> costmap_from_args(argparse.Namespace(), ws, ["length", "vulnerability"]) is None
+    True
+    >>> costmap_from_args(args, ws, ["length", "solar"])
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: --risk sets the risk layer, which no objective uses: add risk (or risk_max) to --objectives
+    """
+    from gapath.costmap import Costmap, fractal_terrain, load_dem
+
+    user = list(getattr(args, "layer", None) or [])
+    names = [n for n, _ in user]
+    for n in names:
+        if names.count(n) > 1:
+            raise ConfigError(f"--layer: layer {n!r} is given twice")
+    need = layer_objectives(objectives, names, kind=kind, flag=flag)
+    dem = getattr(args, "dem", None)
+    dem_method = getattr(args, "dem_method", None)
+    seed = getattr(args, "terrain_seed", None)
+    risk = getattr(args, "risk", None)
+    rate = getattr(args, "solar_rate", None)
+    unused = "is not planned on" if kind == "plan" else "no objective uses"
+    for given, opt, layer in (
+        (dem is not None, "--dem", "elevation"),
+        (seed is not None, "--terrain-seed", "elevation"),
+        (risk is not None, "--risk", "risk"),
+        (rate is not None, "--solar-rate", "solar"),
+    ):
+        if given and layer not in need:
+            raise ConfigError(f"{opt} sets the {layer} layer, which {unused}: {_add_hint(kind, objectives, layer)}")
+    for n, path in user:
+        if n not in need:
+            raise ConfigError(
+                f"--layer {n}={path} sets the user layer {n!r}, which {unused}: {_add_hint(kind, objectives, n)}"
+            )
+    if seed is not None and dem is not None:
+        raise ConfigError(
+            f"--terrain-seed {seed} seeds the fractal terrain, which --dem {dem} replaces; keep one of them"
+        )
+    if dem_method is not None and dem is None:
+        raise ConfigError(
+            f"--dem-method {dem_method} applies to a --dem FILE (the fractal terrain has the grid's shape)"
+        )
+    if not need:
+        return None
+    rate = COSTMAP_DEFAULTS["solar_rate"] if rate is None else rate
+    try:
+        cm = Costmap(workspace, solar_rate=rate)
+    except ConfigError as exc:
+        raise ConfigError(f"--solar-rate {rate!r}: {exc}") from None
+    if "elevation" in need:
+        if dem is not None:
+            try:
+                cm.set_elevation(Path(dem), method=dem_method or COSTMAP_DEFAULTS["dem_method"])
+            except ConfigError as exc:
+                raise ConfigError(f"--dem: {exc}") from None
+        else:
+            seed = COSTMAP_DEFAULTS["terrain_seed"] if seed is None else seed
+            cm.set_elevation(fractal_terrain(workspace.shape, seed=seed))
+    if "risk" in need:
+        h, w = workspace.shape
+        cell_value = (h // 2, w // 2) if risk is None else risk
+        try:
+            cm.set_risk(cell_value)
+        except ConfigError as exc:
+            raise ConfigError(f"--risk {cell_value[0]},{cell_value[1]}: {exc}") from None
+    for n, path in user:
+        try:
+            cm.add_layer(n, load_dem(path, what="layer file", member=n))
+        except ConfigError as exc:
+            raise ConfigError(f"--layer {n}={path}: {exc}") from None
+    return cm
+
+
+def _sha256(path) -> str | None:
+    import hashlib
+
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except OSError:
+        return None
+
+
+#: How each form of layer objective sums up along a path (``summary.json``).
+AGGREGATIONS = {
+    "mean": "mean of the layer over the path's cells, start and goal included",
+    "max": "largest value of the layer over the path's cells, start and goal included",
+    "sum": "the layer summed over the path's cells, start and goal included",
+    "solar": "solar deviation summed over the path's steps",
+    "plan": "the planner's search minimises the layer summed along the path; the reported value is the mean over the path's cells",
+}
+
+
+def costmap_settings(args, costmap, objectives, *, kind: str = "ga") -> dict | None:
+    """``summary.json``'s ``settings.costmap``: every setting a run needs to
+    build the same costmap again (layers, their sources, DEM and layer files
+    with their SHA-256, risk cells, solar rate) and what each layer
+    objective measures; None without a costmap.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from gapath import Workspace
+    >>> ws = Workspace(np.zeros((5, 6), bool))
+    >>> args = argparse.Namespace(terrain_seed=3)
+    >>> cm = costmap_from_args(args, ws, ["length", "elevation"])
+    >>> s = costmap_settings(args, cm, ["length", "elevation"])
+    >>> s["layers"], s["elevation"]
+    (['elevation'], {'source': 'fractal terrain', 'terrain_seed': 3, 'hurst': 0.8})
+    """
+    if costmap is None:
+        return None
+    user = dict(getattr(args, "layer", None) or [])
+    layers = [n for n in costmap.names if n not in ("distance", "heuristic", "solar") or n in objectives]
+    out: dict = {"layers": layers}
+    if "elevation" in layers:
+        dem = getattr(args, "dem", None)
+        if dem is not None:
+            out["elevation"] = {
+                "source": "dem",
+                "file": str(dem),
+                "sha256": _sha256(dem),
+                "method": getattr(args, "dem_method", None) or COSTMAP_DEFAULTS["dem_method"],
+                "normalised": "min-max to [0, 1]",
+            }
+        else:
+            seed = getattr(args, "terrain_seed", None)
+            out["elevation"] = {
+                "source": "fractal terrain",
+                "terrain_seed": COSTMAP_DEFAULTS["terrain_seed"] if seed is None else seed,
+                "hurst": 0.8,
+            }
+    if "risk" in layers:
+        out["risk"] = {"cells": [list(c) for c in costmap.risk_cells], "cap": costmap.risk_cap}
+    if "solar" in layers:
+        out["solar"] = {"rate": costmap.solar_rate, "angle0": costmap.solar_angle0}
+    if user:
+        out["user_layers"] = {n: {"file": str(p), "sha256": _sha256(p)} for n, p in user.items()}
+    agg = {}
+    for n in objectives:
+        layer, form = _base(n, CELL_LAYERS + tuple(user))
+        if n == "solar":
+            agg[n] = AGGREGATIONS["solar"]
+        elif layer is not None:
+            agg[n] = AGGREGATIONS["plan" if kind == "plan" else form]
+    out["objectives"] = agg
+    return out

@@ -4,7 +4,11 @@ Without ``--layers`` every grid planner (``astar``, ``dstar-lite``,
 ``astar-po``, ``dstar-po``) returns a shortest path under the map's corner
 rule; ``--layers elevation,solar,risk`` adds Lavin's cost layers as
 objectives (the weighted-sum planners then minimise a normalised sum, the
-Pareto planners select among non-dominated paths). Writes the same files as
+Pareto planners select among non-dominated paths), and ``--layers slope``
+with ``--layer slope=FILE`` a user layer. The layer flags (``--dem``,
+``--risk``, ``--solar-rate``, ``--layer``, ...) are those of
+:func:`gapath.cli._args.add_costmap_arguments`, shared with ``gapath
+solve`` and ``gapath exact``. Writes the same files as
 ``gapath solve`` (``front.csv`` with one row, ``paths.json``,
 ``summary.json``, ``front.png``, ``paths.png``) through
 :func:`gapath.results.write_front`. The planning time excludes numba's
@@ -23,7 +27,7 @@ from gapath.costmap import PLAN_LAYERS as LAYERS  # the layers --layers accepts
 
 
 def register(subparsers) -> None:
-    from gapath.cli._args import add_map_arguments, cell
+    from gapath.cli._args import add_costmap_arguments, add_map_arguments
     from gapath.cli.simulate import add_planner_choices
     from gapath.planners.registry import PLANNERS
 
@@ -48,38 +52,10 @@ def register(subparsers) -> None:
         "--layers",
         default="",
         help="comma-separated cost layers used as objectives besides the length, "
-        "among elevation, solar, risk (Lavin's); default none: the shortest path",
+        "among elevation, solar, risk (Lavin's) and the --layer NAME=FILE user "
+        "layers; default none: the shortest path",
     )
-    p.add_argument(
-        "--dem",
-        metavar="FILE",
-        help="elevation layer: raster (.npy or .npz) resampled to the grid; default: seeded fractal terrain",
-    )
-    p.add_argument(
-        "--dem-method",
-        choices=("bilinear", "reflect"),
-        default="bilinear",
-        help="bilinear: stretch the DEM over the grid; reflect: one pixel per cell, "
-        "tiled with reflection (default: %(default)s)",
-    )
-    p.add_argument(
-        "--terrain-seed",
-        type=int,
-        default=1,
-        help="seed of the fractal terrain when no --dem is given (default: %(default)s)",
-    )
-    p.add_argument(
-        "--risk",
-        type=cell,
-        metavar="ROW,COL",
-        help="risk layer: the maximum-risk cell (default: the centre of the grid)",
-    )
-    p.add_argument(
-        "--solar-rate",
-        type=float,
-        default=0.01,
-        help="solar layer: rotation of the solar vector per path step, radians (default: %(default)s)",
-    )
+    add_costmap_arguments(p)
     p.add_argument(
         "--priority",
         default=None,
@@ -93,13 +69,15 @@ def register(subparsers) -> None:
 
 
 def parse_layers(text, args=None) -> list[str]:
-    """The ``--layers`` names; with ``args``, also check that ``--dem`` and
-    ``--risk`` are not given without their layer.
+    """The ``--layers`` names; with ``args``, the ``--layer NAME=FILE`` user
+    layers are known names too (the layer flags given without their layer
+    are refused by :func:`gapath.cli._args.costmap_from_args`).
 
     Raises
     ------
     ConfigError
-        On an unknown layer, or a layer option without its layer.
+        On an unknown or repeated layer, or a worst-cell ``<layer>_max``
+        (the planners minimise sums).
 
     Examples
     --------
@@ -108,29 +86,46 @@ def parse_layers(text, args=None) -> list[str]:
     >>> parse_layers("")
     []
     """
-    from gapath.errors import ConfigError
+    from gapath.cli._args import layer_objectives
 
     layers = [s.strip() for s in str(text).split(",") if s.strip()]
-    for name in layers:
-        if name not in LAYERS:
-            raise ConfigError(f"--layers: unknown layer {name!r}; expected some of {', '.join(LAYERS)}")
-    if args is not None:
-        for flag, value, layer in (
-            ("--dem", getattr(args, "dem", None), "elevation"),
-            ("--risk", getattr(args, "risk", None), "risk"),
-        ):
-            if value is not None and layer not in layers:
-                raise ConfigError(
-                    f"{flag} sets the {layer} layer, which is not planned on: "
-                    f"add --layers {','.join(layers + [layer])}"
-                )
+    user = [n for n, _ in (getattr(args, "layer", None) or [])]
+    layer_objectives(layers, user, kind="plan", flag="--layers")
     return layers
 
 
-def warm_up(planner, objectives, layers, args, corner_cutting) -> float:
-    """Run ``planner`` once on a tiny map so that numba compiles (or loads
-    from its cache) the kernels before the timed run; returns the seconds."""
+def _tiny_costmap(tiny, costmap, layers, args):
+    """A costmap over the warm-up map with the layers of ``costmap`` (or,
+    without it, those :func:`gapath.costmap.build_costmap` makes for
+    ``layers``), so that the warm-up compiles the same kernels."""
     from gapath.costmap import build_costmap
+
+    if costmap is None:
+        seed = getattr(args, "terrain_seed", None)
+        rate = getattr(args, "solar_rate", None)
+        return build_costmap(
+            tiny,
+            [n for n in layers if n in LAYERS],
+            terrain_seed=1 if seed is None else seed,
+            solar_rate=0.01 if rate is None else rate,
+        )
+    user = {
+        n: np.zeros(tiny.shape)
+        for n in costmap.names
+        if n not in ("distance", "heuristic", "solar", "elevation", "risk")
+    }
+    return build_costmap(
+        tiny,
+        [n for n in layers if n in LAYERS],
+        solar_rate=costmap.solar_rate,
+        user_layers=user,
+    )
+
+
+def warm_up(planner, objectives, layers, args, corner_cutting, costmap=None) -> float:
+    """Run ``planner`` once on a tiny map so that numba compiles (or loads
+    from its cache) the kernels before the timed run; returns the seconds.
+    ``costmap``: the run's, whose layers the tiny map's costmap copies."""
     from gapath.errors import GapathError
     from gapath.planners import plan
     from gapath.workspace import Workspace
@@ -138,7 +133,7 @@ def warm_up(planner, objectives, layers, args, corner_cutting) -> float:
     t0 = time.perf_counter()
     tiny = Workspace(np.zeros((5, 5), bool), corner_cutting=corner_cutting, name="warm-up")
     try:
-        cm = build_costmap(tiny, layers, terrain_seed=args.terrain_seed, solar_rate=args.solar_rate)
+        cm = _tiny_costmap(tiny, costmap, layers, args)
         plan(tiny, planner, costmap=cm, objectives=objectives, priority=args.priority)
     except GapathError:
         pass  # a bad option is reported by the real run
@@ -185,7 +180,7 @@ def _plan_kinematic(args, choice) -> int:
 
 
 def run(args) -> int:
-    from gapath.cli._args import load_workspace
+    from gapath.cli._args import costmap_from_args, costmap_settings, load_workspace
     from gapath.costmap import build_costmap
     from gapath.front import PathFront
     from gapath.planners import plan, planner_info
@@ -195,24 +190,22 @@ def run(args) -> int:
     choice = load_workspace(args)
     ws = choice.workspace
     if planner_info(args.planner).family == "kinematic":
+        costmap_from_args(args, ws, layers, kind="plan", flag="--layers")  # no stray layer flag
         return _plan_kinematic(args, choice)
-    cm = build_costmap(
-        ws,
-        layers,
-        dem=args.dem,
-        dem_method=args.dem_method,
-        terrain_seed=args.terrain_seed,
-        risk=args.risk,
-        solar_rate=args.solar_rate,
-    )
+    cm = costmap_from_args(args, ws, layers, kind="plan", flag="--layers")
+    if cm is None:
+        cm = build_costmap(ws, [])
     objectives = ("length",) + tuple(layers)
-    compile_s = warm_up(args.planner, objectives, layers, args, ws.corner_cutting)
+    compile_s = warm_up(args.planner, objectives, layers, args, ws.corner_cutting, costmap=cm)
     res = plan(ws, args.planner, costmap=cm, objectives=objectives, priority=args.priority)
     seconds = res.seconds
     front = PathFront.from_paths(ws, [res.cells], tuple(res.objectives), res.F[None, :])
     terrain = None
     if "elevation" in layers:
-        terrain = f"{args.dem} ({args.dem_method})" if args.dem else f"fractal seed={args.terrain_seed}"
+        if args.dem:
+            terrain = f"{args.dem} ({args.dem_method or 'bilinear'})"
+        else:
+            terrain = f"fractal seed={1 if args.terrain_seed is None else args.terrain_seed}"
     summary = {
         "settings": {
             **ws.describe(),
@@ -223,6 +216,7 @@ def run(args) -> int:
             "terrain": terrain,
             "risk_cells": [list(c) for c in cm.risk_cells],
             "solar_rate": cm.solar_rate if "solar" in layers else None,
+            "costmap": costmap_settings(args, cm, layers, kind="plan") if layers else None,
             "algorithm": args.planner,
             **choice.settings(),
         },
