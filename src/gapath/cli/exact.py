@@ -1,4 +1,15 @@
-"""``gapath exact``: the exact Pareto front of a map."""
+"""``gapath exact``: the exact Pareto front of a map.
+
+``--objectives`` takes length, vulnerability, smoothness and, with ``--mode
+free``, the costmap layers as sums along the path: ``solar`` and
+``<layer>_sum`` (``elevation_sum``, ``risk_sum``, a ``--layer NAME=FILE``
+user layer's ``NAME_sum``), any number of them (the k-objective search of
+:func:`gapath.planners.exact.free_front`). The GA's mean objectives
+(``elevation``, ``risk``) and worst cells (``risk_max``) are refused with the
+reason: neither is a sum along the path, so no label-setting search gives
+their exact front. The layer flags are those of ``gapath solve``
+(:func:`gapath.cli._args.add_costmap_arguments`).
+"""
 
 from __future__ import annotations
 
@@ -7,14 +18,16 @@ from pathlib import Path
 
 
 def register(subparsers) -> None:
-    from gapath.cli._args import add_map_arguments
+    from gapath.cli._args import add_costmap_arguments, add_map_arguments
 
     p = subparsers.add_parser("exact", help="compute the exact Pareto front (monotone or free paths)")
     add_map_arguments(p)
     p.add_argument(
         "--objectives",
         default="length,vulnerability",
-        help="comma-separated objectives among length, vulnerability, smoothness (default: %(default)s)",
+        help="comma-separated objectives among length, vulnerability, smoothness and, with "
+        "--mode free, the costmap layers summed along the path: solar, elevation_sum, "
+        "risk_sum, a --layer NAME's NAME_sum (any number of objectives) (default: %(default)s)",
     )
     p.add_argument(
         "--mode",
@@ -33,6 +46,7 @@ def register(subparsers) -> None:
     p.add_argument("--out", default="gapath-exact", help="output directory (default: %(default)s)")
     p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
     p.add_argument("--quiet", action="store_true", help="no report")
+    add_costmap_arguments(p)
     p.set_defaults(func=run)
 
 
@@ -87,8 +101,8 @@ class _ProgressLine:
 
 
 def run(args) -> int:
-    from gapath.cli._args import load_workspace
-    from gapath.errors import NoPathError
+    from gapath.cli._args import costmap_from_args, costmap_settings, load_workspace
+    from gapath.errors import ConfigError, NoPathError
     from gapath.front import PathFront
     from gapath.planners.exact import exact_front
     from gapath.results import versions, write_front
@@ -96,10 +110,18 @@ def run(args) -> int:
     choice = load_workspace(args)
     ws = choice.workspace
     objectives = [o.strip() for o in args.objectives.split(",") if o.strip()]
+    costmap = costmap_from_args(args, ws, objectives, kind="exact")
+    if costmap is not None and args.mode == "monotone":
+        layered = [o for o in objectives if o not in ("length", "vulnerability", "smoothness")]
+        raise ConfigError(
+            f"--objectives {','.join(objectives)}: the exact monotone front has no costmap layers "
+            f"({', '.join(layered)}); add --mode free (the exact front of all 8-connected paths)"
+        )
+    options = {} if costmap is None else {"costmap": costmap}
     t0 = time.perf_counter()
     bar = None if args.quiet else _ProgressLine(args.mode)
     try:
-        ef = exact_front(ws, objectives, args.mode, max_labels=args.max_labels, progress=bar)
+        ef = exact_front(ws, objectives, args.mode, max_labels=args.max_labels, progress=bar, **options)
     except NoPathError as exc:  # exit status 1, with the reason and what to try
         from gapath.cli.main import no_path_error
 
@@ -132,6 +154,7 @@ def run(args) -> int:
             "mode": args.mode,
             "algorithm": "exact",
             "max_labels": args.max_labels,
+            "costmap": costmap_settings(args, costmap, objectives, kind="exact"),
         },
         "versions": versions(),
         "wall_time_s": round(seconds, 4),

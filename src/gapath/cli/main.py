@@ -73,7 +73,10 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
     p.add_argument(
         "--objectives",
         default="length,vulnerability",
-        help="comma-separated objectives among length, vulnerability, smoothness (default: %(default)s)",
+        help="comma-separated objectives among length, vulnerability, smoothness and the "
+        "costmap layers: elevation, risk, solar, a --layer NAME (the mean over the "
+        "path's cells; solar summed over the steps) and <layer>_max (the worst cell, "
+        "e.g. risk_max) (default: %(default)s)",
     )
     p.add_argument(
         "--encoding",
@@ -188,6 +191,9 @@ def build_parser() -> argparse.ArgumentParser:
         "objectives, 2 x pop with more), an integer >= 0, or off (no archive: the last "
         "population's front) (default: %(default)s)",
     )
+    from gapath.cli._args import add_costmap_arguments
+
+    add_costmap_arguments(p)
     p.set_defaults(func=_solve)
 
     d = sub.add_parser("demo", help="the bundled scenario with Ahmed & Deb's settings")
@@ -223,14 +229,38 @@ def _report(result, out_dir: Path) -> None:
     )
 
 
-def _reference(args, workspace):
+def _objective_names(args) -> list[str]:
+    return [o.strip() for o in str(args.objectives).split(",") if o.strip()]
+
+
+def _reference(args, workspace, costmap=None):
     if not args.reference:
         return None
     from gapath.objectives import check_objective_names
     from gapath.reference import reference_front
 
-    names = check_objective_names(o.strip() for o in args.objectives.split(",") if o.strip())
+    layers = () if costmap is None else costmap.objective_names + costmap.max_objective_names
+    names = check_objective_names(_objective_names(args), layers)
+    layered = [n for n in names if n in layers and n != "length"]
     try:
+        if layered and args.reference in ("monotone", "free"):
+            # the exact free front takes solar (a sum over the steps); no exact
+            # front has the GA's means or worst cells, nor the monotone one any layer
+            means = [n for n in layered if n != "solar"]
+            if means or args.reference == "monotone":
+                what = means[0] if means else "solar"
+                why = (
+                    "a mean or a worst cell over the path is not a sum along it"
+                    if means
+                    else "the exact monotone front has no costmap layers"
+                )
+                raise ConfigError(
+                    f"no exact {args.reference} front exists for objective {what!r} ({why}); "
+                    f"give --reference FILE (a front.csv with the columns {','.join(names)})"
+                )
+            from gapath.planners.exact import free_front
+
+            return free_front(workspace, tuple(names), costmap=costmap).F
         return reference_front(workspace, names, args.reference)
     except (ConfigError, MapError) as exc:
         raise type(exc)(f"--reference: {exc}") from None
@@ -272,9 +302,12 @@ def _refine(args):
 
 
 def _run(args, workspace) -> int:
+    from gapath.cli._args import costmap_from_args, costmap_settings
     from gapath.results import write_result
     from gapath.solver import solve
 
+    costmap = costmap_from_args(args, workspace, _objective_names(args))
+    cm_settings = costmap_settings(args, costmap, _objective_names(args))
     kwargs = dict(
         objectives=args.objectives,
         encoding=args.encoding,
@@ -291,6 +324,8 @@ def _run(args, workspace) -> int:
         repair=args.repair,
         refine=_refine(args),
     )
+    if costmap is not None:
+        kwargs["costmap"] = costmap
     if args.constraints == "adaptive" and args.engine == "pymoo":
         raise ConfigError(
             "--constraints adaptive needs --engine fast (the stock pymoo engine has no "
@@ -306,15 +341,17 @@ def _run(args, workspace) -> int:
         why = no_path_error(workspace, monotone=False)
         if why is not None:
             raise why
-    reference = _reference(args, workspace)
+    reference = _reference(args, workspace, costmap)
     if args.runs != 1:
-        return _multirun(args, workspace, kwargs, out_dir, reference)
+        return _multirun(args, workspace, kwargs, out_dir, reference, cm_settings)
     tracker = None
     if reference is not None:
         from gapath.convergence import HypervolumeRatioCallback
 
         tracker = HypervolumeRatioCallback(reference)
     result = solve(workspace, seed=args.seed, callback=tracker, **kwargs)
+    if cm_settings is not None:
+        result.settings["costmap"] = cm_settings
     extra = _quality(args, reference, result.front.F)
     write_result(result, out_dir, plots=not args.no_plots, extra=extra)
     if tracker is not None and tracker.history:
@@ -339,11 +376,13 @@ def _write_convergence(tracker, out_dir: Path, plots: bool) -> None:
         plot_convergence(tracker.history, out_dir / "convergence.png")
 
 
-def _multirun(args, workspace, kwargs, out_dir: Path, reference) -> int:
+def _multirun(args, workspace, kwargs, out_dir: Path, reference, cm_settings=None) -> int:
     from gapath.experiments import multirun
     from gapath.results import write_front, write_result
 
     def write_run(r):
+        if cm_settings is not None:
+            r.settings["costmap"] = cm_settings
         write_result(r, out_dir / "runs" / str(r.settings["seed"]), plots=not args.no_plots)
         if not args.quiet:
             print(f"run {r.settings['seed']}: {len(r.front)} paths, {r.seconds:.1f} s", flush=True)
