@@ -497,8 +497,9 @@ def add_costmap_arguments(parser) -> None:
     """
     g = parser.add_argument_group(
         "costmap layers",
-        "objectives elevation, risk, solar and user layers (their _max worst cell for the GA, "
-        "their _sum for the exact search); each flag sets how its layer is built",
+        "the layers that the objectives name (elevation, risk, solar, a --layer NAME; "
+        "NAME_max: the worst cell, for the GA; NAME_sum: the sum, for gapath exact); "
+        "each flag sets how its layer is built, and is refused when no objective uses it",
     )
     g.add_argument(
         "--dem",
@@ -516,6 +517,7 @@ def add_costmap_arguments(parser) -> None:
         "--terrain-seed",
         type=int,
         default=None,
+        metavar="N",
         help="seed of the fractal terrain when no --dem is given (default: 1)",
     )
     g.add_argument(
@@ -528,6 +530,7 @@ def add_costmap_arguments(parser) -> None:
         "--solar-rate",
         type=float,
         default=None,
+        metavar="RAD",
         help="solar layer: rotation of the solar vector per path step, radians (default: 0.01)",
     )
     g.add_argument(
@@ -536,7 +539,7 @@ def add_costmap_arguments(parser) -> None:
         action="append",
         metavar="NAME=FILE",
         help="a user layer NAME from a .npy/.npz array of the grid's shape (finite, >= 0, "
-        "used as given), then an objective NAME (NAME_max, NAME_sum); repeat for several",
+        "used as given), for the objective NAME (NAME_max, NAME_sum); repeat for several",
     )
 
 
