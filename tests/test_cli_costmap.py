@@ -94,7 +94,9 @@ def test_solve_worst_case_risk(tmp_path, capsys):
     out = tmp_path / "r"
     code, _, _ = run(
         capsys,
-        ["solve", "default", "--objectives", "length,risk_max", "--risk", "12,20"] + TINY_RUN + ["--out", out],
+        ["solve", "default", "--objectives", "length,risk_max", "--risk", "12,20"]
+        + TINY_RUN
+        + ["--out", out],
     )
     assert code == 0
     header, F = front_csv(out)
@@ -127,7 +129,10 @@ def test_solve_monotone_user_layer_and_solar(small_map, tmp_path, capsys):
     s = settings(out)["costmap"]
     assert s["layers"] == ["solar", "slope"]
     assert s["solar"] == {"rate": 0.2, "angle0": 0.0}
-    assert s["user_layers"]["slope"]["file"].endswith("slope.npy") and len(s["user_layers"]["slope"]["sha256"]) == 64
+    assert (
+        s["user_layers"]["slope"]["file"].endswith("slope.npy")
+        and len(s["user_layers"]["slope"]["sha256"]) == 64
+    )
 
 
 def test_solve_runs_record_the_costmap_in_every_summary(small_map, tmp_path, capsys):
@@ -199,7 +204,16 @@ def test_plan_keeps_its_layers_and_takes_user_layers(tmp_path, capsys):
     # a user layer
     np.save(tmp_path / "sand.npy", np.random.default_rng(3).random((32, 32)))
     out2 = tmp_path / "p2"
-    argv = ["plan", "default", "--planner", "astar-po", "--layers", "sand", "--layer", f"sand={tmp_path / 'sand.npy'}"]
+    argv = [
+        "plan",
+        "default",
+        "--planner",
+        "astar-po",
+        "--layers",
+        "sand",
+        "--layer",
+        f"sand={tmp_path / 'sand.npy'}",
+    ]
     code, _, _ = run(capsys, argv + ["--no-plots", "--quiet", "--out", out2])
     assert code == 0
     assert front_csv(out2)[0] == ["length", "sand"]
@@ -225,38 +239,152 @@ def _files(tmp_path):
 BAD = [
     # unknown or misplaced objectives
     (["solve", "default", "--objectives", "length,height"], "--objectives: unknown objective 'height'"),
-    (["solve", "default", "--objectives", "length,risk,risk"], "--objectives: objective 'risk' is given twice"),
-    (["solve", "default", "--objectives", "length,risk_sum"], "'risk_sum' (layer 'risk' summed over the path's cells) is an objective of gapath exact"),
-    (["exact", "default", "--mode", "free", "--objectives", "length,risk_max"], "--objectives: 'risk_max' is the worst cell of the path, not a sum along it; the exact search minimises sums"),
-    (["exact", "default", "--mode", "free", "--objectives", "length,elevation"], "--objectives: 'elevation' is the MEAN of layer 'elevation'"),
-    (["exact", "default", "--objectives", "length,risk_sum"], "the exact monotone front has no costmap layers (risk_sum); add --mode free"),
-    (["exact", "default", "--mode", "free", "--objectives", "length,slope_sum"], "--objectives: unknown objective 'slope_sum'"),
+    (
+        ["solve", "default", "--objectives", "length,risk,risk"],
+        "--objectives: objective 'risk' is given twice",
+    ),
+    (
+        ["solve", "default", "--objectives", "length,risk_sum"],
+        "'risk_sum' (layer 'risk' summed over the path's cells) is an objective of gapath exact",
+    ),
+    (
+        ["exact", "default", "--mode", "free", "--objectives", "length,risk_max"],
+        "--objectives: 'risk_max' is the worst cell of the path, not a sum along it; the exact search minimises sums",
+    ),
+    (
+        ["exact", "default", "--mode", "free", "--objectives", "length,elevation"],
+        "--objectives: 'elevation' is the MEAN of layer 'elevation'",
+    ),
+    (
+        ["exact", "default", "--objectives", "length,risk_sum"],
+        "the exact monotone front has no costmap layers (risk_sum); add --mode free",
+    ),
+    (
+        ["exact", "default", "--mode", "free", "--objectives", "length,slope_sum"],
+        "--objectives: unknown objective 'slope_sum'",
+    ),
     (["plan", "default", "--layers", "risk_max"], "--layers: 'risk_max' is the worst cell of the path"),
     # a layer flag without its objective
-    (["solve", "default", "--dem", "{d}/ok32.npy"], "--dem sets the elevation layer, which no objective uses: add elevation (or elevation_max) to --objectives"),
-    (["exact", "default", "--mode", "free", "--risk", "3,3"], "--risk sets the risk layer, which no objective uses: add risk_sum to --objectives"),
-    (["solve", "default", "--solar-rate", "0.5"], "--solar-rate sets the solar layer, which no objective uses"),
-    (["solve", "default", "--terrain-seed", "4"], "--terrain-seed sets the elevation layer, which no objective uses"),
-    (["solve", "default", "--objectives", "length,vulnerability", "--layer", "sand={d}/ok32.npy"], "--layer sand={d}/ok32.npy sets the user layer 'sand', which no objective uses: add sand (or sand_max) to --objectives"),
-    (["solve", "default", "--objectives", "length,elevation", "--dem", "{d}/ok32.npy", "--terrain-seed", "2"], "--terrain-seed 2 seeds the fractal terrain, which --dem {d}/ok32.npy replaces"),
-    (["solve", "default", "--objectives", "length,elevation", "--dem-method", "reflect"], "--dem-method reflect applies to a --dem FILE"),
+    (
+        ["solve", "default", "--dem", "{d}/ok32.npy"],
+        "--dem sets the elevation layer, which no objective uses: add elevation (or elevation_max) to --objectives",
+    ),
+    (
+        ["exact", "default", "--mode", "free", "--risk", "3,3"],
+        "--risk sets the risk layer, which no objective uses: add risk_sum to --objectives",
+    ),
+    (
+        ["solve", "default", "--solar-rate", "0.5"],
+        "--solar-rate sets the solar layer, which no objective uses",
+    ),
+    (
+        ["solve", "default", "--terrain-seed", "4"],
+        "--terrain-seed sets the elevation layer, which no objective uses",
+    ),
+    (
+        ["solve", "default", "--objectives", "length,vulnerability", "--layer", "sand={d}/ok32.npy"],
+        "--layer sand={d}/ok32.npy sets the user layer 'sand', which no objective uses: add sand (or sand_max) to --objectives",
+    ),
+    (
+        [
+            "solve",
+            "default",
+            "--objectives",
+            "length,elevation",
+            "--dem",
+            "{d}/ok32.npy",
+            "--terrain-seed",
+            "2",
+        ],
+        "--terrain-seed 2 seeds the fractal terrain, which --dem {d}/ok32.npy replaces",
+    ),
+    (
+        ["solve", "default", "--objectives", "length,elevation", "--dem-method", "reflect"],
+        "--dem-method reflect applies to a --dem FILE",
+    ),
     # DEM files
-    (["solve", "default", "--objectives", "length,elevation", "--dem", "{d}/missing.npy"], "--dem: DEM file '{d}/missing.npy' does not exist"),
-    (["solve", "default", "--objectives", "length,elevation", "--dem", "{d}/garbage.npy"], "--dem: DEM file '{d}/garbage.npy' is not a NumPy .npy array"),
-    (["exact", "default", "--mode", "free", "--objectives", "length,elevation_sum", "--dem", "{d}/flat.npy"], "--dem: layer 'dem flat.npy' must be a non-empty 2-D array, got shape (5,)"),
-    (["solve", "default", "--objectives", "length,elevation", "--dem", "{d}/nan.npy"], "--dem: layer 'dem nan.npy' holds NaN at (row 3, col 4)"),
+    (
+        ["solve", "default", "--objectives", "length,elevation", "--dem", "{d}/missing.npy"],
+        "--dem: DEM file '{d}/missing.npy' does not exist",
+    ),
+    (
+        ["solve", "default", "--objectives", "length,elevation", "--dem", "{d}/garbage.npy"],
+        "--dem: DEM file '{d}/garbage.npy' is not a NumPy .npy array",
+    ),
+    (
+        [
+            "exact",
+            "default",
+            "--mode",
+            "free",
+            "--objectives",
+            "length,elevation_sum",
+            "--dem",
+            "{d}/flat.npy",
+        ],
+        "--dem: layer 'dem flat.npy' must be a non-empty 2-D array, got shape (5,)",
+    ),
+    (
+        ["solve", "default", "--objectives", "length,elevation", "--dem", "{d}/nan.npy"],
+        "--dem: layer 'dem nan.npy' holds NaN at (row 3, col 4)",
+    ),
     # user layer files
-    (["solve", "default", "--objectives", "length,sand", "--layer", "sand={d}/small.npy"], "--layer sand={d}/small.npy: layer 'sand' must have the grid's shape (32, 32), got shape (8, 8)"),
-    (["solve", "default", "--objectives", "length,sand", "--layer", "sand={d}/neg.npy"], "--layer sand={d}/neg.npy: layer 'sand' holds the negative value -1.0 at (row 0, col 0)"),
-    (["exact", "default", "--mode", "free", "--objectives", "length,sand_sum", "--layer", "sand={d}/missing.npy"], "--layer sand={d}/missing.npy: layer file '{d}/missing.npy' does not exist"),
-    (["solve", "default", "--objectives", "length,sand", "--layer", "sand={d}/garbage.npy"], "layer file '{d}/garbage.npy' is not a NumPy .npy array"),
-    (["solve", "default", "--objectives", "length,sand", "--layer", "sand={d}/ok32.npy", "--layer", "sand={d}/ok32.npy"], "--layer: layer 'sand' is given twice"),
+    (
+        ["solve", "default", "--objectives", "length,sand", "--layer", "sand={d}/small.npy"],
+        "--layer sand={d}/small.npy: layer 'sand' must have the grid's shape (32, 32), got shape (8, 8)",
+    ),
+    (
+        ["solve", "default", "--objectives", "length,sand", "--layer", "sand={d}/neg.npy"],
+        "--layer sand={d}/neg.npy: layer 'sand' holds the negative value -1.0 at (row 0, col 0)",
+    ),
+    (
+        [
+            "exact",
+            "default",
+            "--mode",
+            "free",
+            "--objectives",
+            "length,sand_sum",
+            "--layer",
+            "sand={d}/missing.npy",
+        ],
+        "--layer sand={d}/missing.npy: layer file '{d}/missing.npy' does not exist",
+    ),
+    (
+        ["solve", "default", "--objectives", "length,sand", "--layer", "sand={d}/garbage.npy"],
+        "layer file '{d}/garbage.npy' is not a NumPy .npy array",
+    ),
+    (
+        [
+            "solve",
+            "default",
+            "--objectives",
+            "length,sand",
+            "--layer",
+            "sand={d}/ok32.npy",
+            "--layer",
+            "sand={d}/ok32.npy",
+        ],
+        "--layer: layer 'sand' is given twice",
+    ),
     # risk cells and solar rates
-    (["solve", "default", "--objectives", "length,risk", "--risk", "99,3"], "--risk 99,3: risk cell (99, 3) is outside the 32x32 grid"),
-    (["exact", "default", "--mode", "free", "--objectives", "length,solar", "--solar-rate", "nan"], "--solar-rate must be a finite number, got nan"),
-    (["solve", "default", "--objectives", "length,solar", "--solar-rate", "inf"], "--solar-rate must be a finite number, got inf"),
+    (
+        ["solve", "default", "--objectives", "length,risk", "--risk", "99,3"],
+        "--risk 99,3: risk cell (99, 3) is outside the 32x32 grid",
+    ),
+    (
+        ["exact", "default", "--mode", "free", "--objectives", "length,solar", "--solar-rate", "nan"],
+        "--solar-rate must be a finite number, got nan",
+    ),
+    (
+        ["solve", "default", "--objectives", "length,solar", "--solar-rate", "inf"],
+        "--solar-rate must be a finite number, got inf",
+    ),
     # no exact reference front for a mean
-    (["solve", "default", "--objectives", "length,risk", "--reference", "free"], "--reference: no exact free front exists for objective 'risk'"),
+    (
+        ["solve", "default", "--objectives", "length,risk", "--reference", "free"],
+        "--reference: no exact free front exists for objective 'risk'",
+    ),
 ]
 
 

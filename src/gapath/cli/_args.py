@@ -59,13 +59,9 @@ import math
 import re
 from dataclasses import dataclass
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from gapath.errors import ConfigError
 from gapath.workspace import Workspace
-
-if TYPE_CHECKING:
-    from gapath.costmap import Costmap
 
 #: The tolerance a length must meet to match a MovingAI optimum (the
 #: ``.scen`` files print 6 significant digits or 8 decimals).
@@ -459,14 +455,18 @@ def layer_file(text: str) -> tuple[str, Path]:
     name, sep, file = str(text).partition("=")
     name = name.strip()
     if not sep or not name or not file:
-        raise argparse.ArgumentTypeError(f"expected NAME=FILE (a layer name and a .npy/.npz file), got {text!r}")
+        raise argparse.ArgumentTypeError(
+            f"expected NAME=FILE (a layer name and a .npy/.npz file), got {text!r}"
+        )
     if name in CELL_LAYERS:
         how = "--dem FILE or the fractal terrain" if name == "elevation" else "--risk ROW,COL"
         raise argparse.ArgumentTypeError(
             f"layer name {name!r} is built in ({how} sets it); choose another name for a user layer"
         )
     if name in BASE_OBJECTIVES + ("interfering", "distance", "heuristic", "solar"):
-        raise argparse.ArgumentTypeError(f"layer name {name!r} is reserved (computed by gapath); choose another name")
+        raise argparse.ArgumentTypeError(
+            f"layer name {name!r} is reserved (computed by gapath); choose another name"
+        )
     if not _LAYER_NAME.match(name):
         raise argparse.ArgumentTypeError(
             f"layer name {name!r} must start with a letter and hold only letters, digits, '_' and '-'"
@@ -621,7 +621,12 @@ def layer_objectives(objectives, user_layers=(), *, kind: str = "ga", flag: str 
             continue
         if kind == "exact" and n == "interfering":
             continue  # the exact search's own message (a constraint, not an objective)
-        if layer is not None and (form, kind) in (("mean", "ga"), ("max", "ga"), ("sum", "exact"), ("mean", "plan")):
+        if layer is not None and (form, kind) in (
+            ("mean", "ga"),
+            ("max", "ga"),
+            ("sum", "exact"),
+            ("mean", "plan"),
+        ):
             need.add(layer)
             continue
         if layer is not None and form == "max":
@@ -640,8 +645,10 @@ def layer_objectives(objectives, user_layers=(), *, kind: str = "ga", flag: str 
                 f"exists for it: use {layer + SUM_SUFFIX} (the layer summed over the path's cells)"
             )
         if layer is not None and form == "sum":
-            where = "the planners minimise layer sums already: name the layer" if kind == "plan" else (
-                f"the GA takes the mean {layer!r} or the worst cell {layer + MAX_SUFFIX!r}"
+            where = (
+                "the planners minimise layer sums already: name the layer"
+                if kind == "plan"
+                else (f"the GA takes the mean {layer!r} or the worst cell {layer + MAX_SUFFIX!r}")
             )
             raise ConfigError(
                 f"{flag}: {n!r} (layer {layer!r} summed over the path's cells) is an objective of "
@@ -736,7 +743,9 @@ def costmap_from_args(args, workspace, objectives, *, kind: str = "ga", flag: st
         (rate is not None, "--solar-rate", "solar"),
     ):
         if given and layer not in need:
-            raise ConfigError(f"{opt} sets the {layer} layer, which {unused}: {_add_hint(kind, objectives, layer)}")
+            raise ConfigError(
+                f"{opt} sets the {layer} layer, which {unused}: {_add_hint(kind, objectives, layer)}"
+            )
     for n, path in user:
         if n not in need:
             raise ConfigError(

@@ -109,7 +109,9 @@ def merge_fronts(fronts: Iterable[PathFront]) -> PathFront:
     F = np.concatenate([f.F.reshape(-1, len(objectives)) for f in fronts])
     # 4 SPEC metrics, then a costmap's layer objectives (their count is the fronts' own)
     width = max((f.metrics.shape[-1] for f in fronts if len(f.F)), default=4)
-    metrics = np.concatenate([f.metrics.reshape(-1, width) if len(f.F) else np.empty((0, width)) for f in fronts])
+    metrics = np.concatenate(
+        [f.metrics.reshape(-1, width) if len(f.F) else np.empty((0, width)) for f in fronts]
+    )
     # genomes only when every non-empty front has them (a free-path archive's
     # refined paths have none): never rows that are not the genomes of their paths
     given = [f for f in fronts if len(f.F)]
