@@ -380,6 +380,10 @@ BAD = [
         ["solve", "default", "--objectives", "length,solar", "--solar-rate", "inf"],
         "--solar-rate must be a finite number, got inf",
     ),
+    (
+        ["solve", "default", "--paths", "monotone", "--seed-from", "exact", "--objectives", "length,risk"],
+        "--seed-from exact seeds from the exact monotone front, which has no costmap layers (risk)",
+    ),
     # no exact reference front for a mean
     (
         ["solve", "default", "--objectives", "length,risk", "--reference", "free"],

@@ -326,6 +326,14 @@ def _run(args, workspace) -> int:
     )
     if costmap is not None:
         kwargs["costmap"] = costmap
+        if args.seed_from == "exact" and kwargs["paths"] == "monotone":
+            layered = [
+                n for n in _objective_names(args) if n not in ("length", "vulnerability", "smoothness")
+            ]
+            raise ConfigError(
+                f"--seed-from exact seeds from the exact monotone front, which has no costmap "
+                f"layers ({', '.join(layered)}); use --seed-from weighted (the default) or --paths free"
+            )
     if args.constraints == "adaptive" and args.engine == "pymoo":
         raise ConfigError(
             "--constraints adaptive needs --engine fast (the stock pymoo engine has no "
