@@ -165,6 +165,9 @@ def test_exact_three_objectives_agree_with_free_front(small_map, tmp_path, capsy
     assert s["objectives"] == header and s["mode"] == "free"
     assert s["costmap"]["risk"]["cells"] == [[4, 4]]
     assert "summed over the path's cells" in s["costmap"]["objectives"]["risk_sum"]
+    plain = tmp_path / "plain"
+    code, _, _ = run(capsys, ["exact", small_map, "--mode", "free", "--no-plots", "--quiet", "--out", plain])
+    assert code == 0 and "costmap" not in settings(plain)
 
 
 def test_exact_k_objectives_with_a_user_layer_and_elevation(small_map, tmp_path, capsys):
@@ -218,6 +221,12 @@ def test_plan_keeps_its_layers_and_takes_user_layers(tmp_path, capsys):
     assert code == 0
     assert front_csv(out2)[0] == ["length", "sand"]
     assert set(settings(out2)["costmap"]["user_layers"]) == {"sand"}
+    # no layer, no costmap entry
+    out3 = tmp_path / "p3"
+    code, _, _ = run(
+        capsys, ["plan", "default", "--planner", "astar", "--no-plots", "--quiet", "--out", out3]
+    )
+    assert code == 0 and "costmap" not in settings(out3)
 
 
 # ---------------------------------------------------------------------------

@@ -154,7 +154,6 @@ def run(args) -> int:
             "mode": args.mode,
             "algorithm": "exact",
             "max_labels": args.max_labels,
-            "costmap": costmap_settings(args, costmap, objectives, kind="exact"),
         },
         "versions": versions(),
         "wall_time_s": round(seconds, 4),
@@ -162,6 +161,8 @@ def run(args) -> int:
         "search": {k: (round(v, 4) if isinstance(v, float) else v) for k, v in ef.stats.items()},
     }
     summary["settings"].update(choice.settings())
+    if costmap is not None:
+        summary["settings"]["costmap"] = costmap_settings(args, costmap, objectives, kind="exact")
     shortest = (
         float(front.F[:, front.objectives.index("length")].min())
         if len(front) and "length" in front.objectives

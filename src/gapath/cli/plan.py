@@ -216,7 +216,6 @@ def run(args) -> int:
             "terrain": terrain,
             "risk_cells": [list(c) for c in cm.risk_cells],
             "solar_rate": cm.solar_rate if "solar" in layers else None,
-            "costmap": costmap_settings(args, cm, layers, kind="plan") if layers else None,
             "algorithm": args.planner,
             **choice.settings(),
         },
@@ -228,6 +227,8 @@ def run(args) -> int:
         "objectives": res.objectives,
         "search_cost": res.info["search_cost"],
     }
+    if layers:
+        summary["settings"]["costmap"] = costmap_settings(args, cm, layers, kind="plan")
     length = float(res.objectives["length"])
     if choice.scenario is not None:
         summary["scenario"] = choice.scenario_record(length)
