@@ -199,6 +199,7 @@ def _boa_steps(
     h, w = occ.shape
     goal = gr * w + gc
     pf = pot.reshape(h * w)
+    hf = hk.reshape(3 * hk.shape[0])  # the heap's keys, flat: entry i at 3 i
     off = np.empty(8, np.int64)  # move d from cell c: to c + off[d]
     for d in range(8):
         off[d] = DR[d] * w + DC[d]
@@ -239,31 +240,61 @@ def _boa_steps(
         # pop the least key (a binary heap, written out: helpers that take the
         # arrays cost reference counting); the keys are distinct (the row is in
         # the third), so any heap pops them in the same order
-        x = np.int64(hk[0, 2]) & ROW_MASK
+        x = np.int64(hf[3 * (0) + 2]) & ROW_MASK
         size -= 1
         if size > 0:
-            k1, k2, k3 = hk[size, 0], hk[size, 1], hk[size, 2]
+            # a 4-ary heap, bottom-up: the hole goes down along the least of the
+            # children to a leaf (the children compared without branches), then
+            # the last entry rises from there (rarely more than a level)
+            k1, k2, k3 = hf[3 * size], hf[3 * size + 1], hf[3 * size + 2]
             i = 0
-            while True:
-                ch = 2 * i + 1
-                if ch >= size:
+            ch = 1
+            while ch + 3 < size:
+                a1, a2, a3 = hf[3 * ch], hf[3 * ch + 1], hf[3 * ch + 2]
+                b1, b2, b3 = hf[3 * (ch + 1)], hf[3 * (ch + 1) + 1], hf[3 * (ch + 1) + 2]
+                c1, c2, c3 = hf[3 * (ch + 2)], hf[3 * (ch + 2) + 1], hf[3 * (ch + 2) + 2]
+                d1, d2, d3 = hf[3 * (ch + 3)], hf[3 * (ch + 3) + 1], hf[3 * (ch + 3) + 2]
+                lt = (b1 < a1) | ((b1 == a1) & ((b2 < a2) | ((b2 == a2) & (b3 < a3))))
+                ia = ch + lt
+                if lt:
+                    a1, a2, a3 = b1, b2, b3
+                lt = (d1 < c1) | ((d1 == c1) & ((d2 < c2) | ((d2 == c2) & (d3 < c3))))
+                ic = ch + 2 + lt
+                if lt:
+                    c1, c2, c3 = d1, d2, d3
+                lt = (c1 < a1) | ((c1 == a1) & ((c2 < a2) | ((c2 == a2) & (c3 < a3))))
+                if lt:
+                    a1, a2, a3 = c1, c2, c3
+                    ia = ic
+                hf[3 * i] = a1
+                hf[3 * i + 1] = a2
+                hf[3 * i + 2] = a3
+                i = ia
+                ch = 4 * i + 1
+            if ch < size:  # 1 to 3 children left
+                a1, a2, a3 = hf[3 * ch], hf[3 * ch + 1], hf[3 * ch + 2]
+                ia = ch
+                for cc in range(ch + 1, size):
+                    b1, b2, b3 = hf[3 * cc], hf[3 * cc + 1], hf[3 * cc + 2]
+                    if b1 < a1 or (b1 == a1 and (b2 < a2 or (b2 == a2 and b3 < a3))):
+                        a1, a2, a3 = b1, b2, b3
+                        ia = cc
+                hf[3 * i] = a1
+                hf[3 * i + 1] = a2
+                hf[3 * i + 2] = a3
+                i = ia
+            while i > 0:
+                pa = (i - 1) >> 2
+                b1, b2, b3 = hf[3 * pa], hf[3 * pa + 1], hf[3 * pa + 2]
+                if not (k1 < b1 or (k1 == b1 and (k2 < b2 or (k2 == b2 and k3 < b3)))):
                     break
-                b1, b2, b3 = hk[ch, 0], hk[ch, 1], hk[ch, 2]
-                best = ch
-                if ch + 1 < size:
-                    a1, a2, a3 = hk[ch + 1, 0], hk[ch + 1, 1], hk[ch + 1, 2]
-                    if a1 < b1 or (a1 == b1 and (a2 < b2 or (a2 == b2 and a3 < b3))):
-                        b1, b2, b3 = a1, a2, a3
-                        best = ch + 1
-                if not (b1 < k1 or (b1 == k1 and (b2 < k2 or (b2 == k2 and b3 < k3)))):
-                    break
-                hk[i, 0] = b1
-                hk[i, 1] = b2
-                hk[i, 2] = b3
-                i = best
-            hk[i, 0] = k1
-            hk[i, 1] = k2
-            hk[i, 2] = k3
+                hf[3 * i] = b1
+                hf[3 * i + 1] = b2
+                hf[3 * i + 2] = b3
+                i = pa
+            hf[3 * i] = k1
+            hf[3 * i + 1] = k2
+            hf[3 * i + 2] = k3
         c = li[x, CELL]
         q = lf[x, F_VUL]
 
@@ -374,17 +405,17 @@ def _boa_steps(
             i = size
             size += 1
             while i > 0:
-                pa = (i - 1) >> 1
-                b1, b2 = hk[pa, 0], hk[pa, 1]
-                if not (f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hk[pa, 2])))):
+                pa = (i - 1) >> 2
+                b1, b2 = hf[3 * pa], hf[3 * pa + 1]
+                if not (f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))):
                     break
-                hk[i, 0] = b1
-                hk[i, 1] = b2
-                hk[i, 2] = hk[pa, 2]
+                hf[3 * i] = b1
+                hf[3 * i + 1] = b2
+                hf[3 * i + 2] = hf[3 * pa + 2]
                 i = pa
-            hk[i, 0] = f_len
-            hk[i, 1] = f_vul
-            hk[i, 2] = k3
+            hf[3 * i] = f_len
+            hf[3 * i + 1] = f_vul
+            hf[3 * i + 2] = k3
     st[S_N] = n
     st[S_SIZE] = size
     st[S_SOLS] = n_sols
