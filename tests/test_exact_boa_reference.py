@@ -120,3 +120,45 @@ def test_equals_the_previous_kernels_on_a_berlin_query():
     ws = load_movingai(mp, scen[500].start, scen[500].goal, corner_cutting=False)
     for tie_break in ("smoothest", "none"):
         assert _assert_same(ws, LV, tie_break) > 0
+
+
+@pytest.mark.parametrize("n_buckets", [1, 2, 8])
+def test_small_bucket_windows_give_the_same_fronts(n_buckets):
+    """The open list's later labels wait in a window of buckets and an
+    overflow list beyond it; the default window (256 cells of f_length) is
+    never passed on a grid (a step adds at most 2 sqrt(2) cells), so tiny
+    windows exercise the overflow here, run in slices of 7 pops (resumed
+    state)."""
+    from gapath.planners import _boa_kernels as K
+
+    n_over = 0
+    for i in range(60):
+        ws = _case(i)
+        occ = np.ascontiguousarray(ws.occ)
+        pot = np.ascontiguousarray(ws.potential, dtype=np.float64)
+        (sr, sc), (gr, gc) = ws.start, ws.goal
+        w = ws.shape[1]
+        cs = float(ws.cell_size)
+        mask, hs, hd, hv = K._boa_prepare(occ, pot, gr, gc, bool(ws.corner_cutting))
+        if hv[sr * w + sc] == np.inf:
+            continue
+        for ties in (True, False):
+            want = reference_front(ws, LV, ties)
+            gmin, first, li, lf, sols, hk, hid, st, stf, edges, est = K._boa_start(
+                pot, sr, sc, w, cs, hs, hd, hv, ties, n_buckets
+            )
+            status = K.PAUSED
+            while status != K.DONE:
+                li, lf, sols, hk, hid, edges, status = K._boa_run(
+                    occ, pot, gr, gc, cs, mask, hs, hd, hv, gmin, first, li, lf, sols, hk, hid, st, stf,
+                    edges, est, 7, 1 << 60, ties,
+                )  # fmt: skip
+                n_over = max(n_over, int(est[K.E_NOVER]))
+            F, smooth, cells, offsets, counts = K._boa_finish(
+                li, lf, sols, st, edges, est[K.E_EDGES], pot, w, cs, ties, True, 0
+            )
+            assert np.array_equal(F, want[0])
+            assert np.array_equal(smooth, want[1])
+            assert np.array_equal(cells, np.concatenate(want[2]))
+            assert int(counts[K.C_EXPANDED]) == want[3]
+    assert n_over > 0  # the overflow list was used

@@ -82,11 +82,29 @@ E_NODE, E_PARENT, E_DIR = range(3)
 
 _BIG = np.int64(1) << 40
 
-#: Open-list keys (a binary heap: measured 8 % faster here than a 4-ary one): ``(f_length, f_vulnerability, turns * ROW_SPAN + row)``, the
-#: third exact while below 2**53 (turns < 2**22); ``hid`` is not used. The start
-#: label's key of ``_free_init`` (third entry 0.0, row 0) is such a key.
+#: Open-list keys: ``(f_length, f_vulnerability, turns * ROW_SPAN + row)``, the
+#: third exact while below 2**53 (turns < 2**22). The start label's key of
+#: ``_free_init`` (third entry 0.0, row 0) is such a key.
 ROW_SPAN = float(1 << 31)
 ROW_MASK = np.int64((1 << 31) - 1)
+
+#: The open list is two-level (f_length never decreases from pop to pop, and
+#: runs of tens to hundreds of pops share one value): a 4-ary heap ``hk`` on the
+#: full keys holds the labels whose bucket ``floor(f_length * BUCKETS_PER_CELL /
+#: cell_size)`` is at most the current one (``E_CUR``); the later ones wait,
+#: unordered, in singly linked lists through the rows' NEXT: one per bucket of
+#: the window ``(cur, cur + N_BUCKETS)`` (heads in ``hid``) and one overflow list
+#: beyond it. A bucket is poured into the heap when the heap runs empty. The heap
+#: orders by the full keys, which are distinct, so the pops come in the same order
+#: as from one heap. Rows of waiting labels keep their keys in ``lf[:, LF_LEN]``,
+#: ``lf[:, LF_FVUL]``.
+BUCKETS_PER_CELL = 32.0
+N_BUCKETS = 8192
+LF_LEN, LF_FVUL = 1, 2
+#: Entries of ``est``: edges recorded, the current bucket, the overflow list's
+#: head, its least bucket, the labels waiting in the window and in the overflow.
+E_EDGES, E_CUR, E_OHEAD, E_OMIN, E_NWIN, E_NOVER = range(6)
+_NO_BUCKET = np.int64(1) << 62
 
 
 @numba.njit(cache=True)
@@ -120,7 +138,8 @@ def _boa_run(
     The arguments are those of :func:`gapath.planners._exact_kernels._free_run`
     for ``mode=MODE_CELL`` (without the turn heuristic, which a two-objective
     search does not use) plus ``edges``, the (capacity, 3) int32 edge table,
-    and ``est = [number of edges]`` (updated in place). ``first[c]`` is the
+    and ``est``, the ``E_*`` counters (updated in place: the number of edges
+    and the open list's buckets); ``hid`` holds the buckets' heads. ``first[c]`` is the
     label last expanded at cell ``c``. Returns ``(li, lf, sols, hk, hid,
     edges, status)``; status DONE (open list empty), PAUSED or OVER_BUDGET.
     :func:`_boa_steps` never reallocates (reference counting of arrays
@@ -163,8 +182,8 @@ def _boa_run(
             hk = _grow(hk, st[S_SIZE] + 8)
         if st[S_SOLS] + 1 > sols.shape[0]:
             sols = _grow1(sols, st[S_SOLS] + 1)
-        if est[0] + 9 > edges.shape[0]:
-            edges = _grow(edges, est[0] + 9)
+        if est[E_EDGES] + 9 > edges.shape[0]:
+            edges = _grow(edges, est[E_EDGES] + 9)
 
 
 @numba.njit(cache=True)
@@ -204,7 +223,15 @@ def _boa_steps(
     for d in range(8):
         off[d] = DR[d] * w + DC[d]
     n = st[S_N]
-    size = st[S_SIZE]
+    heads = hid  # the window's bucket lists (row or -1), bucket b at b % nb
+    nb = hid.shape[0]  # a power of 2
+    rq = BUCKETS_PER_CELL / cell_size
+    cur = est[E_CUR]
+    ohead = est[E_OHEAD]
+    omin = est[E_OMIN]
+    nwin = est[E_NWIN]
+    nover = est[E_NOVER]
+    size = st[S_SIZE] - nwin - nover  # the heap's own labels
     n_sols = st[S_SOLS]
     n_expanded = st[S_EXPANDED]
     n_generated = st[S_GENERATED]
@@ -216,12 +243,12 @@ def _boa_steps(
     goal_len = np.inf
     if goal_first >= 0:
         goal_len = (li[goal_first, NS] + SQRT2 * li[goal_first, ND]) * cell_size
-    ne = est[0]
+    ne = est[E_EDGES]
     status = DONE
     steps = 0
     pops0 = st[S_POPS]
 
-    while size > 0:
+    while size + nwin + nover > 0:
         if steps == n_steps:
             status = PAUSED
             break
@@ -230,13 +257,61 @@ def _boa_steps(
             break
         if (
             n + 8 > li.shape[0]
-            or size + 8 > hk.shape[0]
+            or size + nwin + nover + 8 > hk.shape[0]
             or n_sols + 1 > sols.shape[0]
             or ne + 9 > edges.shape[0]
         ):
             status = NEED_ROOM
             break
         steps += 1
+        if size == 0:  # the heap ran empty: pour the next nonempty bucket into it
+            if nwin == 0:
+                cur = omin - 1
+            while True:
+                cur += 1
+                if nover > 0 and omin < cur + nb:  # the overflow's labels now in the window
+                    y = ohead
+                    ohead = -1
+                    omin = _NO_BUCKET
+                    while y >= 0:
+                        nxt = li[y, NEXT]
+                        qz = np.int64(lf[y, LF_LEN] * rq)
+                        if qz < cur + nb:
+                            b = qz & (nb - 1)
+                            li[y, NEXT] = heads[b]
+                            heads[b] = y
+                            nwin += 1
+                            nover -= 1
+                        else:
+                            li[y, NEXT] = ohead
+                            ohead = y
+                            omin = min(omin, qz)
+                        y = nxt
+                if heads[cur & (nb - 1)] >= 0:
+                    break
+            b = cur & (nb - 1)
+            y = heads[b]
+            heads[b] = -1
+            while y >= 0:
+                nxt = li[y, NEXT]
+                f_len, f_vul = lf[y, LF_LEN], lf[y, LF_FVUL]
+                k3 = np.float64(li[y, TURNS]) * ROW_SPAN + np.float64(y)
+                i = size
+                size += 1
+                nwin -= 1
+                while i > 0:
+                    pa = (i - 1) >> 2
+                    b1, b2 = hf[3 * pa], hf[3 * pa + 1]
+                    if not (f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))):
+                        break
+                    hf[3 * i] = b1
+                    hf[3 * i + 1] = b2
+                    hf[3 * i + 2] = hf[3 * pa + 2]
+                    i = pa
+                hf[3 * i] = f_len
+                hf[3 * i + 1] = f_vul
+                hf[3 * i + 2] = k3
+                y = nxt
         # pop the least key (a binary heap, written out: helpers that take the
         # arrays cost reference counting); the keys are distinct (the row is in
         # the third), so any heap pops them in the same order
@@ -400,6 +475,21 @@ def _boa_steps(
             li[j, ND] = nd_j
             li[j, TURNS] = turns_j  # (NEXT is read only on free rows and solutions)
             lf[j, F_VUL] = qj
+            qz = np.int64(f_len * rq)
+            if qz > cur:  # a later bucket: wait in its list
+                lf[j, LF_LEN] = f_len
+                lf[j, LF_FVUL] = f_vul
+                if qz < cur + nb:
+                    b = qz & (nb - 1)
+                    li[j, NEXT] = heads[b]
+                    heads[b] = j
+                    nwin += 1
+                else:
+                    li[j, NEXT] = ohead
+                    ohead = j
+                    omin = min(omin, qz)
+                    nover += 1
+                continue
             # push (sift the hole up); third key: turns, then the row (exact below 2**53)
             k3 = np.float64(turns_j) * ROW_SPAN + np.float64(j)
             i = size
@@ -417,7 +507,12 @@ def _boa_steps(
             hf[3 * i + 1] = f_vul
             hf[3 * i + 2] = k3
     st[S_N] = n
-    st[S_SIZE] = size
+    st[S_SIZE] = size + nwin + nover
+    est[E_CUR] = cur
+    est[E_OHEAD] = ohead
+    est[E_OMIN] = omin
+    est[E_NWIN] = nwin
+    est[E_NOVER] = nover
     st[S_SOLS] = n_sols
     st[S_EXPANDED] = n_expanded
     st[S_GENERATED] = n_generated
@@ -426,7 +521,7 @@ def _boa_steps(
     st[S_N_FREE] = n_free
     st[S_POPS] = pops0 + steps
     stf[SF_GOAL_MIN] = goal_min
-    est[0] = ne
+    est[E_EDGES] = ne
     return status
 
 
@@ -669,6 +764,27 @@ def _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges):
 
 
 @numba.njit(cache=True)
+def _boa_start(pot, sr, sc, w, cell_size, hs, hd, hv, ties, n_buckets):
+    """The state of a new search (the start label alone on the open list):
+    ``(gmin, first, li, lf, sols, hk, hid, st, stf, edges, est)``, with a
+    window of ``n_buckets`` buckets (a power of 2; the tests use small ones)."""
+    ht = np.zeros(1, np.int64)
+    gmin, first, li, lf1, sols, hk, hid, st, stf = _free_init(
+        pot, sr, sc, w, cell_size, MODE_CELL, OBJ_LEN, OBJ_VUL, hs, hd, hv, ht, hs.shape[0]
+    )
+    # lf: the vulnerability, and the keys of the labels waiting in buckets
+    lf = np.empty((lf1.shape[0], 3))
+    lf[0, F_VUL] = lf1[0, F_VUL]
+    hid = np.full(n_buckets, -1, np.int32)  # the buckets' heads
+    edges = np.empty((1024 if ties else 16, 3), np.int32)
+    est = np.zeros(6, np.int64)
+    est[E_CUR] = np.int64(hk[0, 0] * (BUCKETS_PER_CELL / cell_size))  # the start label's bucket
+    est[E_OHEAD] = -1
+    est[E_OMIN] = _NO_BUCKET
+    return gmin, first, li, lf, sols, hk, hid, st, stf, edges, est
+
+
+@numba.njit(cache=True)
 def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_first, n_steps, max_labels):
     """Start BOA* (:func:`_boa_run`) and run at most ``n_steps`` pops.
 
@@ -678,14 +794,10 @@ def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_
     first, li, lf, sols, hk, hid, st, stf, edges, est)``, from which
     :func:`_boa_run` continues. (A None is returned at no cost; every array
     costs Python a fraction of a microsecond.)"""
-    h, w = occ.shape
-    ht = np.zeros(1, np.int64)
-    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
-        pot, sr, sc, w, cell_size, MODE_CELL, OBJ_LEN, OBJ_VUL, hs, hd, hv, ht, h * w
+    w = occ.shape[1]
+    gmin, first, li, lf, sols, hk, hid, st, stf, edges, est = _boa_start(
+        pot, sr, sc, w, cell_size, hs, hd, hv, ties, N_BUCKETS
     )
-    # lf: one float per label (the vulnerability), as _free_init allocates it
-    edges = np.empty((1024 if ties else 16, 3), np.int32)
-    est = np.zeros(1, np.int64)
     li, lf, sols, hk, hid, edges, status = _boa_run(
         occ, pot, gr, gc, cell_size, mask, hs, hd, hv, gmin, first, li, lf, sols, hk, hid, st, stf,
         edges, est, n_steps, max_labels, ties,
@@ -693,7 +805,7 @@ def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_
     if status != DONE:
         return status, None, (gmin, first, li, lf, sols, hk, hid, st, stf, edges, est)
     peak = _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges)
-    result = _boa_finish(li, lf, sols, st, edges, est[0], pot, w, cell_size, ties, len_first, peak)
+    result = _boa_finish(li, lf, sols, st, edges, est[E_EDGES], pot, w, cell_size, ties, len_first, peak)
     return status, result, None
 
 
