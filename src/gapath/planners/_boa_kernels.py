@@ -312,9 +312,9 @@ def _boa_steps(
                 hf[3 * i + 1] = f_vul
                 hf[3 * i + 2] = k3
                 y = nxt
-        # pop the least key (a binary heap, written out: helpers that take the
-        # arrays cost reference counting); the keys are distinct (the row is in
-        # the third), so any heap pops them in the same order
+        # pop the least key (the heap written out: helpers that take the arrays
+        # cost reference counting); the keys are distinct (the row is in the
+        # third), so any heap pops them in the same order
         x = np.int64(hf[3 * (0) + 2]) & ROW_MASK
         size -= 1
         if size > 0:
