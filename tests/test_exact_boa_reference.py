@@ -125,7 +125,7 @@ def test_equals_the_previous_kernels_on_a_berlin_query():
 @pytest.mark.parametrize("n_buckets", [1, 2, 8])
 def test_small_bucket_windows_give_the_same_fronts(n_buckets):
     """The open list's later labels wait in a window of buckets and an
-    overflow list beyond it; the default window (256 cells of f_length) is
+    overflow list beyond it; the default window (8 cells of f_length) is
     never passed on a grid (a step adds at most 2 sqrt(2) cells), so tiny
     windows exercise the overflow here, run in slices of 7 pops (resumed
     state)."""

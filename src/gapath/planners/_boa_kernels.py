@@ -99,7 +99,7 @@ ROW_MASK = np.int64((1 << 31) - 1)
 #: as from one heap. Rows of waiting labels keep their keys in ``lf[:, LF_LEN]``,
 #: ``lf[:, LF_FVUL]``.
 BUCKETS_PER_CELL = 32.0
-N_BUCKETS = 8192
+N_BUCKETS = 256
 LF_LEN, LF_FVUL = 1, 2
 #: Entries of ``est``: edges recorded, the current bucket, the overflow list's
 #: head, its least bucket, the labels waiting in the window and in the overflow.
