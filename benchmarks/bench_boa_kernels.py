@@ -62,7 +62,9 @@ def main(argv=None) -> int:
             for tag, M in (("ref", R), ("new", K)):
                 t = time.thread_time()
                 mask, hs, hd, hv = M._boa_prepare(occ, pot, gr, gc, False)
-                res = M._boa_solve(occ, pot, sr, sc_, gr, gc, 1.0, mask, hs, hd, hv, True, True, 1 << 60, 1 << 60)
+                res = M._boa_solve(
+                    occ, pot, sr, sc_, gr, gc, 1.0, mask, hs, hd, hv, True, True, 1 << 60, 1 << 60
+                )
                 times[tag].append(time.thread_time() - t)
                 out[tag] = res[1]
         ref, new = np.array(times["ref"][1:]), np.array(times["new"][1:])

@@ -302,7 +302,9 @@ def _boa_steps(
                 while i > 0:
                     pa = (i - 1) >> 2
                     b1, b2 = hf[3 * pa], hf[3 * pa + 1]
-                    if not (f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))):
+                    if not (
+                        f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))
+                    ):
                         break
                     hf[3 * i] = b1
                     hf[3 * i + 1] = b2
@@ -497,7 +499,9 @@ def _boa_steps(
             while i > 0:
                 pa = (i - 1) >> 2
                 b1, b2 = hf[3 * pa], hf[3 * pa + 1]
-                if not (f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))):
+                if not (
+                    f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))
+                ):
                     break
                 hf[3 * i] = b1
                 hf[3 * i + 1] = b2
