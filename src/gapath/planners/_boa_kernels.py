@@ -2,9 +2,12 @@
 (length, vulnerability) and the smoothest representative of tied vectors.
 
 :func:`_boa_run` is BOA* (Hernandez et al. 2020, 2023) with cells as states,
-resumable like :func:`gapath.planners._exact_kernels._free_run` (its state
-is the arrays of :func:`gapath.planners._exact_kernels._free_init`, plus an
-edge table). With ``ties=False`` it is BOA* as published: a label whose
+resumable like :func:`gapath.planners._exact_kernels._free_run` (its state,
+built by :func:`_boa_start`: the arrays of
+:func:`gapath.planners._exact_kernels._free_init` with a wider label float
+table and the open list's bucket heads in ``hid``, plus an edge table and
+the counters ``est``). Its open list is a small heap fed by buckets of
+f_length (see ``BUCKETS_PER_CELL``). With ``ties=False`` it is BOA* as published: a label whose
 second objective ties ``g2_min`` of its cell within SPEC's tolerance is
 dropped, whatever its path.
 
