@@ -4,8 +4,8 @@
 :func:`_boa_run` is BOA* (Hernandez et al. 2020, 2023) with cells as states,
 resumable like :func:`gapath.planners._exact_kernels._free_run` (its state,
 built by :func:`_boa_start`: the arrays of
-:func:`gapath.planners._exact_kernels._free_init` with a wider label float
-table and the open list's bucket heads in ``hid``, plus an edge table and
+:func:`gapath.planners._exact_kernels._free_init` with the open list's
+bucket heads in ``hid``, plus an edge table and
 the counters ``est``). Its open list is a small heap fed by buckets of
 f_length (see ``BUCKETS_PER_CELL``). With ``ties=False`` it is BOA* as published: a label whose
 second objective ties ``g2_min`` of its cell within SPEC's tolerance is
@@ -99,11 +99,12 @@ ROW_MASK = np.int64((1 << 31) - 1)
 #: the window ``(cur, cur + N_BUCKETS)`` (heads in ``hid``) and one overflow list
 #: beyond it. A bucket is poured into the heap when the heap runs empty. The heap
 #: orders by the full keys, which are distinct, so the pops come in the same order
-#: as from one heap. Rows of waiting labels keep their keys in ``lf[:, LF_LEN]``,
-#: ``lf[:, LF_FVUL]``.
+#: as from one heap. A waiting label's keys are recomputed from its row when its
+#: bucket is poured (the same sums as at the push, hence the same floats):
+#: keeping them in the label float table was slower (a wider table) and took
+#: 16 more bytes a row.
 BUCKETS_PER_CELL = 32.0
 N_BUCKETS = 256
-LF_LEN, LF_FVUL = 1, 2
 #: Entries of ``est``: edges recorded, the current bucket, the overflow list's
 #: head, its least bucket, the labels waiting in the window and in the overflow.
 E_EDGES, E_CUR, E_OHEAD, E_OMIN, E_NWIN, E_NOVER = range(6)
@@ -278,7 +279,9 @@ def _boa_steps(
                     omin = _NO_BUCKET
                     while y >= 0:
                         nxt = li[y, NEXT]
-                        qz = np.int64(lf[y, LF_LEN] * rq)
+                        cy = li[y, CELL]
+                        f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
+                        qz = np.int64(f_len * rq)
                         if qz < cur + nb:
                             b = qz & (nb - 1)
                             li[y, NEXT] = heads[b]
@@ -297,7 +300,9 @@ def _boa_steps(
             heads[b] = -1
             while y >= 0:
                 nxt = li[y, NEXT]
-                f_len, f_vul = lf[y, LF_LEN], lf[y, LF_FVUL]
+                cy = li[y, CELL]  # the keys as at the push (the same sums)
+                f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
+                f_vul = lf[y, F_VUL] + hv[cy]
                 k3 = np.float64(li[y, TURNS]) * ROW_SPAN + np.float64(y)
                 i = size
                 size += 1
@@ -482,8 +487,6 @@ def _boa_steps(
             lf[j, F_VUL] = qj
             qz = np.int64(f_len * rq)
             if qz > cur:  # a later bucket: wait in its list
-                lf[j, LF_LEN] = f_len
-                lf[j, LF_FVUL] = f_vul
                 if qz < cur + nb:
                     b = qz & (nb - 1)
                     li[j, NEXT] = heads[b]
@@ -776,12 +779,9 @@ def _boa_start(pot, sr, sc, w, cell_size, hs, hd, hv, ties, n_buckets):
     ``(gmin, first, li, lf, sols, hk, hid, st, stf, edges, est)``, with a
     window of ``n_buckets`` buckets (a power of 2; the tests use small ones)."""
     ht = np.zeros(1, np.int64)
-    gmin, first, li, lf1, sols, hk, hid, st, stf = _free_init(
+    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
         pot, sr, sc, w, cell_size, MODE_CELL, OBJ_LEN, OBJ_VUL, hs, hd, hv, ht, hs.shape[0]
     )
-    # lf: the vulnerability, and the keys of the labels waiting in buckets
-    lf = np.empty((lf1.shape[0], 3))
-    lf[0, F_VUL] = lf1[0, F_VUL]
     hid = np.full(n_buckets, -1, np.int32)  # the buckets' heads
     edges = np.empty((1024 if ties else 16, 3), np.int32)
     est = np.zeros(6, np.int64)
