@@ -2,9 +2,12 @@
 (length, vulnerability) and the smoothest representative of tied vectors.
 
 :func:`_boa_run` is BOA* (Hernandez et al. 2020, 2023) with cells as states,
-resumable like :func:`gapath.planners._exact_kernels._free_run` (its state
-is the arrays of :func:`gapath.planners._exact_kernels._free_init`, plus an
-edge table). With ``ties=False`` it is BOA* as published: a label whose
+resumable like :func:`gapath.planners._exact_kernels._free_run` (its state,
+built by :func:`_boa_start`: the arrays of
+:func:`gapath.planners._exact_kernels._free_init` with the open list's
+bucket heads in ``hid``, plus an edge table and
+the counters ``est``). Its open list is a small heap fed by buckets of
+f_length (see ``BUCKETS_PER_CELL``). With ``ties=False`` it is BOA* as published: a label whose
 second objective ties ``g2_min`` of its cell within SPEC's tolerance is
 dropped, whatever its path.
 
@@ -82,11 +85,30 @@ E_NODE, E_PARENT, E_DIR = range(3)
 
 _BIG = np.int64(1) << 40
 
-#: Open-list keys (a binary heap: measured 8 % faster here than a 4-ary one): ``(f_length, f_vulnerability, turns * ROW_SPAN + row)``, the
-#: third exact while below 2**53 (turns < 2**22); ``hid`` is not used. The start
-#: label's key of ``_free_init`` (third entry 0.0, row 0) is such a key.
+#: Open-list keys: ``(f_length, f_vulnerability, turns * ROW_SPAN + row)``, the
+#: third exact while below 2**53 (turns < 2**22). The start label's key of
+#: ``_free_init`` (third entry 0.0, row 0) is such a key.
 ROW_SPAN = float(1 << 31)
 ROW_MASK = np.int64((1 << 31) - 1)
+
+#: The open list is two-level (f_length never decreases from pop to pop, and
+#: runs of tens to hundreds of pops share one value): a 4-ary heap ``hk`` on the
+#: full keys holds the labels whose bucket ``floor(f_length * BUCKETS_PER_CELL /
+#: cell_size)`` is at most the current one (``E_CUR``); the later ones wait,
+#: unordered, in singly linked lists through the rows' NEXT: one per bucket of
+#: the window ``(cur, cur + N_BUCKETS)`` (heads in ``hid``) and one overflow list
+#: beyond it. A bucket is poured into the heap when the heap runs empty. The heap
+#: orders by the full keys, which are distinct, so the pops come in the same order
+#: as from one heap. A waiting label's keys are recomputed from its row when its
+#: bucket is poured (the same sums as at the push, hence the same floats):
+#: keeping them in the label float table was slower (a wider table) and took
+#: 16 more bytes a row.
+BUCKETS_PER_CELL = 32.0
+N_BUCKETS = 256
+#: Entries of ``est``: edges recorded, the current bucket, the overflow list's
+#: head, its least bucket, the labels waiting in the window and in the overflow.
+E_EDGES, E_CUR, E_OHEAD, E_OMIN, E_NWIN, E_NOVER = range(6)
+_NO_BUCKET = np.int64(1) << 62
 
 
 @numba.njit(cache=True)
@@ -120,7 +142,8 @@ def _boa_run(
     The arguments are those of :func:`gapath.planners._exact_kernels._free_run`
     for ``mode=MODE_CELL`` (without the turn heuristic, which a two-objective
     search does not use) plus ``edges``, the (capacity, 3) int32 edge table,
-    and ``est = [number of edges]`` (updated in place). ``first[c]`` is the
+    and ``est``, the ``E_*`` counters (updated in place: the number of edges
+    and the open list's buckets); ``hid`` holds the buckets' heads. ``first[c]`` is the
     label last expanded at cell ``c``. Returns ``(li, lf, sols, hk, hid,
     edges, status)``; status DONE (open list empty), PAUSED or OVER_BUDGET.
     :func:`_boa_steps` never reallocates (reference counting of arrays
@@ -163,8 +186,8 @@ def _boa_run(
             hk = _grow(hk, st[S_SIZE] + 8)
         if st[S_SOLS] + 1 > sols.shape[0]:
             sols = _grow1(sols, st[S_SOLS] + 1)
-        if est[0] + 9 > edges.shape[0]:
-            edges = _grow(edges, est[0] + 9)
+        if est[E_EDGES] + 9 > edges.shape[0]:
+            edges = _grow(edges, est[E_EDGES] + 9)
 
 
 @numba.njit(cache=True)
@@ -199,11 +222,20 @@ def _boa_steps(
     h, w = occ.shape
     goal = gr * w + gc
     pf = pot.reshape(h * w)
+    hf = hk.reshape(3 * hk.shape[0])  # the heap's keys, flat: entry i at 3 i
     off = np.empty(8, np.int64)  # move d from cell c: to c + off[d]
     for d in range(8):
         off[d] = DR[d] * w + DC[d]
     n = st[S_N]
-    size = st[S_SIZE]
+    heads = hid  # the window's bucket lists (row or -1), bucket b at b % nb
+    nb = hid.shape[0]  # a power of 2
+    rq = BUCKETS_PER_CELL / cell_size
+    cur = est[E_CUR]
+    ohead = est[E_OHEAD]
+    omin = est[E_OMIN]
+    nwin = est[E_NWIN]
+    nover = est[E_NOVER]
+    size = st[S_SIZE] - nwin - nover  # the heap's own labels
     n_sols = st[S_SOLS]
     n_expanded = st[S_EXPANDED]
     n_generated = st[S_GENERATED]
@@ -215,12 +247,12 @@ def _boa_steps(
     goal_len = np.inf
     if goal_first >= 0:
         goal_len = (li[goal_first, NS] + SQRT2 * li[goal_first, ND]) * cell_size
-    ne = est[0]
+    ne = est[E_EDGES]
     status = DONE
     steps = 0
     pops0 = st[S_POPS]
 
-    while size > 0:
+    while size + nwin + nover > 0:
         if steps == n_steps:
             status = PAUSED
             break
@@ -229,41 +261,125 @@ def _boa_steps(
             break
         if (
             n + 8 > li.shape[0]
-            or size + 8 > hk.shape[0]
+            or size + nwin + nover + 8 > hk.shape[0]
             or n_sols + 1 > sols.shape[0]
             or ne + 9 > edges.shape[0]
         ):
             status = NEED_ROOM
             break
         steps += 1
-        # pop the least key (a binary heap, written out: helpers that take the
-        # arrays cost reference counting); the keys are distinct (the row is in
-        # the third), so any heap pops them in the same order
-        x = np.int64(hk[0, 2]) & ROW_MASK
+        if size == 0:  # the heap ran empty: pour the next nonempty bucket into it
+            if nwin == 0:
+                cur = omin - 1
+            while True:
+                cur += 1
+                if nover > 0 and omin < cur + nb:  # the overflow's labels now in the window
+                    y = ohead
+                    ohead = -1
+                    omin = _NO_BUCKET
+                    while y >= 0:
+                        nxt = li[y, NEXT]
+                        cy = li[y, CELL]
+                        f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
+                        qz = np.int64(f_len * rq)
+                        if qz < cur + nb:
+                            b = qz & (nb - 1)
+                            li[y, NEXT] = heads[b]
+                            heads[b] = y
+                            nwin += 1
+                            nover -= 1
+                        else:
+                            li[y, NEXT] = ohead
+                            ohead = y
+                            omin = min(omin, qz)
+                        y = nxt
+                if heads[cur & (nb - 1)] >= 0:
+                    break
+            b = cur & (nb - 1)
+            y = heads[b]
+            heads[b] = -1
+            while y >= 0:
+                nxt = li[y, NEXT]
+                cy = li[y, CELL]  # the keys as at the push (the same sums)
+                f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
+                f_vul = lf[y, F_VUL] + hv[cy]
+                k3 = np.float64(li[y, TURNS]) * ROW_SPAN + np.float64(y)
+                i = size
+                size += 1
+                nwin -= 1
+                while i > 0:
+                    pa = (i - 1) >> 2
+                    b1, b2 = hf[3 * pa], hf[3 * pa + 1]
+                    if not (
+                        f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))
+                    ):
+                        break
+                    hf[3 * i] = b1
+                    hf[3 * i + 1] = b2
+                    hf[3 * i + 2] = hf[3 * pa + 2]
+                    i = pa
+                hf[3 * i] = f_len
+                hf[3 * i + 1] = f_vul
+                hf[3 * i + 2] = k3
+                y = nxt
+        # pop the least key (the heap written out: helpers that take the arrays
+        # cost reference counting); the keys are distinct (the row is in the
+        # third), so any heap pops them in the same order
+        x = np.int64(hf[3 * (0) + 2]) & ROW_MASK
         size -= 1
         if size > 0:
-            k1, k2, k3 = hk[size, 0], hk[size, 1], hk[size, 2]
+            # a 4-ary heap, bottom-up: the hole goes down along the least of the
+            # children to a leaf (the children compared without branches), then
+            # the last entry rises from there (rarely more than a level)
+            k1, k2, k3 = hf[3 * size], hf[3 * size + 1], hf[3 * size + 2]
             i = 0
-            while True:
-                ch = 2 * i + 1
-                if ch >= size:
+            ch = 1
+            while ch + 3 < size:
+                a1, a2, a3 = hf[3 * ch], hf[3 * ch + 1], hf[3 * ch + 2]
+                b1, b2, b3 = hf[3 * (ch + 1)], hf[3 * (ch + 1) + 1], hf[3 * (ch + 1) + 2]
+                c1, c2, c3 = hf[3 * (ch + 2)], hf[3 * (ch + 2) + 1], hf[3 * (ch + 2) + 2]
+                d1, d2, d3 = hf[3 * (ch + 3)], hf[3 * (ch + 3) + 1], hf[3 * (ch + 3) + 2]
+                lt = (b1 < a1) | ((b1 == a1) & ((b2 < a2) | ((b2 == a2) & (b3 < a3))))
+                ia = ch + lt
+                if lt:
+                    a1, a2, a3 = b1, b2, b3
+                lt = (d1 < c1) | ((d1 == c1) & ((d2 < c2) | ((d2 == c2) & (d3 < c3))))
+                ic = ch + 2 + lt
+                if lt:
+                    c1, c2, c3 = d1, d2, d3
+                lt = (c1 < a1) | ((c1 == a1) & ((c2 < a2) | ((c2 == a2) & (c3 < a3))))
+                if lt:
+                    a1, a2, a3 = c1, c2, c3
+                    ia = ic
+                hf[3 * i] = a1
+                hf[3 * i + 1] = a2
+                hf[3 * i + 2] = a3
+                i = ia
+                ch = 4 * i + 1
+            if ch < size:  # 1 to 3 children left
+                a1, a2, a3 = hf[3 * ch], hf[3 * ch + 1], hf[3 * ch + 2]
+                ia = ch
+                for cc in range(ch + 1, size):
+                    b1, b2, b3 = hf[3 * cc], hf[3 * cc + 1], hf[3 * cc + 2]
+                    if b1 < a1 or (b1 == a1 and (b2 < a2 or (b2 == a2 and b3 < a3))):
+                        a1, a2, a3 = b1, b2, b3
+                        ia = cc
+                hf[3 * i] = a1
+                hf[3 * i + 1] = a2
+                hf[3 * i + 2] = a3
+                i = ia
+            while i > 0:
+                pa = (i - 1) >> 2
+                b1, b2, b3 = hf[3 * pa], hf[3 * pa + 1], hf[3 * pa + 2]
+                if not (k1 < b1 or (k1 == b1 and (k2 < b2 or (k2 == b2 and k3 < b3)))):
                     break
-                b1, b2, b3 = hk[ch, 0], hk[ch, 1], hk[ch, 2]
-                best = ch
-                if ch + 1 < size:
-                    a1, a2, a3 = hk[ch + 1, 0], hk[ch + 1, 1], hk[ch + 1, 2]
-                    if a1 < b1 or (a1 == b1 and (a2 < b2 or (a2 == b2 and a3 < b3))):
-                        b1, b2, b3 = a1, a2, a3
-                        best = ch + 1
-                if not (b1 < k1 or (b1 == k1 and (b2 < k2 or (b2 == k2 and b3 < k3)))):
-                    break
-                hk[i, 0] = b1
-                hk[i, 1] = b2
-                hk[i, 2] = b3
-                i = best
-            hk[i, 0] = k1
-            hk[i, 1] = k2
-            hk[i, 2] = k3
+                hf[3 * i] = b1
+                hf[3 * i + 1] = b2
+                hf[3 * i + 2] = b3
+                i = pa
+            hf[3 * i] = k1
+            hf[3 * i + 1] = k2
+            hf[3 * i + 2] = k3
         c = li[x, CELL]
         q = lf[x, F_VUL]
 
@@ -369,24 +485,44 @@ def _boa_steps(
             li[j, ND] = nd_j
             li[j, TURNS] = turns_j  # (NEXT is read only on free rows and solutions)
             lf[j, F_VUL] = qj
+            qz = np.int64(f_len * rq)
+            if qz > cur:  # a later bucket: wait in its list
+                if qz < cur + nb:
+                    b = qz & (nb - 1)
+                    li[j, NEXT] = heads[b]
+                    heads[b] = j
+                    nwin += 1
+                else:
+                    li[j, NEXT] = ohead
+                    ohead = j
+                    omin = min(omin, qz)
+                    nover += 1
+                continue
             # push (sift the hole up); third key: turns, then the row (exact below 2**53)
             k3 = np.float64(turns_j) * ROW_SPAN + np.float64(j)
             i = size
             size += 1
             while i > 0:
-                pa = (i - 1) >> 1
-                b1, b2 = hk[pa, 0], hk[pa, 1]
-                if not (f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hk[pa, 2])))):
+                pa = (i - 1) >> 2
+                b1, b2 = hf[3 * pa], hf[3 * pa + 1]
+                if not (
+                    f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))
+                ):
                     break
-                hk[i, 0] = b1
-                hk[i, 1] = b2
-                hk[i, 2] = hk[pa, 2]
+                hf[3 * i] = b1
+                hf[3 * i + 1] = b2
+                hf[3 * i + 2] = hf[3 * pa + 2]
                 i = pa
-            hk[i, 0] = f_len
-            hk[i, 1] = f_vul
-            hk[i, 2] = k3
+            hf[3 * i] = f_len
+            hf[3 * i + 1] = f_vul
+            hf[3 * i + 2] = k3
     st[S_N] = n
-    st[S_SIZE] = size
+    st[S_SIZE] = size + nwin + nover
+    est[E_CUR] = cur
+    est[E_OHEAD] = ohead
+    est[E_OMIN] = omin
+    est[E_NWIN] = nwin
+    est[E_NOVER] = nover
     st[S_SOLS] = n_sols
     st[S_EXPANDED] = n_expanded
     st[S_GENERATED] = n_generated
@@ -395,7 +531,7 @@ def _boa_steps(
     st[S_N_FREE] = n_free
     st[S_POPS] = pops0 + steps
     stf[SF_GOAL_MIN] = goal_min
-    est[0] = ne
+    est[E_EDGES] = ne
     return status
 
 
@@ -638,6 +774,24 @@ def _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges):
 
 
 @numba.njit(cache=True)
+def _boa_start(pot, sr, sc, w, cell_size, hs, hd, hv, ties, n_buckets):
+    """The state of a new search (the start label alone on the open list):
+    ``(gmin, first, li, lf, sols, hk, hid, st, stf, edges, est)``, with a
+    window of ``n_buckets`` buckets (a power of 2; the tests use small ones)."""
+    ht = np.zeros(1, np.int64)
+    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
+        pot, sr, sc, w, cell_size, MODE_CELL, OBJ_LEN, OBJ_VUL, hs, hd, hv, ht, hs.shape[0]
+    )
+    hid = np.full(n_buckets, -1, np.int32)  # the buckets' heads
+    edges = np.empty((1024 if ties else 16, 3), np.int32)
+    est = np.zeros(6, np.int64)
+    est[E_CUR] = np.int64(hk[0, 0] * (BUCKETS_PER_CELL / cell_size))  # the start label's bucket
+    est[E_OHEAD] = -1
+    est[E_OMIN] = _NO_BUCKET
+    return gmin, first, li, lf, sols, hk, hid, st, stf, edges, est
+
+
+@numba.njit(cache=True)
 def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_first, n_steps, max_labels):
     """Start BOA* (:func:`_boa_run`) and run at most ``n_steps`` pops.
 
@@ -647,14 +801,10 @@ def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_
     first, li, lf, sols, hk, hid, st, stf, edges, est)``, from which
     :func:`_boa_run` continues. (A None is returned at no cost; every array
     costs Python a fraction of a microsecond.)"""
-    h, w = occ.shape
-    ht = np.zeros(1, np.int64)
-    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
-        pot, sr, sc, w, cell_size, MODE_CELL, OBJ_LEN, OBJ_VUL, hs, hd, hv, ht, h * w
+    w = occ.shape[1]
+    gmin, first, li, lf, sols, hk, hid, st, stf, edges, est = _boa_start(
+        pot, sr, sc, w, cell_size, hs, hd, hv, ties, N_BUCKETS
     )
-    # lf: one float per label (the vulnerability), as _free_init allocates it
-    edges = np.empty((1024 if ties else 16, 3), np.int32)
-    est = np.zeros(1, np.int64)
     li, lf, sols, hk, hid, edges, status = _boa_run(
         occ, pot, gr, gc, cell_size, mask, hs, hd, hv, gmin, first, li, lf, sols, hk, hid, st, stf,
         edges, est, n_steps, max_labels, ties,
@@ -662,7 +812,7 @@ def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_
     if status != DONE:
         return status, None, (gmin, first, li, lf, sols, hk, hid, st, stf, edges, est)
     peak = _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges)
-    result = _boa_finish(li, lf, sols, st, edges, est[0], pot, w, cell_size, ties, len_first, peak)
+    result = _boa_finish(li, lf, sols, st, edges, est[E_EDGES], pot, w, cell_size, ties, len_first, peak)
     return status, result, None
 
 

@@ -1,0 +1,752 @@
+"""The two-objective BOA* kernels of gapath.planners._boa_kernels as they were
+before the eighth session's per-expansion changes (commit 77b6b44), kept
+verbatim (this docstring aside) as the test reference of the faster kernels:
+fronts must be bit-identical (F and smoothness, and the paths).
+
+Original docstring:
+
+Numba kernels of the two-objective free search (private): BOA* on
+(length, vulnerability) and the smoothest representative of tied vectors.
+
+:func:`_boa_run` is BOA* (Hernandez et al. 2020, 2023) with cells as states,
+resumable like :func:`gapath.planners._exact_kernels._free_run` (its state
+is the arrays of :func:`gapath.planners._exact_kernels._free_init`, plus an
+edge table). With ``ties=False`` it is BOA* as published: a label whose
+second objective ties ``g2_min`` of its cell within SPEC's tolerance is
+dropped, whatever its path.
+
+With ``ties=True`` (the default tie-break: the smoothest path among
+tolerance-equal objective vectors) the search expands the same labels, and
+two things change:
+
+* a label dropped because it ties, in both objectives and within the
+  tolerance, the label last expanded at its cell (or the last solution, at
+  the goal) is recorded as an alternative in-edge of that label: a row
+  ``(label, parent, direction)`` of the edge table. The dropped label's
+  paths are the parent's paths plus one step; they have the tied label's
+  vector, so that label stands for all of them. Labels dropped because they
+  are dominated are not recorded;
+* the goal test keeps a label whose f-vector ties the last solution in both
+  objectives (BOA* drops it): a tied path that left the first one earlier
+  would be lost otherwise.
+
+The expanded labels and their in-edges (the primary one, to the label's own
+parent, and the recorded ones) form a DAG that holds, up to the tolerance,
+every path whose prefixes are Pareto-optimal at their cells, hence every
+path of every front vector. :func:`_smoothest` runs a min-turn dynamic
+programme over that DAG, state (label, incoming heading), and traces the
+smoothest path of each solution, with its objectives recomputed along the
+path in path order (so that they equal :func:`gapath.objectives.evaluate_path`).
+Tied labels are never expanded: the cost of the tie-break is one row per
+tie and about eight operations per edge after the search.
+"""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from gapath.grid import DC, DIRECTION, DR, SQRT2, turn
+from gapath.objectives import QUARTER_PI
+from gapath.planners._exact_heuristics import COUNT, MOVES, _length_to_go, _move_masks, _vulnerability_to_go
+from gapath.planners._exact_kernels import (
+    CELL,
+    DONE,
+    F_HEAD,
+    F_PARENT,
+    F_VUL,
+    MODE_CELL,
+    ND,
+    NEED_ROOM,
+    NEXT,
+    NS,
+    OBJ_LEN,
+    OBJ_VUL,
+    OVER_BUDGET,
+    PAUSED,
+    S_EXPANDED,
+    S_FREE,
+    S_GENERATED,
+    S_GOAL_FIRST,
+    S_N,
+    S_N_FREE,
+    S_POPS,
+    S_SIZE,
+    S_SOLS,
+    SF_GOAL_MIN,
+    TURNS,
+    _eq,
+    _free_init,
+    _grow,
+    _grow1,
+    _tolerant_front,
+    _trace,
+)
+
+#: Columns of the edge table: the label the edge enters, its parent (an
+#: expanded label) and the direction of the step.
+E_NODE, E_PARENT, E_DIR = range(3)
+
+_BIG = np.int64(1) << 40
+
+#: Open-list keys (a binary heap: measured 8 % faster here than a 4-ary one): ``(f_length, f_vulnerability, turns * ROW_SPAN + row)``, the
+#: third exact while below 2**53 (turns < 2**22); ``hid`` is not used. The start
+#: label's key of ``_free_init`` (third entry 0.0, row 0) is such a key.
+ROW_SPAN = float(1 << 31)
+ROW_MASK = np.int64((1 << 31) - 1)
+
+
+@numba.njit(cache=True)
+def _boa_run(
+    occ,
+    pot,
+    gr,
+    gc,
+    cell_size,
+    mask,
+    hs,
+    hd,
+    hv,
+    gmin,
+    first,
+    li,
+    lf,
+    sols,
+    hk,
+    hid,
+    st,
+    stf,
+    edges,
+    est,
+    n_steps,
+    max_labels,
+    ties,
+):
+    """Advance BOA* by at most ``n_steps`` pops of the open list.
+
+    The arguments are those of :func:`gapath.planners._exact_kernels._free_run`
+    for ``mode=MODE_CELL`` (without the turn heuristic, which a two-objective
+    search does not use) plus ``edges``, the (capacity, 3) int32 edge table,
+    and ``est = [number of edges]`` (updated in place). ``first[c]`` is the
+    label last expanded at cell ``c``. Returns ``(li, lf, sols, hk, hid,
+    edges, status)``; status DONE (open list empty), PAUSED or OVER_BUDGET.
+    :func:`_boa_steps` never reallocates (reference counting of arrays
+    reassigned in a numba loop cost most of the time); this loop grows what
+    it asks for.
+    """
+    pops0 = st[S_POPS]
+    while True:
+        status = _boa_steps(
+            occ,
+            pot,
+            gr,
+            gc,
+            cell_size,
+            mask,
+            hs,
+            hd,
+            hv,
+            gmin,
+            first,
+            li,
+            lf,
+            sols,
+            hk,
+            hid,
+            st,
+            stf,
+            edges,
+            est,
+            n_steps - (st[S_POPS] - pops0),
+            max_labels,
+            ties,
+        )
+        if status != NEED_ROOM:
+            return li, lf, sols, hk, hid, edges, status
+        if st[S_N] + 8 > li.shape[0]:
+            li = _grow(li, st[S_N] + 8)
+            lf = _grow(lf, st[S_N] + 8)
+        if st[S_SIZE] + 8 > hk.shape[0]:
+            hk = _grow(hk, st[S_SIZE] + 8)
+        if st[S_SOLS] + 1 > sols.shape[0]:
+            sols = _grow1(sols, st[S_SOLS] + 1)
+        if est[0] + 9 > edges.shape[0]:
+            edges = _grow(edges, est[0] + 9)
+
+
+@numba.njit(cache=True)
+def _boa_steps(
+    occ,
+    pot,
+    gr,
+    gc,
+    cell_size,
+    mask,
+    hs,
+    hd,
+    hv,
+    gmin,
+    first,
+    li,
+    lf,
+    sols,
+    hk,
+    hid,
+    st,
+    stf,
+    edges,
+    est,
+    n_steps,
+    max_labels,
+    ties,
+):
+    """The loop of :func:`_boa_run`, in arrays it never reallocates: returns
+    NEED_ROOM before a pop when the label tables, the heap, the solution
+    list or the edge table could overflow (a pop records at most 9 edges)."""
+    h, w = occ.shape
+    goal = gr * w + gc
+    pf = pot.reshape(h * w)
+    off = np.empty(8, np.int64)  # move d from cell c: to c + off[d]
+    for d in range(8):
+        off[d] = DR[d] * w + DC[d]
+    n = st[S_N]
+    size = st[S_SIZE]
+    n_sols = st[S_SOLS]
+    n_expanded = st[S_EXPANDED]
+    n_generated = st[S_GENERATED]
+    goal_first = st[S_GOAL_FIRST]  # the last solution found
+    free = st[S_FREE]
+    n_free = st[S_N_FREE]
+    goal_min = stf[SF_GOAL_MIN]
+    # length of the last solution: the strict goal test compares with it
+    goal_len = np.inf
+    if goal_first >= 0:
+        goal_len = (li[goal_first, NS] + SQRT2 * li[goal_first, ND]) * cell_size
+    ne = est[0]
+    status = DONE
+    steps = 0
+    pops0 = st[S_POPS]
+
+    while size > 0:
+        if steps == n_steps:
+            status = PAUSED
+            break
+        if n - n_free + 8 > max_labels:  # an expansion adds up to 8 labels
+            status = OVER_BUDGET
+            break
+        if (
+            n + 8 > li.shape[0]
+            or size + 8 > hk.shape[0]
+            or n_sols + 1 > sols.shape[0]
+            or ne + 9 > edges.shape[0]
+        ):
+            status = NEED_ROOM
+            break
+        steps += 1
+        # pop the least key (a binary heap, written out: helpers that take the
+        # arrays cost reference counting); the keys are distinct (the row is in
+        # the third), so any heap pops them in the same order
+        x = np.int64(hk[0, 2]) & ROW_MASK
+        size -= 1
+        if size > 0:
+            k1, k2, k3 = hk[size, 0], hk[size, 1], hk[size, 2]
+            i = 0
+            while True:
+                ch = 2 * i + 1
+                if ch >= size:
+                    break
+                b1, b2, b3 = hk[ch, 0], hk[ch, 1], hk[ch, 2]
+                best = ch
+                if ch + 1 < size:
+                    a1, a2, a3 = hk[ch + 1, 0], hk[ch + 1, 1], hk[ch + 1, 2]
+                    if a1 < b1 or (a1 == b1 and (a2 < b2 or (a2 == b2 and a3 < b3))):
+                        b1, b2, b3 = a1, a2, a3
+                        best = ch + 1
+                if not (b1 < k1 or (b1 == k1 and (b2 < k2 or (b2 == k2 and b3 < k3)))):
+                    break
+                hk[i, 0] = b1
+                hk[i, 1] = b2
+                hk[i, 2] = b3
+                i = best
+            hk[i, 0] = k1
+            hk[i, 1] = k2
+            hk[i, 2] = k3
+        c = li[x, CELL]
+        q = lf[x, F_VUL]
+
+        # lazy checks: g2_min of the cell, then the last solution
+        covered = False
+        tie = -1  # the label x ties: x's in-edge becomes one of its in-edges
+        if c != goal:
+            m = gmin[c]
+            if m < np.inf and not (q < m and not _eq(q, m)):
+                covered = True
+                if ties and _eq(q, m):
+                    a = first[c]
+                    if _eq(
+                        (li[x, NS] + SQRT2 * li[x, ND]) * cell_size,
+                        (li[a, NS] + SQRT2 * li[a, ND]) * cell_size,
+                    ):
+                        tie = a
+        if not covered and goal_min < np.inf:
+            fq = q + hv[c]
+            if not (fq < goal_min and not _eq(fq, goal_min)):
+                covered = True
+                if ties and _eq(fq, goal_min):
+                    fl = ((li[x, NS] + hs[c]) + SQRT2 * (li[x, ND] + hd[c])) * cell_size
+                    if _eq(fl, goal_len):  # ties the last solution: keep, or attach at the goal
+                        if c == goal:
+                            tie = goal_first
+                        else:
+                            covered = False
+        if covered:
+            if tie >= 0:
+                edges[ne, E_NODE] = tie
+                edges[ne, E_PARENT] = li[x, F_PARENT]
+                edges[ne, E_DIR] = li[x, F_HEAD]
+                ne += 1
+            li[x, NEXT] = free  # recycle the row: nothing refers to x
+            free = x
+            n_free += 1
+            continue
+
+        # a solution: record it, never expand it
+        if c == goal:
+            goal_min = q
+            goal_len = (li[x, NS] + SQRT2 * li[x, ND]) * cell_size
+            li[x, NEXT] = goal_first
+            goal_first = x
+            sols[n_sols] = x
+            n_sols += 1
+            continue
+
+        # expand x (q < g2_min of the cell beyond the tolerance)
+        n_expanded += 1
+        gmin[c] = q
+        first[c] = x
+        head = li[x, F_HEAD]
+        ns_x, nd_x, turns_x = li[x, NS], li[x, ND], li[x, TURNS]
+        mk = mask[c]
+        for jm in range(COUNT[mk]):  # the allowed moves (a test per bit mispredicts)
+            d = MOVES[mk, jm]
+            cell = c + off[d]  # (the goal can be reached from there: _boa_prepare's mask)
+            n_generated += 1
+            ns_j = ns_x + (1 - d % 2)
+            nd_j = nd_x + d % 2
+            qj = q + pf[cell]
+            # eager checks (BOA*: prune before the open list), on the values alone
+            if cell != goal:
+                m = gmin[cell]
+                if m < np.inf and not (qj < m and not _eq(qj, m)):
+                    if ties and _eq(qj, m):
+                        a = first[cell]
+                        if _eq(
+                            (ns_j + SQRT2 * nd_j) * cell_size,
+                            (li[a, NS] + SQRT2 * li[a, ND]) * cell_size,
+                        ):
+                            edges[ne, E_NODE] = a
+                            edges[ne, E_PARENT] = x
+                            edges[ne, E_DIR] = d
+                            ne += 1
+                    continue
+            f_vul = qj + hv[cell]
+            f_len = ((ns_j + hs[cell]) + SQRT2 * (nd_j + hd[cell])) * cell_size
+            if goal_min < np.inf and not (f_vul < goal_min and not _eq(f_vul, goal_min)):
+                if not (ties and _eq(f_vul, goal_min) and _eq(f_len, goal_len)):
+                    continue
+                if cell == goal:  # ties the last solution
+                    edges[ne, E_NODE] = goal_first
+                    edges[ne, E_PARENT] = x
+                    edges[ne, E_DIR] = d
+                    ne += 1
+                    continue
+            # a new label: a recycled row (its NEXT links the free list) or a new one
+            if free >= 0:
+                j = free
+                free = li[j, NEXT]
+                n_free -= 1
+            else:
+                j = n
+                n += 1
+            turns_j = turns_x + (turn(head, d) if head >= 0 else 0)
+            li[j, CELL] = cell
+            li[j, F_HEAD] = d
+            li[j, F_PARENT] = x
+            li[j, NS] = ns_j
+            li[j, ND] = nd_j
+            li[j, TURNS] = turns_j  # (NEXT is read only on free rows and solutions)
+            lf[j, F_VUL] = qj
+            # push (sift the hole up); third key: turns, then the row (exact below 2**53)
+            k3 = np.float64(turns_j) * ROW_SPAN + np.float64(j)
+            i = size
+            size += 1
+            while i > 0:
+                pa = (i - 1) >> 1
+                b1, b2 = hk[pa, 0], hk[pa, 1]
+                if not (f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hk[pa, 2])))):
+                    break
+                hk[i, 0] = b1
+                hk[i, 1] = b2
+                hk[i, 2] = hk[pa, 2]
+                i = pa
+            hk[i, 0] = f_len
+            hk[i, 1] = f_vul
+            hk[i, 2] = k3
+    st[S_N] = n
+    st[S_SIZE] = size
+    st[S_SOLS] = n_sols
+    st[S_EXPANDED] = n_expanded
+    st[S_GENERATED] = n_generated
+    st[S_GOAL_FIRST] = goal_first
+    st[S_FREE] = free
+    st[S_N_FREE] = n_free
+    st[S_POPS] = pops0 + steps
+    stf[SF_GOAL_MIN] = goal_min
+    est[0] = ne
+    return status
+
+
+@numba.njit(cache=True)
+def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
+    """The smoothest path of each solution over the DAG of expanded labels.
+
+    Nodes are the label rows reachable backward from ``sols``; the in-edges
+    of a node are ``(parent, heading)`` of its own row and the rows of
+    ``edges[:n_edges]`` that enter it. ``(T, V)[v, d]`` is the
+    lexicographically least (total turn in eighths, vulnerability) of a path
+    of the DAG that ends at ``v`` with heading ``d``: over the in-edges
+    ``(p, d)`` of ``v`` and the headings ``h`` of ``p``, ``(T[p, h] +
+    turn(h, d), V[p, h] + P(v))``; ``(0, P(start))`` at the start label (it
+    has no heading). ``V`` is summed in path order, so it is the value the
+    path's own evaluation gives; among equally smooth tied paths the least
+    vulnerable one is taken. Nodes are taken in the post-order of a
+    depth-first search from the solutions, so parents come before children.
+    The trace prefers, at each node, its own in-edge, then the recorded
+    ones in the order they were recorded, and the lowest heading: the first
+    (in-edge, heading) that gives the node's value, which the programme
+    keeps (``bp``, ``bh``) as it finds it.
+
+    Returns ``(cells, offsets, n_straight, n_diag, turns, vul, scratch_bytes)``:
+    the cells of solution ``i``'s path are ``cells[offsets[i]:offsets[i + 1]]``
+    (``(row, col)``), its step counts, total turn and vulnerability summed
+    along it in path order from the start cell; ``scratch_bytes``, the memory
+    of the programme's arrays.
+    """
+    # alternative in-edges by node (counting sort)
+    off = np.zeros(n_rows + 1, np.int64)
+    for e in range(n_edges):
+        off[edges[e, E_NODE] + 1] += 1
+    for v in range(n_rows):
+        off[v + 1] += off[v]
+    fill = off[:n_rows].copy()
+    ep = np.empty(n_edges, np.int32)
+    edir = np.empty(n_edges, np.int32)
+    for e in range(n_edges):
+        v = edges[e, E_NODE]
+        k = fill[v]
+        ep[k] = edges[e, E_PARENT]
+        edir[k] = edges[e, E_DIR]
+        fill[v] = k + 1
+
+    # post-order of the nodes reachable from the solutions
+    state = np.zeros(n_rows, np.int8)  # 0 unseen, 1 open, 2 done
+    idx = np.full(n_rows, -1, np.int32)
+    order = np.empty(n_rows, np.int32)
+    stack = np.empty(n_rows + n_edges + len(sols) + 1, np.int32)
+    k = 0
+    for s in sols:
+        if state[s] != 0:
+            continue
+        sp = 0
+        stack[sp] = s
+        sp += 1
+        while sp > 0:
+            v = stack[sp - 1]
+            if state[v] == 2:
+                sp -= 1
+            elif state[v] == 0:
+                state[v] = 1
+                p = li[v, F_PARENT]
+                if p >= 0 and state[p] == 0:
+                    stack[sp] = p
+                    sp += 1
+                for e in range(off[v], off[v + 1]):
+                    p = ep[e]
+                    if state[p] == 0:
+                        stack[sp] = p
+                        sp += 1
+            else:
+                state[v] = 2
+                idx[v] = k
+                order[k] = v
+                k += 1
+                sp -= 1
+
+    # least (turns, vulnerability) per (node, incoming heading); hm: the headings set
+    T = np.full(k * 8, _BIG, np.int64)
+    V = np.full(k * 8, np.inf)
+    hm = np.zeros(k, np.uint8)
+    # the first (in-edge, heading) giving (T, V): the trace's choice, kept
+    bp = np.empty(k * 8, np.int32)
+    bh = np.empty(k * 8, np.int8)
+    for i in range(k):
+        v = order[i]
+        c = li[v, CELL]
+        pv = pot[c // w, c % w]
+        if li[v, F_PARENT] < 0:  # the start label: no heading, no turn to come
+            for d in range(8):
+                T[i * 8 + d] = 0
+                V[i * 8 + d] = pv
+            hm[i] = 255
+            continue
+        for e in range(off[v] - 1, off[v + 1]):
+            if e < off[v]:
+                p, d = li[v, F_PARENT], li[v, F_HEAD]
+            else:
+                p, d = ep[e], edir[e]
+            ip = idx[p]
+            base = ip * 8
+            bits = hm[ip]
+            bt, bv = T[i * 8 + d], V[i * 8 + d]
+            b_p, b_h = bp[i * 8 + d], bh[i * 8 + d]
+            for hh in range(8):
+                if (bits >> hh) & 1:
+                    t = T[base + hh] + turn(hh, d)
+                    if t < bt or (t == bt and V[base + hh] + pv < bv):
+                        bt, bv = t, V[base + hh] + pv
+                        b_p, b_h = p, hh
+            T[i * 8 + d] = bt
+            V[i * 8 + d] = bv
+            bp[i * 8 + d] = b_p
+            bh[i * 8 + d] = b_h
+            hm[i] |= 1 << d
+
+    # trace each solution back from its least (T, V) (the steps written out: a
+    # helper call per step cost most of the time), then evaluate it forwards
+    n_sols = len(sols)
+    offsets = np.zeros(n_sols + 1, np.int64)
+    out_ns = np.zeros(n_sols, np.int64)
+    out_nd = np.zeros(n_sols, np.int64)
+    out_turns = np.zeros(n_sols, np.int64)
+    out_vul = np.zeros(n_sols)
+    buf = np.empty(k, np.int32)  # the nodes of one path, goal first (distinct nodes)
+    total = 0
+    for si in range(n_sols):
+        total += li[sols[si], NS] + li[sols[si], ND] + 1
+    cells = np.empty((total, 2), np.int64)
+    for si in range(n_sols):
+        v = sols[si]
+        i = idx[v] * 8
+        d = 0
+        for dd in range(1, 8):
+            if T[i + dd] < T[i + d] or (T[i + dd] == T[i + d] and V[i + dd] < V[i + d]):
+                d = dd
+        m = 0
+        while True:
+            buf[m] = v
+            m += 1
+            if li[v, F_PARENT] < 0:
+                break
+            # the first in-edge (p, d) of v (its own first) and heading of p giving T, V
+            i = idx[v] * 8 + d
+            v, d = bp[i], np.int64(bh[i])
+        a = offsets[si]
+        b = a + m
+        offsets[si + 1] = b
+        if b > cells.shape[0]:  # not reached when tied paths have equal step counts
+            grown = np.empty((max(b, 2 * cells.shape[0]), 2), np.int64)
+            grown[:a] = cells[:a]
+            cells = grown
+        for t in range(m):
+            c = li[buf[m - 1 - t], CELL]
+            cells[a + t, 0] = c // w
+            cells[a + t, 1] = c % w
+        # the objectives along the path, in path order (as gapath.objectives does)
+        vul = pot[cells[a, 0], cells[a, 1]]
+        ns = 0
+        nd = 0
+        eighths = 0
+        prev = -1
+        for t in range(a + 1, b):
+            vul += pot[cells[t, 0], cells[t, 1]]
+            d = DIRECTION[cells[t, 0] - cells[t - 1, 0] + 1, cells[t, 1] - cells[t - 1, 1] + 1]
+            if d % 2 == 1:
+                nd += 1
+            else:
+                ns += 1
+            if prev >= 0:
+                eighths += turn(prev, d)
+            prev = d
+        out_ns[si] = ns
+        out_nd[si] = nd
+        out_turns[si] = eighths
+        out_vul[si] = vul
+    cells = cells[: offsets[n_sols]]
+    scratch = 0
+    for arr_bytes in (off.nbytes, fill.nbytes, ep.nbytes, edir.nbytes, state.nbytes, idx.nbytes):
+        scratch += arr_bytes
+    scratch += order.nbytes + stack.nbytes + T.nbytes + V.nbytes + hm.nbytes + buf.nbytes + cells.nbytes
+    scratch += bp.nbytes + bh.nbytes
+    return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
+
+
+# -- one call for a whole small search (the fixed cost of a call) ----------------
+#
+# On a 32x32 map the whole search takes about as long as the Python around it
+# took (numba dispatch, boxing of every returned array, the result's sorts and
+# fancy indexing). _boa_prepare (masks and heuristics, timed apart by the
+# caller) and _boa_solve (initial state, the first slice of the search and, if
+# that finishes it, the front's arrays) are the two calls of a small search;
+# a longer one continues from the state _boa_solve returns with _boa_run and
+# ends with _boa_finish.
+
+#: Entries of the counts array of :func:`_boa_finish`.
+C_EXPANDED, C_GENERATED, C_ROWS, C_FREE, C_SOLS, C_EDGES, C_PEAK = range(7)
+
+
+@numba.njit(cache=True)
+def _boa_prepare(occ, pot, gr, gc, corner_cutting):
+    """The move masks and the length and vulnerability heuristics of a
+    two-objective search: ``(mask, hs, hd, hv)`` as
+    :func:`gapath.planners._exact_heuristics._free_heuristics` (without the
+    turn heuristic), except that ``mask`` has no move into a cell from which
+    the goal cannot be reached (``hv == inf``; BOA* never generates a label
+    there)."""
+    h, w = occ.shape
+    n = h * w
+    goal = gr * w + gc
+    mask = _move_masks(occ, corner_cutting)
+    hs = np.full(n, -1, np.int64)
+    hd = np.full(n, -1, np.int64)
+    _length_to_go(mask, w, goal, hs, hd)
+    hv = np.full(n, np.inf)
+    _vulnerability_to_go(mask, pot, w, goal, hv)
+    # no move into a cell the goal cannot be reached from (the search's own test before)
+    off = np.empty(8, np.int64)
+    for d in range(8):
+        off[d] = DR[d] * w + DC[d]
+    for c in range(n):
+        m0 = mask[c]
+        mk = np.int64(m0)
+        for j in range(COUNT[m0]):
+            d = MOVES[m0, j]
+            if hv[c + off[d]] == np.inf:
+                mk &= ~(np.int64(1) << d)
+        mask[c] = mk
+    return mask, hs, hd, hv
+
+
+@numba.njit(cache=True)
+def _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges):
+    """Bytes of a search's arrays (``stats["peak_bytes"]``; the 1-entry turn
+    placeholder included, as for the other searches)."""
+    fixed = hs.nbytes + hd.nbytes + hv.nbytes + 8 + gmin.nbytes + first.nbytes
+    return fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + edges.nbytes
+
+
+@numba.njit(cache=True)
+def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_first, n_steps, max_labels):
+    """Start BOA* (:func:`_boa_run`) and run at most ``n_steps`` pops.
+
+    Returns ``(status, result, state)``: when the search is done, ``result``
+    is what :func:`_boa_finish` returns and ``state`` is None; otherwise
+    (PAUSED or OVER_BUDGET) ``result`` is None and ``state`` is ``(gmin,
+    first, li, lf, sols, hk, hid, st, stf, edges, est)``, from which
+    :func:`_boa_run` continues. (A None is returned at no cost; every array
+    costs Python a fraction of a microsecond.)"""
+    h, w = occ.shape
+    ht = np.zeros(1, np.int64)
+    gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
+        pot, sr, sc, w, cell_size, MODE_CELL, OBJ_LEN, OBJ_VUL, hs, hd, hv, ht, h * w
+    )
+    # lf: one float per label (the vulnerability), as _free_init allocates it
+    edges = np.empty((1024 if ties else 16, 3), np.int32)
+    est = np.zeros(1, np.int64)
+    li, lf, sols, hk, hid, edges, status = _boa_run(
+        occ, pot, gr, gc, cell_size, mask, hs, hd, hv, gmin, first, li, lf, sols, hk, hid, st, stf,
+        edges, est, n_steps, max_labels, ties,
+    )  # fmt: skip
+    if status != DONE:
+        return status, None, (gmin, first, li, lf, sols, hk, hid, st, stf, edges, est)
+    peak = _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges)
+    result = _boa_finish(li, lf, sols, st, edges, est[0], pot, w, cell_size, ties, len_first, peak)
+    return status, result, None
+
+
+@numba.njit(cache=True)
+def _boa_finish(li, lf, sols, st, edges, n_edges, pot, w, cell_size, ties, len_first, peak):
+    """The front of a finished search: its paths, the tolerance filter and
+    the final order, as arrays.
+
+    With ``ties`` and recorded edges, the smoothest path of each solution
+    (:func:`_smoothest`); otherwise each solution's own path (without tie
+    edges the DAG of :func:`_smoothest` is the labels' tree: the same path
+    and, summed in the same order, the same objectives). Among
+    tolerance-equal vectors the front keeps the smoothest path, then the
+    shortest (``_tolerant_front`` in the order of ``np.lexsort((length,
+    turns))``), and sorts the points lexicographically (``len_first``: length
+    is the first column of ``F``, else vulnerability).
+
+    Returns ``(F, smoothness, cells, offsets, counts)``: ``F`` (k, 2), the
+    path of point ``i`` is ``cells[offsets[i]:offsets[i + 1]]``, ``counts``
+    the int64 figures indexed by ``C_*`` (``C_PEAK``: ``peak`` plus the
+    dynamic programme's scratch memory).
+    """
+    n_sols = st[S_SOLS]
+    sols = sols[:n_sols]
+    if ties and n_edges > 0:
+        cells, offsets, ns, nd, turns, vul, scratch = _smoothest(li, st[S_N], sols, edges, n_edges, pot, w)
+        peak += scratch
+    else:
+        cells, offsets = _trace(li, sols, w)
+        ns = np.empty(n_sols, np.int64)
+        nd = np.empty(n_sols, np.int64)
+        turns = np.empty(n_sols, np.int64)
+        vul = np.empty(n_sols)
+        for i in range(n_sols):
+            x = sols[i]
+            ns[i] = li[x, NS]
+            nd[i] = li[x, ND]
+            turns[i] = li[x, TURNS]
+            vul[i] = lf[x, F_VUL]
+    steps = np.empty(n_sols)
+    F = np.empty((n_sols, 2))
+    for i in range(n_sols):
+        steps[i] = ns[i] + SQRT2 * nd[i]
+        length = steps[i] * cell_size
+        F[i, 0] = length if len_first else vul[i]
+        F[i, 1] = vul[i] if len_first else length
+    # np.lexsort((steps, turns)) by two stable sorts: the smoothest, then the shortest first
+    p = np.argsort(steps, kind="mergesort")
+    order = p[np.argsort(turns[p], kind="mergesort")]
+    keep = _tolerant_front(F, order)
+    # lexicographic order of F (np.lexsort(F[keep].T[::-1]))
+    p = np.argsort(F[keep, 1], kind="mergesort")
+    keep = keep[p[np.argsort(F[keep[p], 0], kind="mergesort")]]
+    k = len(keep)
+    out_f = np.empty((k, 2))
+    smooth = np.empty(k)
+    out_off = np.zeros(k + 1, np.int64)
+    for t in range(k):
+        i = keep[t]
+        out_f[t, 0] = F[i, 0]
+        out_f[t, 1] = F[i, 1]
+        smooth[t] = turns[i] * QUARTER_PI
+        out_off[t + 1] = out_off[t] + offsets[i + 1] - offsets[i]
+    out_cells = np.empty((out_off[k], 2), np.int64)
+    for t in range(k):
+        i = keep[t]
+        a = out_off[t]
+        for j in range(offsets[i], offsets[i + 1]):
+            out_cells[a, 0] = cells[j, 0]
+            out_cells[a, 1] = cells[j, 1]
+            a += 1
+    counts = np.zeros(7, np.int64)
+    counts[C_EXPANDED] = st[S_EXPANDED]
+    counts[C_GENERATED] = st[S_GENERATED]
+    counts[C_ROWS] = st[S_N]
+    counts[C_FREE] = st[S_N_FREE]
+    counts[C_SOLS] = n_sols
+    counts[C_EDGES] = n_edges
+    counts[C_PEAK] = peak
+    return out_f, smooth, out_cells, out_off, counts

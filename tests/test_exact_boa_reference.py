@@ -1,0 +1,164 @@
+"""The two-objective BOA* kernels against their previous version
+(``tests/_boa_reference.py``, kept verbatim): :func:`free_front` on
+(length, vulnerability) must give bit-identical ``F``, smoothness and paths,
+and the same expansions, on hundreds of random small grids built to have
+many exact and near ties, and on real MovingAI queries with thousands of
+tie edges."""
+
+from __future__ import annotations
+
+import _boa_reference as ref
+import numpy as np
+import pytest
+from data_files import data_path
+
+from gapath import Workspace
+from gapath.errors import NoPathError
+from gapath.loaders import load_movingai, load_scenarios
+from gapath.planners.exact import free_front
+
+LV = ("length", "vulnerability")
+
+
+def _case(i: int) -> Workspace:
+    """4x4 to 24x24 grids with 0-30 % obstacles, either corner rule, random
+    start and goal; one in three gets a potential of a few dyadic values,
+    half of them 0 (exact ties everywhere), one in three is a sparse 14x14 to
+    29x29 map with its true potential (exact zeros, near-ties)."""
+    rng = np.random.default_rng(5000 + i)
+    kind = i % 3
+    h, w = int(rng.integers(4, 25)), int(rng.integers(4, 25))
+    if kind == 2:
+        h, w = int(rng.integers(14, 30)), int(rng.integers(14, 30))
+        p = rng.uniform(0.0, 0.04)
+    else:
+        p = rng.uniform(0.0, 0.3)
+    occ = rng.random((h, w)) < p
+    free = np.argwhere(~occ)
+    if len(free) < 2:
+        occ[:] = False
+        free = np.argwhere(~occ)
+    a, b = rng.choice(len(free), 2, replace=False)
+    ws = Workspace(
+        occ,
+        start=tuple(int(x) for x in free[a]),
+        goal=tuple(int(x) for x in free[b]),
+        corner_cutting=bool(rng.integers(2)),
+    )
+    if kind == 1:
+        pot = rng.choice([0.0, 0.0, 0.0, 0.25, 0.5, 1.0], size=(h, w))
+        pot.setflags(write=False)
+        ws.__dict__["potential"] = pot  # the cached property, replaced
+    return ws
+
+
+def reference_front(ws: Workspace, names, ties: bool):
+    """``(F, smoothness, paths, expansions)`` of the reference kernels, or
+    None when the goal cannot be reached."""
+    occ = np.ascontiguousarray(ws.occ)
+    pot = np.ascontiguousarray(ws.potential, dtype=np.float64)
+    (sr, sc), (gr, gc) = ws.start, ws.goal
+    w = ws.shape[1]
+    mask, hs, hd, hv = ref._boa_prepare(occ, pot, gr, gc, bool(ws.corner_cutting))
+    if hv[sr * w + sc] == np.inf:
+        return None
+    status, result, _ = ref._boa_solve(
+        occ, pot, sr, sc, gr, gc, float(ws.cell_size), mask, hs, hd, hv, ties, names[0] == "length",
+        1 << 60, 1 << 60,
+    )  # fmt: skip
+    assert status == ref.DONE
+    F, smooth, cells, offsets, counts = result
+    paths = [cells[offsets[i] : offsets[i + 1]] for i in range(len(F))]
+    return F, smooth, paths, int(counts[ref.C_EXPANDED])
+
+
+def _assert_same(ws, names, tie_break):
+    want = reference_front(ws, names, tie_break == "smoothest")
+    try:
+        got = free_front(ws, names, tie_break=tie_break)
+    except NoPathError:
+        assert want is None
+        return 0
+    assert want is not None
+    F, smooth, paths, expansions = want
+    assert np.array_equal(got.F, F)
+    assert np.array_equal(got.smoothness, smooth)
+    assert len(got.paths) == len(paths)
+    for p, q in zip(got.paths, paths):
+        assert np.array_equal(p, q)
+    assert got.stats["expansions"] == expansions
+    return len(F)
+
+
+@pytest.mark.parametrize("block", range(4))
+@pytest.mark.parametrize("tie_break", ["smoothest", "none"])
+def test_equals_the_previous_kernels_on_random_grids(block, tie_break):
+    points = 0
+    for i in range(block * 100, block * 100 + 100):
+        names = LV if i % 2 == 0 else LV[::-1]
+        points += _assert_same(_case(i), names, tie_break)
+    assert points > 100  # the cases are not trivial
+
+
+@pytest.mark.parametrize(
+    "name, lines",
+    [("maze-32-32-2", (0, 166)), ("den312d", (0, 749, 999))],
+)
+def test_equals_the_previous_kernels_on_movingai_queries(name, lines):
+    mp = data_path(f"movingai/mapf/{name}.map")
+    scen = load_scenarios(data_path(f"movingai/mapf/{name}-random-1.scen"))
+    for i in lines:
+        ws = load_movingai(mp, scen[i].start, scen[i].goal, corner_cutting=False)
+        for tie_break in ("smoothest", "none"):
+            assert _assert_same(ws, LV, tie_break) > 0
+
+
+def test_equals_the_previous_kernels_on_a_berlin_query():
+    """Berlin_1_256 (optional data): tens of thousands of tie edges."""
+    mp = data_path("movingai/mapf/Berlin_1_256.map")
+    scen = load_scenarios(data_path("movingai/mapf/Berlin_1_256-random-1.scen"))
+    ws = load_movingai(mp, scen[500].start, scen[500].goal, corner_cutting=False)
+    for tie_break in ("smoothest", "none"):
+        assert _assert_same(ws, LV, tie_break) > 0
+
+
+@pytest.mark.parametrize("n_buckets", [1, 2, 8])
+def test_small_bucket_windows_give_the_same_fronts(n_buckets):
+    """The open list's later labels wait in a window of buckets and an
+    overflow list beyond it; the default window (8 cells of f_length) is
+    never passed on a grid (a step adds at most 2 sqrt(2) cells), so tiny
+    windows exercise the overflow here, run in slices of 7 pops (resumed
+    state)."""
+    from gapath.planners import _boa_kernels as K
+
+    n_over = 0
+    for i in range(60):
+        ws = _case(i)
+        occ = np.ascontiguousarray(ws.occ)
+        pot = np.ascontiguousarray(ws.potential, dtype=np.float64)
+        (sr, sc), (gr, gc) = ws.start, ws.goal
+        w = ws.shape[1]
+        cs = float(ws.cell_size)
+        mask, hs, hd, hv = K._boa_prepare(occ, pot, gr, gc, bool(ws.corner_cutting))
+        if hv[sr * w + sc] == np.inf:
+            continue
+        for ties in (True, False):
+            want = reference_front(ws, LV, ties)
+            gmin, first, li, lf, sols, hk, hid, st, stf, edges, est = K._boa_start(
+                pot, sr, sc, w, cs, hs, hd, hv, ties, n_buckets
+            )
+            status = K.PAUSED
+            while status != K.DONE:
+                li, lf, sols, hk, hid, edges, status = K._boa_run(
+                    occ, pot, gr, gc, cs, mask, hs, hd, hv, gmin, first, li, lf, sols, hk, hid, st, stf,
+                    edges, est, 7, 1 << 60, ties,
+                )  # fmt: skip
+                n_over = max(n_over, int(est[K.E_NOVER]))
+            F, smooth, cells, offsets, counts = K._boa_finish(
+                li, lf, sols, st, edges, est[K.E_EDGES], pot, w, cs, ties, True, 0
+            )
+            assert np.array_equal(F, want[0])
+            assert np.array_equal(smooth, want[1])
+            assert np.array_equal(cells, np.concatenate(want[2]))
+            assert int(counts[K.C_EXPANDED]) == want[3]
+    assert n_over > 0  # the overflow list was used
