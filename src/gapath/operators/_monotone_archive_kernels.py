@@ -1,0 +1,125 @@
+"""numba kernels of :mod:`gapath.operators.monotone_archive`: re-routing a
+stretch of columns of column-monotone paths, a whole batch per call."""
+
+from __future__ import annotations
+
+import numba
+import numpy as np
+
+from gapath.grid import SQRT2, cuts_corner
+
+
+@numba.njit(cache=True)
+def _relax_column(cost, new, back, occ, pot, c, p, w_len, w_vul, cell_size, corner_cutting, only):
+    """Extend the partial path ending at exit row ``p`` of frame column
+    ``c - 1`` (cost ``cost[p]``) into column ``c``: one horizontal step to
+    row ``p``, or one diagonal step to ``p -/+ 1`` and then vertical steps
+    the same way, never into an obstacle (nor across a corner without
+    corner cutting). Improves ``new[e]`` / ``back[e]`` for every reachable
+    exit row ``e`` (only ``e == only`` when ``only >= 0``)."""
+    h = occ.shape[0]
+    base = cost[p]
+    # horizontal step: entry and exit p
+    if not occ[p, c] and (only < 0 or only == p):
+        v = base + w_len * cell_size + w_vul * pot[p, c]
+        if v < new[p]:
+            new[p] = v
+            back[p] = p
+    for s in (-1, 1):
+        e = p + s
+        if e < 0 or e >= h or occ[e, c]:
+            continue
+        if not corner_cutting and cuts_corner(occ, p, c - 1, e, c):
+            continue
+        v = base + w_len * SQRT2 * cell_size + w_vul * pot[e, c]
+        while True:
+            if (only < 0 or only == e) and v < new[e]:
+                new[e] = v
+                back[e] = p
+            e += s
+            if e < 0 or e >= h or occ[e, c]:
+                break
+            v += w_len * cell_size + w_vul * pot[e, c]
+
+
+@numba.njit(cache=True)
+def reroute_columns(exits, pick, k0, k1, w_len, w_vul, occ, pot, start_row, col0, cell_size, corner_cutting):
+    """Re-route stretches of column-monotone paths optimally.
+
+    Path ``b`` is row ``pick[b]`` of ``exits`` (exit rows per column, frame
+    rows, the relative-move path set of :mod:`gapath.encodings._relative`).
+    Its exit rows of columns ``k0[b] + 1 .. k1[b] - 1`` are replaced by those
+    of the path minimising ``w_len[b] * length + w_vul[b] * vulnerability``
+    over the feasible column-monotone paths that leave column ``k0[b]`` at
+    its exit row and leave column ``k1[b]`` at its exit row (``k0[b] = -1``:
+    from the start cell, the start column's vertical run included). The
+    path outside the stretch is unchanged, and so is every step outside it.
+
+    Returns
+    -------
+    (B, n_cols) int64 exit rows of the re-routed paths (the original ones
+    where the stretch has no feasible re-routing, which cannot happen for a
+    feasible path: its own stretch is a candidate).
+    """
+    n_b = len(pick)
+    h = occ.shape[0]
+    n_cols = exits.shape[1]
+    out = np.empty((n_b, n_cols), np.int64)
+    cost = np.empty(h)
+    new = np.empty(h)
+    back = np.empty((n_cols, h), np.int64)
+    inf = np.inf
+    for b in range(n_b):
+        src = pick[b]
+        for k in range(n_cols):
+            out[b, k] = exits[src, k]
+        a, z = k0[b], k1[b]
+        wl, wv = w_len[b], w_vul[b]
+        cost[:] = inf
+        if a < 0:  # the start column: a vertical run from the start row
+            first = 1
+            cost[start_row] = wv * pot[start_row, col0]
+            for s in (-1, 1):
+                e = start_row + s
+                v = cost[start_row]
+                while 0 <= e < h and not occ[e, col0]:
+                    v += wl * cell_size + wv * pot[e, col0]
+                    cost[e] = v
+                    e += s
+            if z == 0:
+                continue
+        else:
+            first = a + 1
+            cost[exits[src, a]] = 0.0
+        target = exits[src, z]
+        for k in range(first, z + 1):
+            new[:] = inf
+            c = col0 + k
+            only = target if k == z else -1
+            for p in range(h):
+                if cost[p] < inf:
+                    _relax_column(cost, new, back[k], occ, pot, c, p, wl, wv, cell_size, corner_cutting, only)
+            cost[:] = new
+        if cost[target] == inf:
+            continue
+        r = target
+        for k in range(z, first - 1, -1):
+            r = back[k, r]
+            if k - 1 >= 0:
+                out[b, k - 1] = r
+    return out
+
+
+@numba.njit(cache=True)
+def entries_of(exits, start_row):
+    """Entry rows of the relative-move path set: one step from the previous
+    exit row towards the column's exit row (the start row in column 0)."""
+    n, n_cols = exits.shape
+    entries = np.empty((n, n_cols), np.int64)
+    for i in range(n):
+        prev = start_row
+        for k in range(n_cols):
+            e = exits[i, k]
+            entries[i, k] = start_row if k == 0 else prev + (1 if e > prev else (-1 if e < prev else 0))
+            prev = e
+    return entries

@@ -1,0 +1,266 @@
+"""An external archive of column-monotone paths, refined by re-routing a
+stretch of columns.
+
+:class:`MonotonePathArchive` is the column-monotone sibling of
+:class:`gapath.operators.archive.FreePathArchive`: a pymoo callback that
+keeps, beside a GA run over column-monotone paths
+(:class:`gapath.problems.GridPathProblem`), every feasible non-dominated
+path the run has met (the offspring of every generation, the first
+population included), and each generation *refines* it: ``n_refine``
+archived paths, picked at random, each have a random stretch of columns
+re-routed optimally under a random weighting of length against
+vulnerability, the path's exit rows at both ends of the stretch kept
+(a dynamic programme over the stretch's columns,
+:func:`~gapath.operators._monotone_archive_kernels.reroute_columns`, one
+numba kernel for the whole batch). Since a Pareto-optimal path is made of
+stretches that are Pareto optimal between their ends, splicing
+weighted-sum stretches into front paths reaches the non-supported points
+that no weighting of the whole path reaches.
+
+Every re-routed path is again a path of the encodings' path set (the
+relative moves of :mod:`gapath.encodings`), so it has a genome: the archive
+returns a full :class:`gapath.front.PathFront` (``X`` included). The
+population is left alone (the archive draws from its own generator), so a
+run evolves exactly as without it and the archive's front weakly
+dominates the last population's.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from pymoo.core.callback import Callback
+
+from gapath.errors import ConfigError
+from gapath.front import PathFront, select_front
+from gapath.monotone import expand_profiles, split_paths
+from gapath.objectives import INTERFERING, LENGTH, VULNERABILITY
+from gapath.operators._monotone_archive_kernels import entries_of, reroute_columns
+
+#: Default range of ``log10`` of the re-routing weight of vulnerability
+#: against length, around the ratio of the archive's spans.
+WEIGHT_RANGE = (-3.0, 3.0)
+#: Default range of the share of a path's columns a re-routed stretch spans.
+SEGMENT = (0.05, 0.5)
+
+
+def default_refine(pop_size: int) -> int:
+    """Re-routed paths per generation that ``solve(..., refine=True)`` (and
+    ``gapath solve --paths monotone``) use with a population of
+    ``pop_size`` (docs/results/monotone_lift.md).
+
+    Examples
+    --------
+    >>> default_refine(500)
+    250
+    """
+    return max(1, int(pop_size) // 2)
+
+
+def _pair(value, name, lo_bound=None, hi_bound=None):
+    try:
+        lo, hi = (float(v) for v in value)
+    except (TypeError, ValueError):
+        raise ConfigError(f"{name} must be two numbers (lo, hi), got {value!r}") from None
+    ok = np.isfinite(lo) and np.isfinite(hi) and lo <= hi
+    if lo_bound is not None:
+        ok = ok and lo_bound <= lo and hi <= hi_bound
+    if not ok:
+        bounds = "" if lo_bound is None else f" in [{lo_bound:g}, {hi_bound:g}]"
+        raise ConfigError(f"{name} must be two finite numbers lo <= hi{bounds}, got {value!r}")
+    return lo, hi
+
+
+class MonotonePathArchive(Callback):
+    """Every feasible non-dominated column-monotone path of a run, refined
+    each generation by re-routing stretches of columns (see the module
+    docstring).
+
+    Parameters
+    ----------
+    problem : :class:`gapath.problems.GridPathProblem`.
+    n_refine : re-routed paths per generation (0: a plain archive).
+    seed : seed of the archive's own random numbers.
+    segment : ``(lo, hi)``, the share of the path's columns a stretch
+        spans, drawn uniformly (at least two columns); default
+        :data:`SEGMENT`.
+    weight_range : ``(lo, hi)``, default :data:`WEIGHT_RANGE`: the range of ``log10`` of the weight of
+        vulnerability against length in the re-routing, drawn uniformly,
+        relative to the ratio of the archive's length and vulnerability
+        spans (so 0 weighs both normalised objectives alike).
+
+    Attributes
+    ----------
+    n_eval : paths evaluated by the archive (re-routed ones).
+
+    Raises
+    ------
+    ConfigError
+        On a problem that is not a column-monotone path problem, a negative
+        ``n_refine``, a bad ``segment`` or ``weight_range``.
+
+    Examples
+    --------
+    >>> from pymoo.optimize import minimize
+    >>> from gapath import default_workspace
+    >>> from gapath.algorithms import FastNSGA2
+    >>> from gapath.problems import GridPathProblem
+    >>> p = GridPathProblem(default_workspace())
+    >>> archive = MonotonePathArchive(p, n_refine=20)
+    >>> _ = minimize(p, FastNSGA2(20), ("n_gen", 3), seed=1, callback=archive)
+    >>> front = archive.front()
+    >>> len(front) > 0 and front.X.shape == (len(front), p.n_var)
+    True
+    """
+
+    def __init__(self, problem, n_refine: int = 100, seed: int = 1, segment=None, weight_range=None):
+        super().__init__()
+        frame = getattr(problem, "frame", None)
+        if getattr(problem, "paths", "monotone") != "monotone" or frame is None:
+            raise ConfigError(f"MonotonePathArchive needs a GridPathProblem, got {type(problem).__name__}")
+        try:
+            n_refine = int(n_refine)
+        except (TypeError, ValueError):
+            raise ConfigError(f"n_refine must be an integer >= 0, got {n_refine!r}") from None
+        if n_refine < 0:
+            raise ConfigError(f"n_refine must be an integer >= 0, got {n_refine!r}")
+        self.problem = problem
+        self.frame = frame
+        self.n_refine = n_refine
+        self.segment = _pair(SEGMENT if segment is None else segment, "segment", 0.0, 1.0)
+        self.weight_range = _pair(WEIGHT_RANGE if weight_range is None else weight_range, "weight_range")
+        self.rng = np.random.default_rng(seed)
+        self.n_eval = 0
+        self._exits = np.zeros((0, frame.n_cols), np.int64)
+        self._M = np.zeros((0, 4))
+
+    def __len__(self) -> int:
+        return len(self._exits)
+
+    @property
+    def F(self) -> np.ndarray:
+        """Unpenalised objectives of the archived paths."""
+        if len(self) == 0:
+            return np.zeros((0, self.problem.n_obj))
+        return self.problem.objective_values(self._M)
+
+    # -- the generation hook ---------------------------------------------------
+    def notify(self, algorithm):
+        self.add(_offspring_genomes(algorithm, self.problem.n_var))
+        if self.n_refine and len(self):
+            self.refine(self.n_refine)
+
+    def add(self, X) -> None:
+        """Archive the decoded paths of genomes ``X`` (those feasible and
+        non-dominated)."""
+        if len(X) == 0:
+            return
+        _, exits = self.problem.encoding.decode(X)
+        self._merge(np.asarray(exits, np.int64))
+
+    def add_exits(self, exits) -> None:
+        """Archive column-monotone paths given by their exit rows (``(N,
+        n_cols)`` frame rows, the last one the goal row)."""
+        exits = np.atleast_2d(np.asarray(exits, np.int64))
+        if exits.shape[1] != self.frame.n_cols:
+            raise ConfigError(f"exit rows need {self.frame.n_cols} columns, got {exits.shape[1]}")
+        if len(exits):
+            self._merge(exits)
+
+    def refine(self, n: int) -> np.ndarray:
+        """Re-route a random stretch of ``n`` randomly picked archived paths
+        under random weights, archive the results and return their exit
+        rows ``(n, n_cols)``."""
+        rng, f = self.rng, self.frame
+        n_cols = f.n_cols
+        pick = rng.integers(0, len(self), n)
+        lo, hi = self.segment
+        # a stretch of columns k0 .. k1 (k0 = -1: from the start cell), >= 2 columns
+        span = np.clip(np.rint(rng.uniform(lo, hi, n) * n_cols), 2, n_cols).astype(np.int64)
+        k0 = np.floor(rng.random(n) * (n_cols + 1 - span)).astype(np.int64) - 1
+        k1 = k0 + span
+        M = self._M
+        span_len = np.ptp(M[:, LENGTH]) if len(M) > 1 else 0.0
+        span_vul = np.ptp(M[:, VULNERABILITY]) if len(M) > 1 else 0.0
+        ratio = (span_len if span_len > 0 else 1.0) / (span_vul if span_vul > 0 else 1.0)
+        w_vul = ratio * 10.0 ** rng.uniform(*self.weight_range, n)
+        ws = f.workspace
+        exits = reroute_columns(
+            self._exits,
+            pick,
+            k0,
+            k1,
+            np.ones(n),
+            w_vul,
+            f.occ,
+            f.potential,
+            f.start[0],
+            f.col0,
+            float(ws.cell_size),
+            bool(ws.corner_cutting),
+        )
+        self.n_eval += n
+        self._merge(exits)
+        return exits
+
+    def _merge(self, exits) -> None:
+        f = self.frame
+        entries = entries_of(exits, f.start[0])
+        M = self.problem.metrics(np.empty((len(exits), 0)), profiles=(entries, exits))
+        ok = M[:, INTERFERING] == 0
+        exits, M = exits[ok], M[ok]
+        if len(self):
+            exits = np.concatenate([self._exits, exits])
+            M = np.concatenate([self._M, M])
+        _, first = np.unique(exits, axis=0, return_index=True)
+        rows = np.sort(first)
+        F = self.problem.objective_values(M[rows])
+        keep = rows[select_front(F, M[rows])]
+        self._exits, self._M = exits[keep], M[keep]
+
+    # -- the result --------------------------------------------------------------
+    def profiles(self) -> tuple[np.ndarray, np.ndarray]:
+        """Column profiles ``(entries, exits)`` of the archived paths."""
+        return entries_of(self._exits, self.frame.start[0]), self._exits.copy()
+
+    def genomes(self) -> np.ndarray:
+        """The archived paths' genomes in the problem's encoding (``(k,
+        0)`` if the encoding cannot represent one of them)."""
+        try:
+            return np.asarray(self.problem.encoding.encode_profiles(*self.profiles()))
+        except ConfigError:
+            return np.empty((len(self), 0))
+
+    def paths(self) -> list[np.ndarray]:
+        """The archived paths (``(m_i, 2)`` workspace cells)."""
+        return split_paths(*expand_profiles(self.frame, *self.profiles()))
+
+    def front(self) -> PathFront:
+        """The archive as a :class:`gapath.front.PathFront` (lexicographic
+        order), genomes included."""
+        return PathFront(tuple(self.problem.objectives), self.F, self._M.copy(), self.genomes(), self.paths())
+
+
+def _offspring_genomes(algorithm, n_var: int) -> np.ndarray:
+    """The genomes of ``algorithm``'s last offspring (the first population
+    at the first generation): read from :class:`gapath.algorithms.FastNSGA2`'s
+    arrays when it has them (no pymoo ``Population`` built), else from
+    ``algorithm.off``."""
+    arrays = getattr(algorithm, "_offspring", None)
+    X = getattr(arrays, "X", None)
+    if X is None:
+        off = getattr(algorithm, "off", None)
+        X = None if off is None or len(off) == 0 else off.get("X")
+    return np.zeros((0, n_var)) if X is None else np.asarray(X)
+
+
+def run_monotone_archive(algorithm) -> MonotonePathArchive | None:
+    """The :class:`MonotonePathArchive` among the callbacks of ``algorithm``
+    (as :func:`gapath.solver.solve` installs it), or None."""
+    cb = getattr(algorithm, "callback", None)
+    for c in (cb, *getattr(cb, "callbacks", ())):
+        if isinstance(c, MonotonePathArchive):
+            return c
+    return None
+
+
+__all__ = ["SEGMENT", "WEIGHT_RANGE", "MonotonePathArchive", "default_refine", "run_monotone_archive"]
