@@ -10,36 +10,49 @@ from gapath.grid import SQRT2, cuts_corner
 
 
 @numba.njit(cache=True)
-def _relax_column(cost, new, back, occ, pot, c, p, w_len, w_vul, cell_size, corner_cutting, only):
-    """Extend the partial path ending at exit row ``p`` of frame column
-    ``c - 1`` (cost ``cost[p]``) into column ``c``: one horizontal step to
-    row ``p``, or one diagonal step to ``p -/+ 1`` and then vertical steps
-    the same way, never into an obstacle (nor across a corner without
-    corner cutting). Improves ``new[e]`` / ``back[e]`` for every reachable
-    exit row ``e`` (only ``e == only`` when ``only >= 0``)."""
+def _relax_column(cost, new, back, occ, pot, c, w_len, w_vul, cell_size, corner_cutting):
+    """One column of the re-routing programme, in O(rows).
+
+    ``cost[p]`` is the best weighted cost of a partial path leaving frame
+    column ``c - 1`` at exit row ``p``; ``new[e]`` becomes that of leaving
+    column ``c`` at ``e`` and ``back[e]`` the previous exit row. Column ``c``
+    is entered by one horizontal step (exit row ``p`` itself) or by one
+    diagonal step to ``p -/+ 1`` followed by vertical steps the same way
+    (the relative-move path set), never into an obstacle nor, without corner
+    cutting, across a corner. The upward and downward runs are swept once
+    each: a run reaching ``e`` either continues the best run at the
+    neighbouring row or starts at ``e`` by the diagonal step."""
     h = occ.shape[0]
-    base = cost[p]
-    # horizontal step: entry and exit p
-    if not occ[p, c] and (only < 0 or only == p):
-        v = base + w_len * cell_size + w_vul * pot[p, c]
-        if v < new[p]:
-            new[p] = v
-            back[p] = p
-    for s in (-1, 1):
-        e = p + s
-        if e < 0 or e >= h or occ[e, c]:
-            continue
-        if not corner_cutting and cuts_corner(occ, p, c - 1, e, c):
-            continue
-        v = base + w_len * SQRT2 * cell_size + w_vul * pot[e, c]
-        while True:
-            if (only < 0 or only == e) and v < new[e]:
-                new[e] = v
-                back[e] = p
+    inf = np.inf
+    straight = w_len * cell_size
+    diagonal = w_len * SQRT2 * cell_size
+    for e in range(h):
+        new[e] = inf
+        back[e] = -1
+        if not occ[e, c] and cost[e] < inf:
+            new[e] = cost[e] + straight + w_vul * pot[e, c]
+            back[e] = e
+    for s in (-1, 1):  # -1: runs going up (entered from row e + 1), +1: down
+        run = inf
+        origin = -1
+        e = h - 1 if s < 0 else 0
+        while 0 <= e < h:
+            if occ[e, c]:
+                run = inf
+            else:
+                here = w_vul * pot[e, c]
+                if run < inf:
+                    run += straight + here
+                p = e - s
+                if 0 <= p < h and cost[p] < inf and (corner_cutting or not cuts_corner(occ, p, c - 1, e, c)):
+                    v = cost[p] + diagonal + here
+                    if v < run:
+                        run = v
+                        origin = p
+                if run < new[e]:
+                    new[e] = run
+                    back[e] = origin
             e += s
-            if e < 0 or e >= h or occ[e, c]:
-                break
-            v += w_len * cell_size + w_vul * pot[e, c]
 
 
 @numba.njit(cache=True)
@@ -93,12 +106,7 @@ def reroute_columns(exits, pick, k0, k1, w_len, w_vul, occ, pot, start_row, col0
             cost[exits[src, a]] = 0.0
         target = exits[src, z]
         for k in range(first, z + 1):
-            new[:] = inf
-            c = col0 + k
-            only = target if k == z else -1
-            for p in range(h):
-                if cost[p] < inf:
-                    _relax_column(cost, new, back[k], occ, pot, c, p, wl, wv, cell_size, corner_cutting, only)
+            _relax_column(cost, new, back[k], occ, pot, col0 + k, wl, wv, cell_size, corner_cutting)
             cost[:] = new
         if cost[target] == inf:
             continue
