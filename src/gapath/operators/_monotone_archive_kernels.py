@@ -131,3 +131,74 @@ def entries_of(exits, start_row):
             entries[i, k] = start_row if k == 0 else prev + (1 if e > prev else (-1 if e < prev else 0))
             prev = e
     return entries
+
+
+@numba.njit(cache=True)
+def reroute_sweep(exits, pick, k0, lo, hi, w_len, w_vul, occ, pot, start_row, col0, cell_size, corner_cutting):
+    """Every re-routing of :func:`reroute_columns` that starts at column
+    ``k0[b]`` of path ``pick[b]``, for every end column ``k1`` with ``lo[b]
+    <= k1 - k0[b] <= hi[b]``, from one forward sweep of the programme.
+
+    Returns
+    -------
+    out : (R, n_cols) int64 exit rows of the re-routed paths that differ
+        from their source path.
+    src : (R,) int64, the index into ``pick`` each row came from.
+    """
+    n_b = len(pick)
+    h = occ.shape[0]
+    n_cols = exits.shape[1]
+    cap = 0
+    for b in range(n_b):
+        cap += max(0, min(hi[b], n_cols - 1 - k0[b]) - lo[b] + 1)
+    out = np.empty((cap, n_cols), np.int64)
+    src_of = np.empty(cap, np.int64)
+    cost = np.empty(h)
+    new = np.empty(h)
+    back = np.empty((n_cols, h), np.int64)
+    inf = np.inf
+    n_out = 0
+    for b in range(n_b):
+        src = pick[b]
+        a = k0[b]
+        wl, wv = w_len[b], w_vul[b]
+        cost[:] = inf
+        if a < 0:  # the start column: a vertical run from the start row
+            first = 1
+            cost[start_row] = wv * pot[start_row, col0]
+            for s in (-1, 1):
+                e = start_row + s
+                v = cost[start_row]
+                while 0 <= e < h and not occ[e, col0]:
+                    v += wl * cell_size + wv * pot[e, col0]
+                    cost[e] = v
+                    e += s
+        else:
+            first = a + 1
+            cost[exits[src, a]] = 0.0
+        last = min(n_cols - 1, a + hi[b])
+        for k in range(first, last + 1):
+            _relax_column(cost, new, back[k], occ, pot, col0 + k, wl, wv, cell_size, corner_cutting)
+            cost[:] = new
+            if k - a < lo[b]:
+                continue
+            target = exits[src, k]
+            if cost[target] == inf:
+                continue
+            # the stretch a+1 .. k-1 re-routed, the rest as the source path
+            changed = False
+            r = target
+            for kk in range(k, first - 1, -1):
+                r = back[kk, r]
+                if kk - 1 >= 0:
+                    out[n_out, kk - 1] = r
+                    if r != exits[src, kk - 1]:
+                        changed = True
+            if not changed:
+                continue
+            for kk in range(n_cols):
+                if kk < first - 1 or kk >= k:
+                    out[n_out, kk] = exits[src, kk]
+            src_of[n_out] = b
+            n_out += 1
+    return out[:n_out], src_of[:n_out]

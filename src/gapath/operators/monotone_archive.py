@@ -6,16 +6,17 @@ stretch of columns.
 keeps, beside a GA run over column-monotone paths
 (:class:`gapath.problems.GridPathProblem`), every feasible non-dominated
 path the run has met (the offspring of every generation, the first
-population included), and each generation *refines* it: ``n_refine``
-archived paths, picked at random, each have a random stretch of columns
-re-routed optimally under a random weighting of length against
-vulnerability, the path's exit rows at both ends of the stretch kept
-(a dynamic programme over the stretch's columns,
-:func:`~gapath.operators._monotone_archive_kernels.reroute_columns`, one
-numba kernel for the whole batch). Since a Pareto-optimal path is made of
-stretches that are Pareto optimal between their ends, splicing
-weighted-sum stretches into front paths reaches the non-supported points
-that no weighting of the whole path reaches.
+population included), and each generation *refines* it: ``n_refine`` archived paths, picked at
+random, are each re-routed from a random column under a random weighting
+of length against vulnerability (:meth:`MonotonePathArchive.weights`):
+one forward sweep of a dynamic programme over the columns
+(:func:`~gapath.operators._monotone_archive_kernels.reroute_sweep`, one
+numba kernel for the whole batch, O(rows) per column) gives, for every end
+column, the optimal stretch between the path's exit rows at both ends, so
+each sweep yields up to one new path per end column. Since a
+Pareto-optimal path is made of stretches that are Pareto optimal between
+their ends, splicing weighted-sum stretches into front paths reaches the
+non-supported points that no weighting of the whole path reaches.
 
 Every re-routed path is again a path of the encodings' path set (the
 relative moves of :mod:`gapath.encodings`), so it has a genome: the archive
@@ -34,11 +35,11 @@ from gapath.errors import ConfigError
 from gapath.front import PathFront, select_front
 from gapath.monotone import expand_profiles, split_paths
 from gapath.objectives import INTERFERING, LENGTH, VULNERABILITY
-from gapath.operators._monotone_archive_kernels import entries_of, reroute_columns
+from gapath.operators._monotone_archive_kernels import entries_of, reroute_sweep
 
 #: Default range of ``log10`` of the re-routing weight of vulnerability
 #: against length, around the ratio of the archive's spans.
-WEIGHT_RANGE = (-3.0, 3.0)
+WEIGHT_RANGE = (-4.0, 8.0)
 #: Default range of the share of a path's columns a re-routed stretch spans.
 SEGMENT = (0.05, 1.0)
 
@@ -94,7 +95,8 @@ class MonotonePathArchive(Callback):
 
     Attributes
     ----------
-    n_eval : paths evaluated by the archive (re-routed ones).
+    n_eval : paths evaluated by the archive (the re-routed ones that differ
+        from their source path).
 
     Raises
     ------
@@ -107,13 +109,15 @@ class MonotonePathArchive(Callback):
     >>> from pymoo.optimize import minimize
     >>> from gapath import default_workspace
     >>> from gapath.algorithms import FastNSGA2
+    >>> from gapath.operators import PlannerSampling
     >>> from gapath.problems import GridPathProblem
     >>> p = GridPathProblem(default_workspace())
     >>> archive = MonotonePathArchive(p, n_refine=20)
-    >>> _ = minimize(p, FastNSGA2(20), ("n_gen", 3), seed=1, callback=archive)
+    >>> algorithm = FastNSGA2(20, sampling=PlannerSampling())
+    >>> _ = minimize(p, algorithm, ("n_gen", 3), seed=1, callback=archive)
     >>> front = archive.front()
-    >>> len(front) > 0 and front.X.shape == (len(front), p.n_var)
-    True
+    >>> len(front) > 0 and front.X.shape == (len(front), p.n_var), archive.n_eval > 0
+    (True, True)
     """
 
     def __init__(self, problem, n_refine: int = 100, seed: int = 1, segment=None, weight_range=None):
@@ -170,31 +174,46 @@ class MonotonePathArchive(Callback):
         if len(exits):
             self._merge(exits)
 
+    def weights(self, n: int) -> np.ndarray:
+        """``n`` random weights of vulnerability against length (length
+        weighs 1): half drawn around the trade-offs between neighbouring
+        archived points (the weight at which two neighbours tie, times
+        ``10 ** U(-0.5, 0.5)``), the others log-uniform over
+        :attr:`weight_range` around the ratio of the archive's spans."""
+        rng = self.rng
+        L, V = self._M[:, LENGTH], self._M[:, VULNERABILITY]
+        span_len, span_vul = np.ptp(L) if len(L) > 1 else 0.0, np.ptp(V) if len(V) > 1 else 0.0
+        ratio = (span_len if span_len > 0 else 1.0) / (span_vul if span_vul > 0 else 1.0)
+        w = ratio * 10.0 ** rng.uniform(*self.weight_range, n)
+        order = np.argsort(L, kind="stable")
+        dl, dv = np.diff(L[order]), -np.diff(V[order])
+        ties = dl[(dl > 0) & (dv > 0)] / dv[(dl > 0) & (dv > 0)]
+        local = rng.random(n) < 0.5
+        if len(ties) and local.any():
+            w[local] = ties[rng.integers(0, len(ties), local.sum())] * 10.0 ** rng.uniform(-0.5, 0.5, local.sum())
+        return w
+
     def refine(self, n: int) -> np.ndarray:
-        """Re-route a random stretch of ``n`` randomly picked archived paths
-        under random weights, archive the results and return their exit
-        rows ``(n, n_cols)``."""
+        """Re-route ``n`` randomly picked archived paths from a random
+        column under random weights (:meth:`weights`), to every end column
+        the ``segment`` shares allow (one sweep of the programme per path),
+        archive the results and return their exit rows ``(R, n_cols)``."""
         rng, f = self.rng, self.frame
         n_cols = f.n_cols
         pick = rng.integers(0, len(self), n)
-        lo, hi = self.segment
-        # a stretch of columns k0 .. k1 (k0 = -1: from the start cell), >= 2 columns
-        span = np.clip(np.rint(rng.uniform(lo, hi, n) * n_cols), 2, n_cols).astype(np.int64)
-        k0 = np.floor(rng.random(n) * (n_cols + 1 - span)).astype(np.int64) - 1
-        k1 = k0 + span
-        M = self._M
-        span_len = np.ptp(M[:, LENGTH]) if len(M) > 1 else 0.0
-        span_vul = np.ptp(M[:, VULNERABILITY]) if len(M) > 1 else 0.0
-        ratio = (span_len if span_len > 0 else 1.0) / (span_vul if span_vul > 0 else 1.0)
-        w_vul = ratio * 10.0 ** rng.uniform(*self.weight_range, n)
+        lo = max(2, int(round(self.segment[0] * n_cols)))
+        hi = max(lo, int(round(self.segment[1] * n_cols)))
+        # stretches k0 .. k1 (k0 = -1: from the start cell), lo <= k1 - k0 <= hi
+        k0 = rng.integers(-1, max(0, n_cols - lo), n)
         ws = f.workspace
-        exits = reroute_columns(
+        exits, _ = reroute_sweep(
             self._exits,
             pick,
             k0,
-            k1,
+            np.full(n, lo),
+            np.full(n, hi),
             np.ones(n),
-            w_vul,
+            self.weights(n),
             f.occ,
             f.potential,
             f.start[0],
@@ -202,8 +221,9 @@ class MonotonePathArchive(Callback):
             float(ws.cell_size),
             bool(ws.corner_cutting),
         )
-        self.n_eval += n
-        self._merge(exits)
+        self.n_eval += len(exits)
+        if len(exits):
+            self._merge(exits)
         return exits
 
     def _merge(self, exits) -> None:
@@ -268,7 +288,16 @@ def _offspring_genomes(algorithm, n_var: int) -> np.ndarray:
 
 def run_monotone_archive(algorithm) -> MonotonePathArchive | None:
     """The :class:`MonotonePathArchive` among the callbacks of ``algorithm``
-    (as :func:`gapath.solver.solve` installs it), or None."""
+    (as :func:`gapath.solver.solve` installs it), or None.
+
+    Examples
+    --------
+    >>> from gapath import default_workspace
+    >>> from gapath.solver import solve
+    >>> r = solve(default_workspace(), refine=True, pop_size=10, n_gen=2)
+    >>> len(run_monotone_archive(r.pymoo_result.algorithm)) == len(r.front)
+    True
+    """
     cb = getattr(algorithm, "callback", None)
     for c in (cb, *getattr(cb, "callbacks", ())):
         if isinstance(c, MonotonePathArchive):
