@@ -125,7 +125,9 @@ def main(argv=None):
         for s in ga_seeds:
             first = FirstPopulation()
             t0 = time.process_time()
-            r = solve(ws, objectives=OBJECTIVES, pop_size=args.pop, n_gen=args.gen, seed=s, callback=first, **kw)
+            r = solve(
+                ws, objectives=OBJECTIVES, pop_size=args.pop, n_gen=args.gen, seed=s, callback=first, **kw
+            )
             cpu = time.process_time() - t0
             F = r.front.F
             union.append(F)

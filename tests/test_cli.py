@@ -126,7 +126,10 @@ def test_solve_three_objectives_and_start_goal(text_map, tmp_path):
         (["solve", "{map}", "--paths", "monotone", "--repair", "tidy"], "unknown repair 'tidy'"),
         (["solve", "{map}", "--refine", "-2"], "--refine must be auto, off or an integer >= 0, got '-2'"),
         (["solve", "{map}", "--refine", "lots"], "--refine must be auto, off or an integer >= 0"),
-        (["solve", "{map}", "--paths", "monotone", "--refine", "-1"], "--refine must be auto, off or an integer"),
+        (
+            ["solve", "{map}", "--paths", "monotone", "--refine", "-1"],
+            "--refine must be auto, off or an integer",
+        ),
     ],
 )
 def test_bad_input_exits_2_with_a_clear_message(args, message, text_map, tmp_path, capsys):

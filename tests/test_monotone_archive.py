@@ -83,7 +83,18 @@ def test_rerouting_keeps_the_ends_and_never_costs_more(seed, corner_cutting, lam
     pick = np.array([0, 1, 0, 1])
     w = np.full(4, lam)
     out = reroute_columns(
-        ex, pick, k0, k1, np.ones(4), w, f.occ, f.potential, f.start[0], f.col0, ws.cell_size, ws.corner_cutting
+        ex,
+        pick,
+        k0,
+        k1,
+        np.ones(4),
+        w,
+        f.occ,
+        f.potential,
+        f.start[0],
+        f.col0,
+        ws.cell_size,
+        ws.corner_cutting,
     )
     M = problem.metrics(np.empty((4, 0)), profiles=(entries_of(out, f.start[0]), out))
     M0 = problem.metrics(np.empty((4, 0)), profiles=(entries_of(ex[pick], f.start[0]), ex[pick]))
@@ -94,7 +105,9 @@ def test_rerouting_keeps_the_ends_and_never_costs_more(seed, corner_cutting, lam
         assert (out[b, keep] == ex[pick[b], keep]).all()
         # the stretch is optimal, so the path costs no more under its weights
         assert M[b, 0] + lam * M[b, 1] <= M0[b, 0] + lam * M0[b, 1] + 1e-9
-    profiles_of_paths(f, [p for p in problem.decode(problem.encoding.encode_profiles(entries_of(out, f.start[0]), out))])
+    profiles_of_paths(
+        f, [p for p in problem.decode(problem.encoding.encode_profiles(entries_of(out, f.start[0]), out))]
+    )
 
 
 @pytest.mark.parametrize("corner_cutting", [True, False])
@@ -212,7 +225,9 @@ def test_one_sweep_gives_every_end_column_of_the_single_reroutes(corner_cutting)
         expected = 0
         for b in range(B):
             for k1 in range(k0[b] + 2, n):
-                one = reroute_columns(ex, pick[b : b + 1], k0[b : b + 1], np.array([k1]), np.ones(1), lam[b : b + 1], *args)[0]
+                one = reroute_columns(
+                    ex, pick[b : b + 1], k0[b : b + 1], np.array([k1]), np.ones(1), lam[b : b + 1], *args
+                )[0]
                 if (one != ex[pick[b]]).any():
                     expected += 1
                     assert (out[src == b] == one).all(axis=1).any()

@@ -134,7 +134,9 @@ def entries_of(exits, start_row):
 
 
 @numba.njit(cache=True)
-def reroute_sweep(exits, pick, k0, lo, hi, w_len, w_vul, occ, pot, start_row, col0, cell_size, corner_cutting):
+def reroute_sweep(
+    exits, pick, k0, lo, hi, w_len, w_vul, occ, pot, start_row, col0, cell_size, corner_cutting
+):
     """Every re-routing of :func:`reroute_columns` that starts at column
     ``k0[b]`` of path ``pick[b]``, for every end column ``k1`` with ``lo[b]
     <= k1 - k0[b] <= hi[b]``, from one forward sweep of the programme.

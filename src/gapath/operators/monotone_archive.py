@@ -190,7 +190,9 @@ class MonotonePathArchive(Callback):
         ties = dl[(dl > 0) & (dv > 0)] / dv[(dl > 0) & (dv > 0)]
         local = rng.random(n) < 0.5
         if len(ties) and local.any():
-            w[local] = ties[rng.integers(0, len(ties), local.sum())] * 10.0 ** rng.uniform(-0.5, 0.5, local.sum())
+            w[local] = ties[rng.integers(0, len(ties), local.sum())] * 10.0 ** rng.uniform(
+                -0.5, 0.5, local.sum()
+            )
         return w
 
     def refine(self, n: int) -> np.ndarray:
