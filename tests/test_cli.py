@@ -126,7 +126,10 @@ def test_solve_three_objectives_and_start_goal(text_map, tmp_path):
         (["solve", "{map}", "--paths", "monotone", "--repair", "tidy"], "unknown repair 'tidy'"),
         (["solve", "{map}", "--refine", "-2"], "--refine must be auto, off or an integer >= 0, got '-2'"),
         (["solve", "{map}", "--refine", "lots"], "--refine must be auto, off or an integer >= 0"),
-        (["solve", "{map}", "--paths", "monotone", "--refine", "10"], "--refine 10 needs --paths free"),
+        (
+            ["solve", "{map}", "--paths", "monotone", "--refine", "-1"],
+            "--refine must be auto, off or an integer",
+        ),
     ],
 )
 def test_bad_input_exits_2_with_a_clear_message(args, message, text_map, tmp_path, capsys):
@@ -270,10 +273,14 @@ def test_plan_command(planner, text_map, tmp_path):
     assert (out / "summary.json").exists() and (out / "front.csv").exists()
 
 
+@pytest.mark.parametrize("paths", ["free", "monotone"])
 @pytest.mark.parametrize("flag,expected", [("7", 7), ("off", None), ("auto", 5)])
-def test_solve_refine_flag_reaches_the_run(flag, expected, text_map, tmp_path):
+def test_solve_refine_flag_reaches_the_run(flag, expected, paths, text_map, tmp_path):
     out = tmp_path / "o"
     args = ["solve", str(text_map), "--pop", "10", "--gen", "3", "--refine", flag, "--out", str(out)]
+    args += ["--paths", paths]  # monotone: the column re-routing archive (monotone_lift.md)
     assert main(args + ["--quiet", "--no-plots"]) == 0
     settings = json.loads((out / "summary.json").read_text())["settings"]
+    if paths == "monotone" and flag == "auto":
+        expected = 2  # pop // 5 re-routed paths (docs/results/monotone_lift.md)
     assert settings.get("refine") == expected  # auto: pop // 2 with two objectives

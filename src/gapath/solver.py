@@ -110,7 +110,7 @@ def solve(
     adaptive_penalty : with ``constraints="adaptive"``, the keyword
         arguments of :class:`gapath.constraints.AdaptivePenalty` (a dict;
         ``maximum`` defaults to ``penalty``).
-    refine : free paths only: the run keeps an external archive of every
+    refine : free paths: the run keeps an external archive of every
         non-dominated path it meets and re-routes a segment of ``refine``
         archived paths per generation
         (:class:`gapath.operators.archive.FreePathArchive`); the front is
@@ -118,7 +118,13 @@ def solve(
         ``2 * pop_size`` with three or more (docs/results/free_paths.md);
         0 keeps the archive
         without re-routing; ``False``: no archive (the last population's
-        front, as for monotone paths).
+        front). Monotone paths: default None, no archive (Ahmed & Deb's
+        runs, as the reproductions use them); an integer or ``True`` (the
+        default count, :func:`gapath.operators.monotone_archive.default_refine`,
+        what ``gapath solve --paths monotone`` passes) installs
+        :class:`gapath.operators.monotone_archive.MonotonePathArchive`,
+        which re-routes a stretch of columns of ``refine`` archived paths
+        per generation (docs/results/monotone_lift.md).
     paths : ``"monotone"`` (default: Ahmed & Deb's column-monotone paths) or
         ``"free"`` (any simple 8-connected path); seeds from
         :class:`gapath.operators.sampling.free_sampling.FreeSampling` for
@@ -230,6 +236,11 @@ def solve(
         else:
             n_refine = refine
         archive = FreePathArchive(problem, n_refine=n_refine, seed=seed)
+    elif paths == "monotone" and refine not in (None, False):
+        from gapath.operators.monotone_archive import MonotonePathArchive, default_refine
+
+        n_refine = default_refine(pop_size) if refine is True else refine
+        archive = MonotonePathArchive(problem, n_refine=n_refine, seed=seed)
     elif refine not in (None, False):
         raise ConfigError(f"refine applies to free paths only (paths='free'), got paths={paths!r}")
     bar = ProgressBar(n_gen, disable=not progress)
