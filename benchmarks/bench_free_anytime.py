@@ -107,32 +107,46 @@ class _Stop(Exception):
     pass
 
 
-def exact(name, ws, cache: Path, cap: float, max_labels):
-    """The cached exact front of ``name``: ``(F or None, record)``."""
+def exact(name, ws, cache: Path, cap: float, max_labels, cpu_cap=None):
+    """The cached exact front of ``name``: ``(F or None, record)``.
+
+    ``cap`` bounds the search's wall seconds; ``cpu_cap`` (when given) also
+    its process CPU seconds (on a loaded machine the wall clock runs several
+    times faster than the search's own CPU time: give a CPU cap and a wall
+    cap as a safety)."""
     f = cache / f"{name}.npz"
     if f.exists():
         z = np.load(f, allow_pickle=False)
         rec = json.loads(str(z["record"]))
         return (z["F"] if rec["exact_finished"] else None), rec
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     last: dict = {}
 
     def progress(info):
         last.update(info)
+        if cpu_cap is not None and time.process_time() - c0 > cpu_cap:
+            raise _Stop
         if time.perf_counter() - t0 > cap:
             raise _Stop
 
     rec = dict(instance=name, shape=list(ws.shape), start=list(ws.start), goal=list(ws.goal))
+    rec["exact_cap"] = dict(wall_seconds=cap, cpu_seconds=cpu_cap)
     F = None
     try:
         front = free_front(ws, OBJECTIVES, max_labels=max_labels, progress=progress)
         F = np.asarray(front.F, float)
-        rec.update(exact_finished=True, exact_size=len(F), exact_seconds=time.perf_counter() - t0)
+        rec.update(
+            exact_finished=True,
+            exact_size=len(F),
+            exact_seconds=time.perf_counter() - t0,
+            exact_cpu_seconds=time.process_time() - c0,
+        )
         rec["exact_stats"] = {k: v for k, v in front.stats.items() if isinstance(v, (int, float))}
     except (_Stop, Exception) as e:  # the cap, the label budget or memory: not finished
         rec.update(
             exact_finished=False,
             exact_seconds=time.perf_counter() - t0,
+            exact_cpu_seconds=time.process_time() - c0,
             exact_stopped_by="cap" if isinstance(e, _Stop) else f"{type(e).__name__}: {e}",
             exact_progress={k: v for k, v in last.items() if isinstance(v, (int, float))},
         )
@@ -170,7 +184,7 @@ class _Trace(Callback):
             h = self.hv.history[-1][2]
         else:
             h = float("nan")
-            if g % self.keep == 1 or self.keep == 1:
+            if g % self.keep == 1 or self.keep == 1 or algorithm.termination.has_terminated():
                 self.fronts.append((len(self.trace), run_archive(algorithm).F.copy()))
         self.spent += time.perf_counter() - t
         self.cpu_spent += time.process_time() - c
@@ -184,14 +198,27 @@ class _Trace(Callback):
             algorithm.termination.force_termination = True
 
 
-def anytime(ws, F, pop, gen, seed, cap, progress=None):
-    """One GA run's trace against the exact front ``F`` (or, when None,
-    against the run's own final front)."""
-    tracker = _Trace(F, cap, progress=progress)
+def anytime(ws, F, pop, gen, seed, cap, progress=None, keep=5, save=None, reference="exact"):
+    """One GA run's trace against the front ``F`` (the exact front, or the
+    best known one when ``reference`` says so; when None, against the run's
+    own final front). ``save``: write the run's final front and the fronts
+    kept every ``keep`` generations (with their trace rows) to this ``.npz``,
+    to be measured against another front afterwards (``--score``)."""
+    tracker = _Trace(F if save is None else None, cap, keep=keep, progress=progress)
     res = solve(ws, objectives=OBJECTIVES, paths="free", pop_size=pop, n_gen=gen, seed=seed, callback=tracker)
     tr = tracker.trace
+    if save is not None:
+        Path(save).parent.mkdir(parents=True, exist_ok=True)
+        kept = {f"front_{i}": Fi for i, Fi in tracker.fronts}
+        np.savez_compressed(save, F=np.asarray(res.front.F, float), trace=np.asarray(tr, float), **kept)
+        if F is not None:
+            for i, Fi in tracker.fronts:
+                tr[i][3] = round(hv_ratio(Fi, F), 6) if len(Fi) else 0.0
+            tr[-1][3] = round(hv_ratio(res.front.F, F), 6)
+            tr = [row for row in tr if row[3] == row[3]]  # the measured rows (NaN elsewhere)
     ref = F
     if F is None:  # the best known front: the run's own archive at the end
+        reference = "final GA front"
         ref = res.front.F
         for row in tr:
             row[3] = None
@@ -210,7 +237,7 @@ def anytime(ws, F, pop, gen, seed, cap, progress=None):
         pop=pop,
         gen_run=len(tracker.trace),
         seed=seed,
-        reference="exact" if F is not None else "final GA front",
+        reference=reference,
         ga_seconds=tracker.trace[-1][1] if tr else None,
         ga_cpu_seconds=tracker.trace[-1][2] if tr else None,
         ga_size=len(res.front),
@@ -220,6 +247,65 @@ def anytime(ws, F, pop, gen, seed, cap, progress=None):
         to_095=reach(0.95),
         to_099=reach(0.99),
         trace=tr,
+    )
+
+
+def merge_fronts(paths, out):
+    """The non-dominated union of the final fronts saved in ``paths``
+    (``--save``), written to ``out`` (``.npz``: ``F`` and the sources)."""
+    from gapath.metrics import nondominated
+
+    Fs = [np.load(p)["F"] for p in paths]
+    allF = np.concatenate(Fs)
+    keep = nondominated(allF)
+    M = allF[keep]
+    M = np.unique(M, axis=0)
+    np.savez_compressed(out, F=M, sources=np.array([str(p) for p in paths]))
+    return dict(
+        merged=str(out),
+        sources=[str(p) for p in paths],
+        sizes=[len(f) for f in Fs],
+        size=len(M),
+        hv_ratio_of_each=[round(hv_ratio(f, M), 6) for f in Fs],
+    )
+
+
+def score(saved, ref_file, label):
+    """The trace of a saved run (``--save``) against the front in ``ref_file``."""
+    z = np.load(saved)
+    R = np.load(ref_file)["F"]
+    tr = z["trace"].tolist()
+    rows = []
+    for k in z.files:
+        if k.startswith("front_"):
+            i = int(k[6:])
+            Fi = z[k]
+            g, t, c, _ = tr[i]
+            rows.append([int(g), t, c, round(hv_ratio(Fi, R), 6) if len(Fi) else 0.0])
+    rows.sort()
+    final = hv_ratio(z["F"], R)
+
+    def reach(level):
+        for g, t, c, h in rows:
+            if h >= level:
+                return dict(gen=g, seconds=t, cpu_seconds=c)
+        return None
+
+    return dict(
+        saved=str(saved),
+        reference=label,
+        reference_file=str(ref_file),
+        reference_size=len(R),
+        gen_run=int(tr[-1][0]) if tr else 0,
+        ga_seconds=tr[-1][1] if tr else None,
+        ga_cpu_seconds=tr[-1][2] if tr else None,
+        ga_size=len(z["F"]),
+        hv_ratio=final,
+        coverage=coverage(z["F"], R),
+        generation0=rows[0] if rows else None,
+        to_095=reach(0.95),
+        to_099=reach(0.99),
+        trace=rows,
     )
 
 
@@ -273,6 +359,9 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--ga-cap", type=float, default=900.0, help="stop the GA after this many CPU seconds")
     ap.add_argument("--exact-cap", type=float, default=900.0, help="give up exact search after this many s")
+    ap.add_argument(
+        "--exact-cpu-cap", type=float, default=None, help="also give up exact search after this many CPU seconds"
+    )
     ap.add_argument("--max-labels", type=int, default=80_000_000)
     ap.add_argument("--exact-only", action="store_true")
     ap.add_argument("--throughput", action="store_true")
@@ -282,26 +371,52 @@ def main(argv=None):
     ap.add_argument("--label", default=None, help="a tag added to every line (e.g. before/after)")
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
     ap.add_argument("--progress", default=None, help="append each trace row to PROGRESS.<instance>")
+    ap.add_argument(
+        "--skip-exact", action="store_true", help="no exact search (reference: --best-known, else the run's own front)"
+    )
+    ap.add_argument("--best-known", default=None, help="an .npz (F) used as the reference front: best known, not exact")
+    ap.add_argument("--save", default=None, help="save each run's fronts to SAVE.<instance>.s<seed>.npz")
+    ap.add_argument("--keep", type=int, default=5, help="with --save: keep the front every KEEP generations")
+    ap.add_argument("--merge", default=None, help="merge the saved runs given as --instances (.npz paths) into MERGE")
+    ap.add_argument("--score", default=None, help="score the saved runs given as --instances against SCORE (.npz)")
     a = ap.parse_args(argv)
     data = data_dir(a.data)
     out = open(a.out, "a") if a.out else None
+
+    def emit(rec):
+        line = json.dumps(rec)
+        print(line, flush=True)
+        if out:
+            out.write(line + "\n")
+            out.flush()
+
+    if a.merge:
+        emit(dict(merge_fronts(a.instances.split(","), a.merge), label=a.label))
+        return 0
+    if a.score:
+        for p in a.instances.split(","):
+            emit(dict(score(p, a.score, a.label or "best known front (merged GA runs), not exact"), label=a.label))
+        return 0
     for name in a.instances.split(","):
         ws = workspace(name, data)
         if a.throughput:
             rec = dict(instance=name, shape=list(ws.shape), pop=a.pop, label=a.label)
             rec.update(throughput(ws, a.pop, a.seed, a.throughput_gens))
         else:
-            F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels)
+            reference = "exact"
+            if a.skip_exact:
+                F, rec = None, dict(instance=name, shape=list(ws.shape), exact_finished=None)
+            else:
+                F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels, a.exact_cpu_cap)
+            if F is None and a.best_known:
+                F, reference = np.load(a.best_known)["F"], "best known front (merged GA runs), not exact"
             if a.label:
                 rec["label"] = a.label
             if not a.exact_only:
                 progress = f"{a.progress}.{name}" if a.progress else None
-                rec.update(anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress))
-        line = json.dumps(rec)
-        print(line, flush=True)
-        if out:
-            out.write(line + "\n")
-            out.flush()
+                save = f"{a.save}.{name}.s{a.seed}.npz" if a.save else None
+                rec.update(anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress, a.keep, save, reference))
+        emit(rec)
     if out:
         out.close()
     return 0
