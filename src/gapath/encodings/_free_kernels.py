@@ -1460,3 +1460,277 @@ def reroute_turns_par(
         for r in range(lo, hi):
             out = _store(rows[r - lo], cnts[r - lo], r, out, out_off, keys)
     return out[: out_off[n]], out_off, keys
+
+
+# ---------------------------------------------------------------------------
+# field decoding with a per-genome bound from the field's patch floors
+# ---------------------------------------------------------------------------
+# The plain field decoder bounds the multiplier by the genome's smallest
+# control gene everywhere (``mmin``), so one low gene anywhere leaves the
+# length part of the heuristic at ``mmin * hlen`` (a quarter of the length
+# for a field that reaches 0) and the search close to a Dijkstra over the map.
+# The bilinear field is at least the smallest of its four corner genes over
+# each patch between control points (``pf``), so a step into a cell of a patch
+# with floor ``pf`` costs at least ``a * step * M(pf) + b * extra``,
+# ``M(x) = exp(beta (2 x - 1))``. With levels ``gmin = l_0 < l_1 < .. < l_K``
+# taken among the floors and ``L_k`` the patches whose floor is below ``l_k``,
+# the layer-cake sum over the levels bounds the length part of any path from
+# ``v`` to ``t``:
+#
+#     M(l_0) hlen(v) + sum_k (M(l_k) - M(l_{k-1})) T_k(v),
+#     T_k(v) = min(hlen(v), max(c_k(v) - 1, 0) + c_k(t)),
+#
+# ``c_k`` the Chebyshev distance in cells to ``L_k`` (a path spends at least
+# ``T_k`` of its length outside ``L_k``: it never enters ``L_k``, or it needs
+# ``c_k(v) - 1`` steps before its first cell there and ``c_k(t)`` after its
+# last). The bound is consistent (a step into ``v`` lowers it by at most
+# ``step * M(floor of v's patch, rounded down to a level)``), so the search
+# returns an optimal path of the same step cost as the plain decoder: the
+# same path unless two paths have exactly the same cost (tie-breaking among
+# equal keys follows the heuristic; not seen on the samples measured in
+# docs/results/free_paths.md, "Large maps: decoding").
+
+#: Levels of the patch-floor bound (see above); 0 switches it off.
+FIELD_LEVELS = 4
+
+
+@numba.njit(cache=True)
+def field_patch_tables(h, w, gy, gx):
+    """Per-map tables of the patch-floor bound: ``prow (h,)`` / ``pcol (w,)``
+    the patch row / column of each cell row / column (as
+    :func:`_field_value` interpolates), ``drow (h, gy - 1)`` / ``dcol (w,
+    gx - 1)`` the distance in rows (columns) from each row (column) to each
+    patch row (column) (0 inside)."""
+    prow = np.empty(h, np.int64)
+    pcol = np.empty(w, np.int64)
+    for r in range(h):
+        prow[r] = min(int(r * (gy - 1) / max(h - 1, 1)), gy - 2)
+    for c in range(w):
+        pcol[c] = min(int(c * (gx - 1) / max(w - 1, 1)), gx - 2)
+    drow = np.empty((h, gy - 1))
+    dcol = np.empty((w, gx - 1))
+    for i in range(gy - 1):
+        lo, hi = h, -1
+        for r in range(h):
+            if prow[r] == i:
+                lo = min(lo, r)
+                hi = max(hi, r)
+        for r in range(h):
+            drow[r, i] = 1e18 if hi < 0 else max(0, lo - r, r - hi)
+    for j in range(gx - 1):
+        lo, hi = w, -1
+        for c in range(w):
+            if pcol[c] == j:
+                lo = min(lo, c)
+                hi = max(hi, c)
+        for c in range(w):
+            dcol[c, j] = 1e18 if hi < 0 else max(0, lo - c, c - hi)
+    return prow, pcol, drow, dcol
+
+
+@numba.njit(cache=True)
+def _field_levels(genes, gy, gx, beta, gmin, nlev, drow, E, dlt, pf):
+    """The genome's levels: fills ``E[k, r, j]`` (the row distance from row
+    ``r`` to the nearest patch of column ``j`` in ``L_k``) and ``dlt[k]``
+    (``M(l_k) - M(l_{k-1})``); returns the number of levels kept."""
+    npr = gy - 1
+    npc = gx - 1
+    n = npr * npc
+    for i in range(npr):
+        for j in range(npc):
+            pf[i * npc + j] = min(
+                min(genes[i * gx + j], genes[i * gx + j + 1]),
+                min(genes[(i + 1) * gx + j], genes[(i + 1) * gx + j + 1]),
+            )
+    srt = np.sort(pf[:n])
+    prev = gmin
+    mprev = math.exp(beta * (2.0 * gmin - 1.0))
+    k = 0
+    h = drow.shape[0]
+    for q in range(1, nlev + 1):
+        lev = srt[min(n - 1, (q * n) // (nlev + 1))]
+        if lev <= prev:
+            continue
+        mlev = math.exp(beta * (2.0 * lev - 1.0))
+        dlt[k] = mlev - mprev
+        for j in range(npc):
+            for r in range(h):
+                best = 1e18
+                for i in range(npr):
+                    if pf[i * npc + j] < lev and drow[r, i] < best:
+                        best = drow[r, i]
+                E[k, r, j] = best
+        prev = lev
+        mprev = mlev
+        k += 1
+    return k
+
+
+@numba.njit(cache=True, inline="always")
+def _cheb(E, k, r, c, dcol):
+    best = 1e18
+    for j in range(dcol.shape[1]):
+        d = max(E[k, r, j], dcol[c, j])
+        if d < best:
+            best = d
+    return best
+
+
+@numba.njit(cache=True, inline="always")
+def _bound_h(v, w, hl, mmin, nk, E, dlt, ct, dcol):
+    """The length part of the patch-floor bound at cell ``v`` (see above)."""
+    r = v // w
+    c = v - r * w
+    hv = mmin * hl
+    for k in range(nk):
+        d = max(_cheb(E, k, r, c, dcol) - 1.0, 0.0) + ct[k]
+        hv += dlt[k] * min(hl, d)
+    return hv
+
+
+@numba.njit(cache=True)
+def _field_one_lb(
+    X, i, gy, gx, beta, flat_occ, h, w, extra, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext,
+    nlev, drow, dcol, genes, state, g, came, heap, touched, mcache, hcache, buf, E, dlt, ct, pf,
+):  # fmt: skip
+    """:func:`_field_one` with the patch-floor bound as heuristic: the path of
+    genome ``X[i]`` into ``buf``; returns its number of cells."""
+    nf = gy * gx
+    gmin = 1.0
+    for j in range(nf):
+        genes[j] = min(max(X[i, j], 0.0), 1.0)
+        gmin = min(gmin, genes[j])
+    a, b = _weights(X[i, nf], lam_lo, lam_hi)
+    mmin = math.exp(beta * (2.0 * gmin - 1.0))
+    nk = _field_levels(genes, gy, gx, beta, gmin, nlev, drow, E, dlt, pf) if nlev > 0 else 0
+    tr = t // w
+    tc = t - tr * w
+    for k in range(nk):
+        ct[k] = _cheb(E, k, tr, tc, dcol)
+    offset = np.empty(8, np.int64)
+    for k in range(8):
+        offset[k] = DR[k] * w + DC[k]
+    g[s] = 0.0
+    touched[0] = s
+    n_touched = 1
+    hs = a * _bound_h(s, w, hlen[s], mmin, nk, E, dlt, ct, dcol) + b * hext[s]
+    hcache[s] = hs
+    size, held = open_push(heap, state, 0, NOT_HELD, hs, hs, s)
+    reached = False
+    while True:
+        u, size, held = open_pop(heap, state, size, held)
+        if u < 0:
+            break
+        state[u] = _CLOSED
+        if u == t:
+            reached = True
+            break
+        ur = u // w
+        uc = u - ur * w
+        moves = move_mask(flat_occ, h, w, ur, uc, corner_cutting)
+        gu = g[u]
+        for k in range(8):
+            if not (moves >> k) & 1:
+                continue
+            v = u + offset[k]
+            sv = state[v]
+            if sv == _CLOSED:
+                continue
+            if sv == _UNSEEN:
+                vr = ur + DR[k]
+                vc = uc + DC[k]
+                mcache[v] = math.exp(beta * (2.0 * _field_value(genes, gy, gx, h, w, vr, vc) - 1.0))
+            ng = gu + a * STEP[k] * mcache[v] + b * extra[v]
+            if sv != _UNSEEN and ng >= g[v]:
+                continue
+            g[v] = ng
+            came[v] = k
+            if sv == _UNSEEN:
+                hv = a * _bound_h(v, w, hlen[v], mmin, nk, E, dlt, ct, dcol) + b * hext[v]
+                hcache[v] = hv
+                touched[n_touched] = v
+                n_touched += 1
+                size, held = open_push(heap, state, size, held, ng + hv, hv, v)
+            else:
+                hv = hcache[v]
+                held = open_decrease(heap, state, held, ng + hv, hv, v)
+    for j in range(n_touched):
+        state[touched[j]] = _UNSEEN
+    if not reached:
+        return 0
+    m = 1
+    v = t
+    while v != s:
+        v -= offset[came[v]]
+        m += 1
+    v = t
+    for j in range(m - 1, -1, -1):
+        buf[j] = v
+        if j > 0:
+            v -= offset[came[v]]
+    return m
+
+
+@numba.njit(cache=True)
+def decode_field_lb(X, gy, gx, beta, occ, extra, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext, nlev, drow, dcol):
+    """:func:`decode_field` searching with the patch-floor bound (``nlev``
+    levels; ``drow``, ``dcol`` from :func:`field_patch_tables`): paths of the
+    same step cost (the same paths but for exact ties)."""
+    h, w = occ.shape
+    flat_occ = occ.ravel()
+    n = X.shape[0]
+    state, g, came, heap, touched, mcache, buf = _scratch(h * w)
+    hcache = np.empty(h * w)
+    flat = np.empty(max(16, n * (h + w)), np.int64)
+    offsets = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    genes = np.empty(gy * gx)
+    kmax = max(nlev, 1)
+    E = np.empty((kmax, h, gx - 1))
+    dlt = np.empty(kmax)
+    ct = np.empty(kmax)
+    pf = np.empty((gy - 1) * (gx - 1))
+    for i in range(n):
+        cnt = _field_one_lb(
+            X, i, gy, gx, beta, flat_occ, h, w, extra, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext,
+            nlev, drow, dcol, genes, state, g, came, heap, touched, mcache, hcache, buf, E, dlt, ct, pf,
+        )  # fmt: skip
+        flat = _store(buf, cnt, i, flat, offsets, keys)
+    return flat[: offsets[n]], offsets, keys
+
+
+@numba.njit(cache=True, parallel=True)
+def decode_field_lb_par(
+    X, gy, gx, beta, occ, extra, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext, nlev, drow, dcol, nt
+):
+    """:func:`decode_field_lb` on ``nt`` threads (the same paths for any ``nt``)."""
+    h, w = occ.shape
+    hw = h * w
+    flat_occ = occ.ravel()
+    n = X.shape[0]
+    state, g, came, heap, touched, mcache, buf = _scratch2(nt, hw)
+    hcache = np.empty((nt, hw))
+    genes = np.empty((nt, gy * gx))
+    kmax = max(nlev, 1)
+    E = np.empty((nt, kmax, h, gx - 1))
+    dlt = np.empty((nt, kmax))
+    ct = np.empty((nt, kmax))
+    pf = np.empty((nt, (gy - 1) * (gx - 1)))
+    bsz = _block(nt, hw)
+    rows = np.empty((bsz, hw), np.int64)
+    cnts = np.zeros(bsz, np.int64)
+    flat = np.empty(max(16, n * (h + w)), np.int64)
+    offsets = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    for lo in range(0, n, bsz):
+        hi = min(n, lo + bsz)
+        for k in numba.prange(nt):
+            for i in range(lo + k, hi, nt):
+                cnts[i - lo] = _field_one_lb(
+                    X, i, gy, gx, beta, flat_occ, h, w, extra, s, t, corner_cutting, lam_lo, lam_hi, hlen, hext,
+                    nlev, drow, dcol, genes[k], state[k], g[k], came[k], heap[k], touched[k], mcache[k],
+                    hcache[k], rows[i - lo], E[k], dlt[k], ct[k], pf[k],
+                )  # fmt: skip
+        for i in range(lo, hi):
+            flat = _store(rows[i - lo], cnts[i - lo], i, flat, offsets, keys)
+    return flat[: offsets[n]], offsets, keys
