@@ -33,7 +33,15 @@ generation), and ``reference`` says so. ``--throughput`` instead prints decode+e
 (paths per second of wall time and of process CPU time, ``--pop`` random
 genomes, cache cold) and the seconds per
 generation of a short GA run (``--throughput-gens`` generations after the
-first population; median), one line per instance.
+first population; median), one line per instance. ``--expansions N``
+analyses the field decoder's search on N genomes (see :func:`expansions`).
+
+Where exact search does not finish, the best known front is the merge of
+long GA runs: run them with ``--skip-exact --save PREFIX`` (the fronts are
+written as the run goes, so a run stopped early keeps them), merge them
+with ``--merge OUT.npz --instances A.npz,B.npz`` and score a run against the
+merge with ``--score OUT.npz --instances RUN.npz``; the lines then say
+"best known front (merged GA runs), not exact".
 
 Usage::
 
@@ -162,15 +170,24 @@ class _Trace(Callback):
     (every ``keep`` generations) to be measured against the run's final
     front afterwards."""
 
-    def __init__(self, reference, cap, keep=5, progress=None):
+    def __init__(self, reference, cap, keep=5, progress=None, save=None):
         super().__init__()
         self.progress = progress
+        self.save = save
         self.hv = None if reference is None else HypervolumeRatioCallback(reference)
         self.t0, self.c0 = time.perf_counter(), time.process_time()
         self.spent = self.cpu_spent = 0.0
         self.cap, self.keep = cap, keep
         self.trace: list[list[float]] = []
         self.fronts: list = []
+
+    def dump(self, F):
+        """Write the fronts kept so far (and ``F``, the latest) to ``save``."""
+        Path(self.save).parent.mkdir(parents=True, exist_ok=True)
+        tmp = f"{self.save}.tmp.npz"
+        kept = {f"front_{i}": Fi for i, Fi in self.fronts}
+        np.savez_compressed(tmp, F=np.asarray(F, float), trace=np.asarray(self.trace, float), **kept)
+        os.replace(tmp, self.save)
 
     def initialize(self, algorithm):
         if self.hv is not None:
@@ -191,6 +208,11 @@ class _Trace(Callback):
         ga = time.perf_counter() - self.t0 - self.spent
         cpu = time.process_time() - self.c0 - self.cpu_spent
         self.trace.append([g, round(ga, 3), round(cpu, 3), round(h, 6)])
+        if self.save and self.hv is None and self.fronts and self.fronts[-1][0] == len(self.trace) - 1:
+            t, c = time.perf_counter(), time.process_time()
+            self.dump(self.fronts[-1][1])  # a run stopped early keeps what it had
+            self.spent += time.perf_counter() - t
+            self.cpu_spent += time.process_time() - c
         if self.progress:  # partial figures of a run that may not finish
             with open(self.progress, "a") as f:
                 f.write(json.dumps(self.trace[-1]) + "\n")
@@ -204,13 +226,11 @@ def anytime(ws, F, pop, gen, seed, cap, progress=None, keep=5, save=None, refere
     own final front). ``save``: write the run's final front and the fronts
     kept every ``keep`` generations (with their trace rows) to this ``.npz``,
     to be measured against another front afterwards (``--score``)."""
-    tracker = _Trace(F if save is None else None, cap, keep=keep, progress=progress)
+    tracker = _Trace(F if save is None else None, cap, keep=keep, progress=progress, save=save)
     res = solve(ws, objectives=OBJECTIVES, paths="free", pop_size=pop, n_gen=gen, seed=seed, callback=tracker)
     tr = tracker.trace
     if save is not None:
-        Path(save).parent.mkdir(parents=True, exist_ok=True)
-        kept = {f"front_{i}": Fi for i, Fi in tracker.fronts}
-        np.savez_compressed(save, F=np.asarray(res.front.F, float), trace=np.asarray(tr, float), **kept)
+        tracker.dump(res.front.F)
         if F is not None:
             for i, Fi in tracker.fronts:
                 tr[i][3] = round(hv_ratio(Fi, F), 6) if len(Fi) else 0.0
@@ -309,6 +329,81 @@ def score(saved, ref_file, label):
     )
 
 
+def expansions(ws, n, seed, gens):
+    """Why the field decoder's search is close to a Dijkstra: for ``n``
+    genomes of a short GA run (the offspring of generation ``gens``, as
+    :func:`solve` makes them; ``gens == 0``: uniform random genomes) the share
+    of the reachable cells an A* search with the decoder's heuristic must
+    expand (``g(s, v) + h(v) <= C*``, exact ``g`` by Dijkstra), the heuristic
+    at the start as a share of the true cost-to-go, and the same two for the
+    best bound of the weight-bin kind (the exact cost-to-go of ``step + (b /
+    (a mmin)) extra``, scaled by ``a mmin``: what costs-to-go cached per
+    weight could give at most). Uses scipy's Dijkstra (analysis only)."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    from gapath.encodings import _free_kernels as K
+    from gapath.grid import DC, DR, STEP, move_mask
+
+    problem = FreePathProblem(ws, OBJECTIVES)
+    enc = problem.encoding
+    gy, gx = enc.field_shape
+    h, w = enc.shape
+    if gens > 0:
+        r = solve(ws, objectives=OBJECTIVES, paths="free", pop_size=200, n_gen=gens, seed=seed)
+        alg = r.pymoo_result.algorithm
+        X = (alg.off if alg.off is not None else alg.pop).get("X")[:n]
+    else:
+        X = np.random.default_rng(seed).random((n, problem.n_var))
+    occ = enc._occ.ravel()
+    rows, cols, ks = [], [], []
+    for u in np.flatnonzero(~occ):
+        mm = move_mask(occ, h, w, u // w, u % w, enc._cc)
+        for k in range(8):
+            if (mm >> k) & 1:
+                rows.append(u)
+                cols.append(u + DR[k] * w + DC[k])
+                ks.append(k)
+    rows, cols = np.array(rows), np.array(cols)
+    steps = np.asarray(STEP)[np.array(ks)]
+    # the bilinear field at every cell, as the kernel interpolates it
+    rr = np.arange(h) * (gy - 1) / max(h - 1, 1)
+    cc = np.arange(w) * (gx - 1) / max(w - 1, 1)
+    i0 = np.minimum(rr.astype(int), gy - 2)
+    j0 = np.minimum(cc.astype(int), gx - 2)
+    ar, ac = (rr - i0)[:, None], (cc - j0)[None, :]
+    out = []
+    for x in X:
+        genes = np.clip(x[:-1], 0, 1).reshape(gy, gx)
+        a, b = K._weights.py_func(x[-1], *enc.lam_range)
+        g00, g01 = genes[i0][:, j0], genes[i0][:, j0 + 1]
+        g10, g11 = genes[i0 + 1][:, j0], genes[i0 + 1][:, j0 + 1]
+        f = (1 - ar) * ((1 - ac) * g00 + ac * g01) + ar * ((1 - ac) * g10 + ac * g11)
+        m = np.exp(enc.beta * (2 * f.ravel() - 1))
+        G = csr_matrix((a * steps * m[cols] + b * enc._extra[cols], (rows, cols)), shape=(h * w, h * w))
+        gs = dijkstra(G, indices=enc._s)
+        gt = dijkstra(G.T.tocsr(), indices=enc._t)
+        C = gs[enc._t]
+        mmin = float(np.exp(enc.beta * (2 * genes.min() - 1)))
+        hp = a * mmin * enc._hlen + b * enc._hext
+        Gl = csr_matrix((steps + b / (a * mmin) * enc._extra[cols], (rows, cols)), shape=(h * w, h * w))
+        hb = dijkstra(Gl.T.tocsr(), indices=enc._t) * a * mmin
+        reach = np.isfinite(gs)
+        out.append(
+            dict(
+                weight_gene=round(float(x[-1]), 3),
+                gene_min=round(float(genes.min()), 3),
+                expanded=round(float(np.mean((gs + hp <= C)[reach])), 4),
+                h_share=round(float(hp[enc._s] / C), 3),
+                bin_expanded=round(float(np.mean((gs + hb <= C)[reach])), 4),
+                bin_h_share=round(float(hb[enc._s] / C), 3),
+                path_share=round(float(np.mean((gs + gt <= C * (1 + 1e-9))[reach])), 4),
+            )
+        )
+    med = {k: float(np.median([o[k] for o in out])) for k in out[0]}
+    return dict(n=len(out), gens=gens, reachable=enc.n_reachable, median=med, genomes=out)
+
+
 class _Clock(Callback):
     """Wall time after every generation."""
 
@@ -366,6 +461,8 @@ def main(argv=None):
     ap.add_argument("--exact-only", action="store_true")
     ap.add_argument("--throughput", action="store_true")
     ap.add_argument("--throughput-gens", type=int, default=3)
+    ap.add_argument("--expansions", type=int, default=0, help="analyse the decoder's search on this many genomes")
+    ap.add_argument("--expansions-gens", type=int, default=25, help="...of the offspring of this generation")
     ap.add_argument("--cache", default=str(ROOT / "build" / "anytime"))
     ap.add_argument("--data", default=None)
     ap.add_argument("--label", default=None, help="a tag added to every line (e.g. before/after)")
@@ -399,7 +496,10 @@ def main(argv=None):
         return 0
     for name in a.instances.split(","):
         ws = workspace(name, data)
-        if a.throughput:
+        if a.expansions:
+            rec = dict(instance=name, shape=list(ws.shape), label=a.label)
+            rec.update(expansions(ws, a.expansions, a.seed, a.expansions_gens))
+        elif a.throughput:
             rec = dict(instance=name, shape=list(ws.shape), pop=a.pop, label=a.label)
             rec.update(throughput(ws, a.pop, a.seed, a.throughput_gens))
         else:
