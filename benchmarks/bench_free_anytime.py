@@ -455,13 +455,18 @@ def main(argv=None):
     ap.add_argument("--ga-cap", type=float, default=900.0, help="stop the GA after this many CPU seconds")
     ap.add_argument("--exact-cap", type=float, default=900.0, help="give up exact search after this many s")
     ap.add_argument(
-        "--exact-cpu-cap", type=float, default=None, help="also give up exact search after this many CPU seconds"
+        "--exact-cpu-cap",
+        type=float,
+        default=None,
+        help="also give up exact search after this many CPU seconds",
     )
     ap.add_argument("--max-labels", type=int, default=80_000_000)
     ap.add_argument("--exact-only", action="store_true")
     ap.add_argument("--throughput", action="store_true")
     ap.add_argument("--throughput-gens", type=int, default=3)
-    ap.add_argument("--expansions", type=int, default=0, help="analyse the decoder's search on this many genomes")
+    ap.add_argument(
+        "--expansions", type=int, default=0, help="analyse the decoder's search on this many genomes"
+    )
     ap.add_argument("--expansions-gens", type=int, default=25, help="...of the offspring of this generation")
     ap.add_argument("--cache", default=str(ROOT / "build" / "anytime"))
     ap.add_argument("--data", default=None)
@@ -469,13 +474,21 @@ def main(argv=None):
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
     ap.add_argument("--progress", default=None, help="append each trace row to PROGRESS.<instance>")
     ap.add_argument(
-        "--skip-exact", action="store_true", help="no exact search (reference: --best-known, else the run's own front)"
+        "--skip-exact",
+        action="store_true",
+        help="no exact search (reference: --best-known, else the run's own front)",
     )
-    ap.add_argument("--best-known", default=None, help="an .npz (F) used as the reference front: best known, not exact")
+    ap.add_argument(
+        "--best-known", default=None, help="an .npz (F) used as the reference front: best known, not exact"
+    )
     ap.add_argument("--save", default=None, help="save each run's fronts to SAVE.<instance>.s<seed>.npz")
     ap.add_argument("--keep", type=int, default=5, help="with --save: keep the front every KEEP generations")
-    ap.add_argument("--merge", default=None, help="merge the saved runs given as --instances (.npz paths) into MERGE")
-    ap.add_argument("--score", default=None, help="score the saved runs given as --instances against SCORE (.npz)")
+    ap.add_argument(
+        "--merge", default=None, help="merge the saved runs given as --instances (.npz paths) into MERGE"
+    )
+    ap.add_argument(
+        "--score", default=None, help="score the saved runs given as --instances against SCORE (.npz)"
+    )
     a = ap.parse_args(argv)
     data = data_dir(a.data)
     out = open(a.out, "a") if a.out else None
@@ -492,7 +505,12 @@ def main(argv=None):
         return 0
     if a.score:
         for p in a.instances.split(","):
-            emit(dict(score(p, a.score, a.label or "best known front (merged GA runs), not exact"), label=a.label))
+            emit(
+                dict(
+                    score(p, a.score, a.label or "best known front (merged GA runs), not exact"),
+                    label=a.label,
+                )
+            )
         return 0
     for name in a.instances.split(","):
         ws = workspace(name, data)
