@@ -33,7 +33,15 @@ generation), and ``reference`` says so. ``--throughput`` instead prints decode+e
 (paths per second of wall time and of process CPU time, ``--pop`` random
 genomes, cache cold) and the seconds per
 generation of a short GA run (``--throughput-gens`` generations after the
-first population; median), one line per instance.
+first population; median), one line per instance. ``--expansions N``
+analyses the field decoder's search on N genomes (see :func:`expansions`).
+
+Where exact search does not finish, the best known front is the merge of
+long GA runs: run them with ``--skip-exact --save PREFIX`` (the fronts are
+written as the run goes, so a run stopped early keeps them), merge them
+with ``--merge OUT.npz --instances A.npz,B.npz`` and score a run against the
+merge with ``--score OUT.npz --instances RUN.npz``; the lines then say
+"best known front (merged GA runs), not exact".
 
 Usage::
 
@@ -107,32 +115,46 @@ class _Stop(Exception):
     pass
 
 
-def exact(name, ws, cache: Path, cap: float, max_labels):
-    """The cached exact front of ``name``: ``(F or None, record)``."""
+def exact(name, ws, cache: Path, cap: float, max_labels, cpu_cap=None):
+    """The cached exact front of ``name``: ``(F or None, record)``.
+
+    ``cap`` bounds the search's wall seconds; ``cpu_cap`` (when given) also
+    its process CPU seconds (on a loaded machine the wall clock runs several
+    times faster than the search's own CPU time: give a CPU cap and a wall
+    cap as a safety)."""
     f = cache / f"{name}.npz"
     if f.exists():
         z = np.load(f, allow_pickle=False)
         rec = json.loads(str(z["record"]))
         return (z["F"] if rec["exact_finished"] else None), rec
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     last: dict = {}
 
     def progress(info):
         last.update(info)
+        if cpu_cap is not None and time.process_time() - c0 > cpu_cap:
+            raise _Stop
         if time.perf_counter() - t0 > cap:
             raise _Stop
 
     rec = dict(instance=name, shape=list(ws.shape), start=list(ws.start), goal=list(ws.goal))
+    rec["exact_cap"] = dict(wall_seconds=cap, cpu_seconds=cpu_cap)
     F = None
     try:
         front = free_front(ws, OBJECTIVES, max_labels=max_labels, progress=progress)
         F = np.asarray(front.F, float)
-        rec.update(exact_finished=True, exact_size=len(F), exact_seconds=time.perf_counter() - t0)
+        rec.update(
+            exact_finished=True,
+            exact_size=len(F),
+            exact_seconds=time.perf_counter() - t0,
+            exact_cpu_seconds=time.process_time() - c0,
+        )
         rec["exact_stats"] = {k: v for k, v in front.stats.items() if isinstance(v, (int, float))}
     except (_Stop, Exception) as e:  # the cap, the label budget or memory: not finished
         rec.update(
             exact_finished=False,
             exact_seconds=time.perf_counter() - t0,
+            exact_cpu_seconds=time.process_time() - c0,
             exact_stopped_by="cap" if isinstance(e, _Stop) else f"{type(e).__name__}: {e}",
             exact_progress={k: v for k, v in last.items() if isinstance(v, (int, float))},
         )
@@ -148,15 +170,24 @@ class _Trace(Callback):
     (every ``keep`` generations) to be measured against the run's final
     front afterwards."""
 
-    def __init__(self, reference, cap, keep=5, progress=None):
+    def __init__(self, reference, cap, keep=5, progress=None, save=None):
         super().__init__()
         self.progress = progress
+        self.save = save
         self.hv = None if reference is None else HypervolumeRatioCallback(reference)
         self.t0, self.c0 = time.perf_counter(), time.process_time()
         self.spent = self.cpu_spent = 0.0
         self.cap, self.keep = cap, keep
         self.trace: list[list[float]] = []
         self.fronts: list = []
+
+    def dump(self, F):
+        """Write the fronts kept so far (and ``F``, the latest) to ``save``."""
+        Path(self.save).parent.mkdir(parents=True, exist_ok=True)
+        tmp = f"{self.save}.tmp.npz"
+        kept = {f"front_{i}": Fi for i, Fi in self.fronts}
+        np.savez_compressed(tmp, F=np.asarray(F, float), trace=np.asarray(self.trace, float), **kept)
+        os.replace(tmp, self.save)
 
     def initialize(self, algorithm):
         if self.hv is not None:
@@ -170,13 +201,18 @@ class _Trace(Callback):
             h = self.hv.history[-1][2]
         else:
             h = float("nan")
-            if g % self.keep == 1 or self.keep == 1:
+            if g % self.keep == 1 or self.keep == 1 or algorithm.termination.has_terminated():
                 self.fronts.append((len(self.trace), run_archive(algorithm).F.copy()))
         self.spent += time.perf_counter() - t
         self.cpu_spent += time.process_time() - c
         ga = time.perf_counter() - self.t0 - self.spent
         cpu = time.process_time() - self.c0 - self.cpu_spent
         self.trace.append([g, round(ga, 3), round(cpu, 3), round(h, 6)])
+        if self.save and self.hv is None and self.fronts and self.fronts[-1][0] == len(self.trace) - 1:
+            t, c = time.perf_counter(), time.process_time()
+            self.dump(self.fronts[-1][1])  # a run stopped early keeps what it had
+            self.spent += time.perf_counter() - t
+            self.cpu_spent += time.process_time() - c
         if self.progress:  # partial figures of a run that may not finish
             with open(self.progress, "a") as f:
                 f.write(json.dumps(self.trace[-1]) + "\n")
@@ -184,14 +220,25 @@ class _Trace(Callback):
             algorithm.termination.force_termination = True
 
 
-def anytime(ws, F, pop, gen, seed, cap, progress=None):
-    """One GA run's trace against the exact front ``F`` (or, when None,
-    against the run's own final front)."""
-    tracker = _Trace(F, cap, progress=progress)
+def anytime(ws, F, pop, gen, seed, cap, progress=None, keep=5, save=None, reference="exact"):
+    """One GA run's trace against the front ``F`` (the exact front, or the
+    best known one when ``reference`` says so; when None, against the run's
+    own final front). ``save``: write the run's final front and the fronts
+    kept every ``keep`` generations (with their trace rows) to this ``.npz``,
+    to be measured against another front afterwards (``--score``)."""
+    tracker = _Trace(F if save is None else None, cap, keep=keep, progress=progress, save=save)
     res = solve(ws, objectives=OBJECTIVES, paths="free", pop_size=pop, n_gen=gen, seed=seed, callback=tracker)
     tr = tracker.trace
+    if save is not None:
+        tracker.dump(res.front.F)
+        if F is not None:
+            for i, Fi in tracker.fronts:
+                tr[i][3] = round(hv_ratio(Fi, F), 6) if len(Fi) else 0.0
+            tr[-1][3] = round(hv_ratio(res.front.F, F), 6)
+            tr = [row for row in tr if row[3] == row[3]]  # the measured rows (NaN elsewhere)
     ref = F
     if F is None:  # the best known front: the run's own archive at the end
+        reference = "final GA front"
         ref = res.front.F
         for row in tr:
             row[3] = None
@@ -210,7 +257,7 @@ def anytime(ws, F, pop, gen, seed, cap, progress=None):
         pop=pop,
         gen_run=len(tracker.trace),
         seed=seed,
-        reference="exact" if F is not None else "final GA front",
+        reference=reference,
         ga_seconds=tracker.trace[-1][1] if tr else None,
         ga_cpu_seconds=tracker.trace[-1][2] if tr else None,
         ga_size=len(res.front),
@@ -221,6 +268,140 @@ def anytime(ws, F, pop, gen, seed, cap, progress=None):
         to_099=reach(0.99),
         trace=tr,
     )
+
+
+def merge_fronts(paths, out):
+    """The non-dominated union of the final fronts saved in ``paths``
+    (``--save``), written to ``out`` (``.npz``: ``F`` and the sources)."""
+    from gapath.metrics import nondominated
+
+    Fs = [np.load(p)["F"] for p in paths]
+    allF = np.concatenate(Fs)
+    keep = nondominated(allF)
+    M = allF[keep]
+    M = np.unique(M, axis=0)
+    np.savez_compressed(out, F=M, sources=np.array([str(p) for p in paths]))
+    return dict(
+        merged=str(out),
+        sources=[str(p) for p in paths],
+        sizes=[len(f) for f in Fs],
+        size=len(M),
+        hv_ratio_of_each=[round(hv_ratio(f, M), 6) for f in Fs],
+    )
+
+
+def score(saved, ref_file, label):
+    """The trace of a saved run (``--save``) against the front in ``ref_file``."""
+    z = np.load(saved)
+    R = np.load(ref_file)["F"]
+    tr = z["trace"].tolist()
+    rows = []
+    for k in z.files:
+        if k.startswith("front_"):
+            i = int(k[6:])
+            Fi = z[k]
+            g, t, c, _ = tr[i]
+            rows.append([int(g), t, c, round(hv_ratio(Fi, R), 6) if len(Fi) else 0.0])
+    rows.sort()
+    final = hv_ratio(z["F"], R)
+
+    def reach(level):
+        for g, t, c, h in rows:
+            if h >= level:
+                return dict(gen=g, seconds=t, cpu_seconds=c)
+        return None
+
+    return dict(
+        saved=str(saved),
+        reference=label,
+        reference_file=str(ref_file),
+        reference_size=len(R),
+        gen_run=int(tr[-1][0]) if tr else 0,
+        ga_seconds=tr[-1][1] if tr else None,
+        ga_cpu_seconds=tr[-1][2] if tr else None,
+        ga_size=len(z["F"]),
+        hv_ratio=final,
+        coverage=coverage(z["F"], R),
+        generation0=rows[0] if rows else None,
+        to_095=reach(0.95),
+        to_099=reach(0.99),
+        trace=rows,
+    )
+
+
+def expansions(ws, n, seed, gens):
+    """Why the field decoder's search is close to a Dijkstra: for ``n``
+    genomes of a short GA run (the offspring of generation ``gens``, as
+    :func:`solve` makes them; ``gens == 0``: uniform random genomes) the share
+    of the reachable cells an A* search with the decoder's heuristic must
+    expand (``g(s, v) + h(v) <= C*``, exact ``g`` by Dijkstra), the heuristic
+    at the start as a share of the true cost-to-go, and the same two for the
+    best bound of the weight-bin kind (the exact cost-to-go of ``step + (b /
+    (a mmin)) extra``, scaled by ``a mmin``: what costs-to-go cached per
+    weight could give at most). Uses scipy's Dijkstra (analysis only)."""
+    from scipy.sparse import csr_matrix
+    from scipy.sparse.csgraph import dijkstra
+
+    from gapath.encodings import _free_kernels as K
+    from gapath.grid import DC, DR, STEP, move_mask
+
+    problem = FreePathProblem(ws, OBJECTIVES)
+    enc = problem.encoding
+    gy, gx = enc.field_shape
+    h, w = enc.shape
+    if gens > 0:
+        r = solve(ws, objectives=OBJECTIVES, paths="free", pop_size=200, n_gen=gens, seed=seed)
+        alg = r.pymoo_result.algorithm
+        X = (alg.off if alg.off is not None else alg.pop).get("X")[:n]
+    else:
+        X = np.random.default_rng(seed).random((n, problem.n_var))
+    occ = enc._occ.ravel()
+    rows, cols, ks = [], [], []
+    for u in np.flatnonzero(~occ):
+        mm = move_mask(occ, h, w, u // w, u % w, enc._cc)
+        for k in range(8):
+            if (mm >> k) & 1:
+                rows.append(u)
+                cols.append(u + DR[k] * w + DC[k])
+                ks.append(k)
+    rows, cols = np.array(rows), np.array(cols)
+    steps = np.asarray(STEP)[np.array(ks)]
+    # the bilinear field at every cell, as the kernel interpolates it
+    rr = np.arange(h) * (gy - 1) / max(h - 1, 1)
+    cc = np.arange(w) * (gx - 1) / max(w - 1, 1)
+    i0 = np.minimum(rr.astype(int), gy - 2)
+    j0 = np.minimum(cc.astype(int), gx - 2)
+    ar, ac = (rr - i0)[:, None], (cc - j0)[None, :]
+    out = []
+    for x in X:
+        genes = np.clip(x[:-1], 0, 1).reshape(gy, gx)
+        a, b = K._weights.py_func(x[-1], *enc.lam_range)
+        g00, g01 = genes[i0][:, j0], genes[i0][:, j0 + 1]
+        g10, g11 = genes[i0 + 1][:, j0], genes[i0 + 1][:, j0 + 1]
+        f = (1 - ar) * ((1 - ac) * g00 + ac * g01) + ar * ((1 - ac) * g10 + ac * g11)
+        m = np.exp(enc.beta * (2 * f.ravel() - 1))
+        G = csr_matrix((a * steps * m[cols] + b * enc._extra[cols], (rows, cols)), shape=(h * w, h * w))
+        gs = dijkstra(G, indices=enc._s)
+        gt = dijkstra(G.T.tocsr(), indices=enc._t)
+        C = gs[enc._t]
+        mmin = float(np.exp(enc.beta * (2 * genes.min() - 1)))
+        hp = a * mmin * enc._hlen + b * enc._hext
+        Gl = csr_matrix((steps + b / (a * mmin) * enc._extra[cols], (rows, cols)), shape=(h * w, h * w))
+        hb = dijkstra(Gl.T.tocsr(), indices=enc._t) * a * mmin
+        reach = np.isfinite(gs)
+        out.append(
+            dict(
+                weight_gene=round(float(x[-1]), 3),
+                gene_min=round(float(genes.min()), 3),
+                expanded=round(float(np.mean((gs + hp <= C)[reach])), 4),
+                h_share=round(float(hp[enc._s] / C), 3),
+                bin_expanded=round(float(np.mean((gs + hb <= C)[reach])), 4),
+                bin_h_share=round(float(hb[enc._s] / C), 3),
+                path_share=round(float(np.mean((gs + gt <= C * (1 + 1e-9))[reach])), 4),
+            )
+        )
+    med = {k: float(np.median([o[k] for o in out])) for k in out[0]}
+    return dict(n=len(out), gens=gens, reachable=enc.n_reachable, median=med, genomes=out)
 
 
 class _Clock(Callback):
@@ -273,35 +454,87 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--ga-cap", type=float, default=900.0, help="stop the GA after this many CPU seconds")
     ap.add_argument("--exact-cap", type=float, default=900.0, help="give up exact search after this many s")
+    ap.add_argument(
+        "--exact-cpu-cap",
+        type=float,
+        default=None,
+        help="also give up exact search after this many CPU seconds",
+    )
     ap.add_argument("--max-labels", type=int, default=80_000_000)
     ap.add_argument("--exact-only", action="store_true")
     ap.add_argument("--throughput", action="store_true")
     ap.add_argument("--throughput-gens", type=int, default=3)
+    ap.add_argument(
+        "--expansions", type=int, default=0, help="analyse the decoder's search on this many genomes"
+    )
+    ap.add_argument("--expansions-gens", type=int, default=25, help="...of the offspring of this generation")
     ap.add_argument("--cache", default=str(ROOT / "build" / "anytime"))
     ap.add_argument("--data", default=None)
     ap.add_argument("--label", default=None, help="a tag added to every line (e.g. before/after)")
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
     ap.add_argument("--progress", default=None, help="append each trace row to PROGRESS.<instance>")
+    ap.add_argument(
+        "--skip-exact",
+        action="store_true",
+        help="no exact search (reference: --best-known, else the run's own front)",
+    )
+    ap.add_argument(
+        "--best-known", default=None, help="an .npz (F) used as the reference front: best known, not exact"
+    )
+    ap.add_argument("--save", default=None, help="save each run's fronts to SAVE.<instance>.s<seed>.npz")
+    ap.add_argument("--keep", type=int, default=5, help="with --save: keep the front every KEEP generations")
+    ap.add_argument(
+        "--merge", default=None, help="merge the saved runs given as --instances (.npz paths) into MERGE"
+    )
+    ap.add_argument(
+        "--score", default=None, help="score the saved runs given as --instances against SCORE (.npz)"
+    )
     a = ap.parse_args(argv)
     data = data_dir(a.data)
     out = open(a.out, "a") if a.out else None
-    for name in a.instances.split(","):
-        ws = workspace(name, data)
-        if a.throughput:
-            rec = dict(instance=name, shape=list(ws.shape), pop=a.pop, label=a.label)
-            rec.update(throughput(ws, a.pop, a.seed, a.throughput_gens))
-        else:
-            F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels)
-            if a.label:
-                rec["label"] = a.label
-            if not a.exact_only:
-                progress = f"{a.progress}.{name}" if a.progress else None
-                rec.update(anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress))
+
+    def emit(rec):
         line = json.dumps(rec)
         print(line, flush=True)
         if out:
             out.write(line + "\n")
             out.flush()
+
+    if a.merge:
+        emit(dict(merge_fronts(a.instances.split(","), a.merge), label=a.label))
+        return 0
+    if a.score:
+        for p in a.instances.split(","):
+            emit(
+                dict(
+                    score(p, a.score, a.label or "best known front (merged GA runs), not exact"),
+                    label=a.label,
+                )
+            )
+        return 0
+    for name in a.instances.split(","):
+        ws = workspace(name, data)
+        if a.expansions:
+            rec = dict(instance=name, shape=list(ws.shape), label=a.label)
+            rec.update(expansions(ws, a.expansions, a.seed, a.expansions_gens))
+        elif a.throughput:
+            rec = dict(instance=name, shape=list(ws.shape), pop=a.pop, label=a.label)
+            rec.update(throughput(ws, a.pop, a.seed, a.throughput_gens))
+        else:
+            reference = "exact"
+            if a.skip_exact:
+                F, rec = None, dict(instance=name, shape=list(ws.shape), exact_finished=None)
+            else:
+                F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels, a.exact_cpu_cap)
+            if F is None and a.best_known:
+                F, reference = np.load(a.best_known)["F"], "best known front (merged GA runs), not exact"
+            if a.label:
+                rec["label"] = a.label
+            if not a.exact_only:
+                progress = f"{a.progress}.{name}" if a.progress else None
+                save = f"{a.save}.{name}.s{a.seed}.npz" if a.save else None
+                rec.update(anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress, a.keep, save, reference))
+        emit(rec)
     if out:
         out.close()
     return 0
