@@ -23,10 +23,27 @@ for the last population's front), the generation and seconds at which it first r
 over ``--pop * 5`` random genomes, cache cold). Wall-clock times on a shared
 machine: noisy.
 
+Besides MovingAI maps (any map of the data folder with a
+``-random-1.scen``, e.g. ``den312d``, ``Berlin_1_256``), ``--maps`` takes
+generated instances, one query each (start and goal in opposite corners):
+
+``maze-sN``
+    :func:`gapath.dynamic.scenarios.complex_maze` with seed ``N``, an 11 x 11
+    lattice of 2-cell corridors and 1-cell walls (32 x 32 cells, like
+    MovingAI maze-32-32-2), braided until the shortest path is at most 1.6
+    times the straight line, start and goal the farthest pair of the
+    bottom-left and top-right corridor cells.
+``rooms-sN``
+    :func:`rooms_map` with seed ``N``: 8 x 8 rooms of 4 x 4 free cells
+    behind 1-cell walls (39 x 39 cells), a door of one cell in every wall of
+    a random spanning tree of the rooms and in 30 % of the other walls,
+    start bottom-left, goal top-right.
+
 Usage::
 
-    python benchmarks/bench_free_paths.py [--maps room-32-32-4,...] [--queries 1]
+    python benchmarks/bench_free_paths.py [--maps room-32-32-4,maze-s1,...] [--queries 1]
         [--encodings via,field] [--seed-from weighted,none] [--pop 200] [--gen 200]
+        [--objectives length,vulnerability,smoothness] [--archive-cap N]
 """
 
 from __future__ import annotations
@@ -41,11 +58,13 @@ from pathlib import Path
 import numpy as np
 
 from gapath.convergence import HypervolumeRatioCallback
+from gapath.dynamic.scenarios import complex_maze
 from gapath.loaders import load_movingai, load_scenarios
 from gapath.metrics import coverage, hv_ratio
 from gapath.planners.exact import free_front
 from gapath.problems import FreePathProblem
 from gapath.solver import solve
+from gapath.workspace import Workspace
 
 ROOT = Path(__file__).resolve().parents[1]
 MAPS = ("room-32-32-4", "maze-32-32-2", "random-32-32-20", "random-64-64-10")
@@ -57,6 +76,84 @@ def data_dir(arg=None) -> Path:
     env = os.environ.get("GAPATH_SHARED_DATA")
     base = Path(env) if env else ROOT.parent / "shared" / "data"
     return base / "movingai" / "mapf"
+
+
+def rooms_map(seed: int, rooms: int = 8, inner: int = 4, extra: float = 0.3) -> Workspace:
+    """A generated room map (see the module docstring): ``rooms x rooms``
+    rooms of ``inner x inner`` free cells, 1-cell walls, one door per wall of
+    a random spanning tree (depth-first) plus ``extra`` of the other walls."""
+    rng = np.random.default_rng(seed)
+    p = inner + 1
+    n = rooms * p - 1
+    occ = np.zeros((n, n), bool)
+    for i in range(1, rooms):
+        occ[i * p - 1, :] = True
+        occ[:, i * p - 1] = True
+
+    def door(a, b):
+        (i1, j1), (i2, j2) = sorted((a, b))
+        k = int(rng.integers(inner))
+        if i1 == i2:
+            occ[i1 * p + k, j2 * p - 1] = False
+        else:
+            occ[i2 * p - 1, j1 * p + k] = False
+
+    seen = np.zeros((rooms, rooms), bool)
+    stack, tree = [(rooms - 1, 0)], set()
+    seen[rooms - 1, 0] = True
+    while stack:
+        i, j = stack[-1]
+        nb = [
+            (i + a, j + b)
+            for a, b in ((0, 1), (1, 0), (0, -1), (-1, 0))
+            if 0 <= i + a < rooms and 0 <= j + b < rooms and not seen[i + a, j + b]
+        ]
+        if not nb:
+            stack.pop()
+            continue
+        nxt = nb[int(rng.integers(len(nb)))]
+        door((i, j), nxt)
+        tree.add(tuple(sorted(((i, j), nxt))))
+        seen[nxt] = True
+        stack.append(nxt)
+    for i in range(rooms):
+        for j in range(rooms):
+            for nxt in ((i, j + 1), (i + 1, j)):
+                if nxt[0] < rooms and nxt[1] < rooms and tuple(sorted(((i, j), nxt))) not in tree:
+                    if rng.random() < extra:
+                        door((i, j), nxt)
+    return Workspace(occ, (n - 1, 0), (0, n - 1), corner_cutting=False, name=f"rooms-s{seed}")
+
+
+class _Query:
+    """A generated instance's one query."""
+
+    def __init__(self, ws):
+        self.start, self.goal, self.optimal = ws.start, ws.goal, None
+
+
+def generated(name: str):
+    """The workspace of a generated instance name, or None."""
+    kind, _, s = name.rpartition("-s")
+    if not s.isdigit():
+        return None
+    if kind == "maze":
+        return complex_maze(int(s), rows=11, cols=11, corridor=2, max_detour=1.6, target_distance=1e6)
+    if kind == "rooms":
+        return rooms_map(int(s))
+    return None
+
+
+def instances(folder: Path, name: str, n: int):
+    """``(query, workspace)`` pairs of a map name (see the module docstring)."""
+    ws = generated(name)
+    if ws is not None:
+        return [(_Query(ws), ws)]
+    out = []
+    for sc in long_queries(folder, name, n):
+        ws = load_movingai(folder / f"{name}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
+        out.append((sc, ws))
+    return out
 
 
 def long_queries(folder: Path, name: str, n: int):
@@ -201,10 +298,9 @@ def main(argv=None):
     out = open(a.out, "a") if a.out else None
     options = {} if a.n_via is None else {"n_via": a.n_via}
     for name in a.maps.split(","):
-        for q, sc in enumerate(long_queries(folder, name, a.queries)):
+        for q, (sc, ws) in enumerate(instances(folder, name, a.queries)):
             if a.only is not None and q not in {int(i) for i in a.only.split(",")}:
                 continue
-            ws = load_movingai(folder / f"{name}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
             t0 = time.perf_counter()
             objectives = tuple(a.objectives.split(","))
             ref = free_front(ws, objectives)
