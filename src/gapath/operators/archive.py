@@ -6,14 +6,22 @@ that (three objectives on random maps: exact fronts of 300-600 points).
 :class:`FreePathArchive` is a pymoo callback that keeps, beside the run,
 every feasible non-dominated path it has seen (the offspring of every
 generation, the initial population included), and each generation *refines*
-it: ``n_refine`` archived paths, picked at random, each have one segment
-(a random stretch of the path) replaced by the optimal path between the
-segment's ends under a random weighting of length against the cell cost
+it: ``n_refine`` archived paths (half of them picked by crowding distance,
+favouring the front's sparse regions and its extremes, the others
+uniformly) each have one segment (a random stretch of the path) replaced by
+the optimal path between the segment's ends under a weighting of length
+against the cell cost (random; with two objectives, for the paths picked by
+crowding, between the trade-offs to the path's neighbours on the front)
 (:meth:`gapath.encodings.free.FreeEncoding.reroute`, one numba kernel for
 the whole batch). A Pareto-optimal path of additive objectives is made of
 sub-paths that are Pareto optimal between their ends, so splicing
 weighted-sum sub-paths into front paths reaches front points that no
 weighting of the whole path reaches (the non-supported points).
+
+The archive is updated incrementally (each generation's ``k`` new paths
+against its ``n`` paths: ``O(k n)``) and capped (:data:`CAP` paths by
+default; the most crowded go first, never an extreme, and a path that a
+dropped one dominates is refused).
 
 Re-routed paths have no genome: they stay in the archive and are not fed
 back to the population. :func:`gapath.solver.solve` returns the archive's
@@ -26,11 +34,66 @@ import numpy as np
 from pymoo.core.callback import Callback
 
 from gapath.errors import ConfigError
-from gapath.front import PathFront, select_front
-from gapath.objectives import INTERFERING
+from gapath.front import PathFront
+from gapath.metrics import TOL, close, dedupe
+from gapath.objectives import INTERFERING, SMOOTHNESS
 
 #: Default range of ``log10`` of the re-routing searches' cell-cost weight.
 LAM_RANGE = (-3.0, 12.0)
+#: Decades past ``lam_range``'s top that aimed re-routings reach at the safe end.
+AIM_EXTRA = 2.0
+#: Default cap on the archive's size (see :class:`FreePathArchive`).
+CAP = 5000
+
+
+def dominated_by(B, A, tol: float = TOL) -> np.ndarray:
+    """Which rows of ``B`` some row of ``A`` dominates, up to SPEC's
+    tolerance (as :func:`gapath.metrics.nondominated` with ``tol``).
+
+    Examples
+    --------
+    >>> dominated_by([[2.0, 2.0], [0.0, 3.0], [1.0, 1.0 + 1e-12]], [[1.0, 1.0]]).tolist()
+    [True, False, False]
+    """
+    B, A = np.asarray(B, float), np.asarray(A, float)
+    out = np.zeros(len(B), bool)
+    if len(B) == 0 or len(A) == 0:
+        return out
+    chunk = max(1, 2_000_000 // max(1, A.size))
+    for s in range(0, len(B), chunk):
+        b = B[s : s + chunk, None, :]
+        eq = close(A[None, :, :], b, tol)
+        not_worse = ((A[None, :, :] <= b) | eq).all(axis=2)
+        better = ((A[None, :, :] < b) & ~eq).any(axis=2)
+        out[s : s + chunk] = (not_worse & better).any(axis=1)
+    return out
+
+
+def crowding(F) -> np.ndarray:
+    """Crowding distance of the rows of ``F`` (a non-dominated set): per
+    objective, the gap between a row's two neighbours in that objective's
+    order over the objective's range, summed; ``inf`` for the best and the
+    worst row of each objective (the extremes).
+
+    Examples
+    --------
+    >>> crowding([[0.0, 4.0], [1.0, 2.0], [3.0, 1.0], [4.0, 0.0]]).tolist()
+    [inf, 1.5, 1.25, inf]
+    """
+    F = np.asarray(F, float)
+    n, m = F.shape
+    cd = np.zeros(n)
+    if n <= 2:
+        cd[:] = np.inf
+        return cd
+    for j in range(m):
+        order = np.argsort(F[:, j], kind="stable")
+        f = F[order, j]
+        span = f[-1] - f[0]
+        if span > 0:
+            cd[order[1:-1]] += (f[2:] - f[:-2]) / span
+        cd[order[0]] = cd[order[-1]] = np.inf
+    return cd
 
 
 class FreePathArchive(Callback):
@@ -59,7 +122,8 @@ class FreePathArchive(Callback):
     ------
     ConfigError
         On a problem that is not a free-path problem, a negative
-        ``n_refine`` or a bad ``segment``.
+        ``n_refine``, a bad ``segment``, ``lam_range``, ``shortcut``,
+        ``sparse`` or ``cap``.
 
     Examples
     --------
@@ -83,6 +147,8 @@ class FreePathArchive(Callback):
         segment=(0.05, 0.5),
         lam_range=LAM_RANGE,
         shortcut=None,
+        sparse=0.5,
+        cap=CAP,
     ):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
@@ -111,6 +177,8 @@ class FreePathArchive(Callback):
         self.lam_range = (lam_lo, lam_hi)
         #: with smoothness as an objective the re-routing searches weigh turns
         self.turns = "smoothness" in problem.objectives
+        #: aim the weights at the neighbours' trade-offs (two objectives, length first)
+        self._aim = problem.n_obj == 2 and problem.objectives[0] == "length" and not self.turns
         if shortcut is None:
             shortcut = 0.25 if self.turns else 0.0
         try:
@@ -120,8 +188,26 @@ class FreePathArchive(Callback):
         if not 0.0 <= shortcut <= 1.0:
             raise ConfigError(f"shortcut must be a share in [0, 1], got {shortcut!r}")
         self.shortcut = shortcut
+        try:
+            sparse = float(sparse)
+        except (TypeError, ValueError):
+            raise ConfigError(f"sparse must be a share in [0, 1], got {sparse!r}") from None
+        if not 0.0 <= sparse <= 1.0:
+            raise ConfigError(f"sparse must be a share in [0, 1], got {sparse!r}")
+        self.sparse = sparse
+        if cap is not None:
+            try:
+                ok = float(cap) == int(cap) and int(cap) >= 2
+            except (TypeError, ValueError, OverflowError):
+                ok = False
+            if not ok:
+                raise ConfigError(f"cap must be an integer >= 2 or None, got {cap!r}")
+            cap = int(cap)
+        self.cap = cap
         self.rng = np.random.default_rng(seed)
         self.n_eval = 0
+        self.n_dropped = 0
+        self._shadow = np.zeros((0, problem.n_obj))
         enc = problem.encoding
         self._flat = np.zeros(0, np.int64)
         self._offsets = np.zeros(1, np.int64)
@@ -157,14 +243,15 @@ class FreePathArchive(Callback):
         self._merge(flat, offsets, keys, X, np.ones(len(X), bool))
 
     def refine(self, n: int) -> None:
-        """Change one random segment of ``n`` randomly picked archived paths
-        and archive the results: a share ``shortcut`` of them straightened
+        """Change one random segment of ``n`` archived paths (picked by
+        :meth:`_parents`) and archive the results: a share ``shortcut`` of
+        them straightened
         (:meth:`~gapath.encodings.free.FreeEncoding.shortcut`), the others
-        re-routed under a random weight gene
-        (:meth:`~gapath.encodings.free.FreeEncoding.reroute`)."""
+        re-routed under a weight gene (:meth:`_weight_genes`,
+        :meth:`~gapath.encodings.free.FreeEncoding.reroute`)."""
         rng = self.rng
         enc = self.problem.encoding
-        pick = rng.integers(0, len(self), n)
+        pick, aimed = self._parents(n)
         m = np.diff(self._offsets)[pick]
         lo, hi = self.segment
         span = np.maximum(2, np.rint(rng.uniform(lo, hi, n) * (m - 1))).astype(np.int64)
@@ -181,18 +268,8 @@ class FreePathArchive(Callback):
         if n_short < n:
             s = slice(n_short, n)
             turns = rng.random(n - n_short) if self.turns else None
-            parts.append(
-                enc.reroute(
-                    self._flat,
-                    self._offsets,
-                    pick[s],
-                    i0[s],
-                    i0[s] + span[s],
-                    genes[s],
-                    self.lam_range,
-                    turns,
-                )
-            )
+            lam, g = self._weight_genes(pick[s], aimed[s], genes[s])
+            parts.append(enc.reroute(self._flat, self._offsets, pick[s], i0[s], i0[s] + span[s], g, lam, turns))
         flat, offsets, keys = parts[0]
         for f2, o2, k2 in parts[1:]:
             flat, offsets = enc.concat_flat(flat, offsets, f2, o2)
@@ -200,26 +277,137 @@ class FreePathArchive(Callback):
         self.n_eval += n
         self._merge(flat, offsets, keys, np.full((n, self._X.shape[1]), np.nan), np.zeros(n, bool))
 
+    def _parents(self, n: int) -> np.ndarray:
+        """``n`` archived paths to refine: a share ``sparse`` drawn with
+        probability proportional to their crowding distance (isolated paths
+        and the extremes more often, an extreme as often as twice the most
+        isolated other path), the others uniformly, in a random order."""
+        rng = self.rng
+        N = len(self)
+        pick = rng.integers(0, N, n)
+        aimed = np.zeros(n, bool)
+        n_sp = int(round(self.sparse * n))
+        if n_sp and N > 1:
+            w = crowding(self.F)
+            fin = np.isfinite(w)
+            top = w[fin].max() if fin.any() else 0.0
+            w = np.where(fin, w, 2.0 * top if top > 0 else 1.0)
+            pick[:n_sp] = rng.choice(N, n_sp, p=w / w.sum())
+            aimed[:n_sp] = True
+            order = rng.permutation(n)
+            pick, aimed = pick[order], aimed[order]
+        return pick, aimed
+
+    def _weight_genes(self, pick, aimed, genes):
+        """The re-routing searches' weight range and genes. Uniform rows:
+        ``log10(b / a)`` uniform over ``lam_range``. With two objectives,
+        length and a cell cost (the searches' trade-off), rows ``aimed`` take
+        it instead uniform between the trade-offs to the parent's two
+        neighbours on the archive's front (``log10`` of length gained over
+        cost lost), widened by half a decade, up to :data:`AIM_EXTRA`
+        decades past ``lam_range`` at the safe end: splices there reach
+        the points between the parent and its neighbours."""
+        lo, hi = self.lam_range
+        if not self._aim or not aimed.any() or len(self) < 2:
+            return self.lam_range, genes
+        top = hi + AIM_EXTRA
+        F = self.F  # lexicographic: length up, cost down
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slope = np.log10(np.diff(F[:, 0]) / -np.diff(F[:, 1]))
+        slope = np.clip(np.nan_to_num(slope, nan=lo, posinf=top, neginf=lo), lo, top)
+        left = np.concatenate([[lo], slope])[pick]  # to the shorter neighbour
+        right = np.concatenate([slope, [top]])[pick]  # to the safer one
+        a = np.clip(np.minimum(left, right) - 0.5, lo, top)
+        b = np.clip(np.maximum(left, right) + 0.5, lo, top)
+        lam = np.where(aimed, a + (b - a) * genes, lo + (hi - lo) * genes)
+        return (lo, top), (lam - lo) / (top - lo)
+
     def _merge(self, flat, offsets, keys, X, genome) -> None:
+        """Archive the feasible paths ``(flat, offsets)`` that no archived
+        (or dropped) path dominates, drop the archived ones they dominate.
+
+        Incremental: the new paths are tested against each other and the
+        archive (``O(k n)`` for ``k`` new paths and ``n`` archived), which
+        gives exactly the front of the archive and the new paths together
+        (the archive is non-dominated and holds one path per objective
+        vector, the smoothest); then the cap (:meth:`_truncate`)."""
         enc = self.problem.encoding
         P, L = enc.padded(flat, offsets)
         M = self.problem.path_metrics(P, L)
-        ok = M[:, INTERFERING] == 0
-        if len(self):
+        keys = np.asarray(keys, np.int64)
+        _, first = np.unique(keys, axis=0, return_index=True)  # one row per path
+        rows = np.sort(first)
+        rows = rows[M[rows, INTERFERING] == 0]
+        n_a = len(self)
+        if n_a and len(rows):
+            rows = rows[~_rows_in(keys[rows], self._keys)]
+        if len(rows) == 0:
+            return
+        Fc = self.problem.objective_values(M[rows])
+        FA = self.F
+        keep_a = ~dominated_by(FA, Fc)
+        dom = dominated_by(Fc, Fc) | dominated_by(Fc, FA) | dominated_by(Fc, self._shadow)
+        rows, Fc = rows[~dom], Fc[~dom]
+        if len(rows) == 0 and keep_a.all():
+            return
+        a_idx = np.flatnonzero(keep_a)
+        if len(rows):
+            # one path per objective vector: only archived paths equal to a new one compete
+            near = a_idx[_close_any(FA[a_idx], Fc)]
+            Fs = np.concatenate([FA[near], Fc])
+            prefer_a = self._M[near, SMOOTHNESS] if len(near) else np.zeros(0)
+            prefer = np.concatenate([prefer_a, M[rows, SMOOTHNESS]])
+            won = np.zeros(len(Fs), bool)
+            won[dedupe(Fs, prefer=prefer)] = True
+            a_idx = np.setdiff1d(a_idx, near[~won[: len(near)]])
+            rows = rows[won[len(near) :]]
+            Fc = Fc[won[len(near) :]]
+            if len(self._shadow):
+                self._shadow = self._shadow[~dominated_by(self._shadow, Fc)]
+        # the kept rows of [archive; new], in lexicographic order of F
+        F = np.concatenate([FA[a_idx], Fc])
+        take = np.concatenate([a_idx, n_a + rows])[np.lexsort(F.T[::-1])]
+        if n_a:
             flat, offsets = enc.concat_flat(self._flat, self._offsets, flat, offsets)
             keys = np.concatenate([self._keys, keys])
             M = np.concatenate([self._M, M])
             X = np.concatenate([self._X, X])
             genome = np.concatenate([self._genome, genome])
-            ok = np.concatenate([np.ones(len(self), bool), ok])
-        # one row per path (the archived copy first), then the front
-        _, first = np.unique(keys, axis=0, return_index=True)
-        rows = np.sort(first)
-        rows = rows[ok[rows]]
-        F = self.problem.objective_values(M[rows])
-        keep = rows[select_front(F, M[rows])]
-        self._flat, self._offsets = enc.take_flat(flat, offsets, keep)
-        self._keys, self._M, self._X, self._genome = keys[keep], M[keep], X[keep], genome[keep]
+        self._flat, self._offsets = enc.take_flat(flat, offsets, take)
+        self._keys, self._M, self._X, self._genome = keys[take], M[take], X[take], genome[take]
+        if self.cap is not None and len(self) > self.cap:
+            self._truncate()
+
+    def _truncate(self) -> None:
+        """Cut the archive to ``cap`` paths: in rounds, the most crowded
+        (smallest :func:`crowding` distance) archived paths go, at most a
+        tenth of the archive per round; a path best or worst in some
+        objective (infinite crowding distance) never goes. Every archived
+        path is non-dominated, so no dropped path dominates a kept one; the
+        dropped objective vectors are remembered (``dropped``) and a new path
+        one of them dominates is not archived, so the archive never holds a
+        path a path it dropped dominates (up to SPEC's tolerance)."""
+        enc = self.problem.encoding
+        keep = np.arange(len(self))
+        F = self.F
+        while len(keep) > self.cap:
+            cd = crowding(F[keep])
+            movable = np.flatnonzero(np.isfinite(cd))
+            if len(movable) == 0:
+                break
+            r = min(len(keep) - self.cap, max(1, len(keep) // 10), len(movable))
+            drop = movable[np.argsort(cd[movable], kind="stable")[:r]]
+            keep = np.delete(keep, drop)
+        gone = np.setdiff1d(np.arange(len(self)), keep)
+        self._shadow = np.concatenate([self._shadow, F[gone]])
+        self.n_dropped += len(gone)
+        self._flat, self._offsets = enc.take_flat(self._flat, self._offsets, keep)
+        self._keys, self._M, self._X, self._genome = (
+            self._keys[keep],
+            self._M[keep],
+            self._X[keep],
+            self._genome[keep],
+        )
 
     # -- the result --------------------------------------------------------------
     def paths(self) -> list[np.ndarray]:
@@ -233,6 +421,27 @@ class FreePathArchive(Callback):
         one, else it is empty (``(k, 0)``)."""
         X = self._X if self._genome.all() else np.empty((len(self), 0))
         return PathFront(tuple(self.problem.objectives), self.F, self._M, X, self.paths())
+
+
+def _rows_in(B, A) -> np.ndarray:
+    """Which rows of the integer array ``B`` are rows of ``A``."""
+    both = np.concatenate([A, B])
+    _, inv = np.unique(both, axis=0, return_inverse=True)
+    inv = np.asarray(inv).ravel()
+    in_a = np.zeros(inv.max() + 1, bool)
+    in_a[inv[: len(A)]] = True
+    return in_a[inv[len(A) :]]
+
+
+def _close_any(B, A, tol: float = TOL) -> np.ndarray:
+    """Which rows of ``B`` equal some row of ``A`` within SPEC's tolerance."""
+    out = np.zeros(len(B), bool)
+    if len(B) == 0 or len(A) == 0:
+        return out
+    chunk = max(1, 2_000_000 // max(1, A.size))
+    for s in range(0, len(B), chunk):
+        out[s : s + chunk] = close(B[s : s + chunk, None, :], A[None, :, :], tol).all(axis=2).any(axis=1)
+    return out
 
 
 def run_archive(algorithm) -> FreePathArchive | None:
@@ -254,4 +463,4 @@ def run_archive(algorithm) -> FreePathArchive | None:
     return None
 
 
-__all__ = ["LAM_RANGE", "FreePathArchive", "run_archive"]
+__all__ = ["CAP", "LAM_RANGE", "FreePathArchive", "crowding", "dominated_by", "run_archive"]
