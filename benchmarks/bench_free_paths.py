@@ -43,7 +43,9 @@ Usage::
 
     python benchmarks/bench_free_paths.py [--maps room-32-32-4,maze-s1,...] [--queries 1]
         [--encodings via,field] [--seed-from weighted,none] [--pop 200] [--gen 200]
-        [--objectives length,vulnerability,smoothness] [--archive-cap N]
+        [--objectives length,vulnerability,smoothness]
+    python benchmarks/bench_free_paths.py --set two|three|unseeded --encodings field
+        [--only-maps den312d,...] --out FILE      (the quality table's sets)
 """
 
 from __future__ import annotations
@@ -68,6 +70,27 @@ from gapath.workspace import Workspace
 
 ROOT = Path(__file__).resolve().parents[1]
 MAPS = ("room-32-32-4", "maze-32-32-2", "random-32-32-20", "random-64-64-10")
+_GEN = ("maze-s1", "maze-s2", "maze-s3", "rooms-s1", "rooms-s2", "rooms-s3")
+#: The quality table's sets (docs/results/free_paths.md, "Quality table: every
+#: instance"): name -> (objectives, seed_from, [(map, queries), ...]).
+SETS = {
+    "two": (
+        "length,vulnerability",
+        "weighted",
+        [(m, 5) for m in (*MAPS, "den312d")] + [("Berlin_1_256", 1)] + [(g, 1) for g in _GEN],
+    ),
+    "three": (
+        "length,vulnerability,smoothness",
+        "weighted",
+        [("random-32-32-20", 5), ("random-64-64-10", 5)]
+        + [(m, 1) for m in ("den312d", "room-32-32-4", "maze-32-32-2", "maze-s1", "rooms-s1")],
+    ),
+    "unseeded": (
+        "length,vulnerability",
+        "none",
+        [(m, 1) for m in (*MAPS, "den312d", "maze-s1", "rooms-s1")],
+    ),
+}
 
 
 def data_dir(arg=None) -> Path:
@@ -270,6 +293,13 @@ def summary(path) -> str:
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--summary", metavar="JSONL", help="print a Markdown table of a results file and exit")
+    ap.add_argument(
+        "--set",
+        default=None,
+        choices=sorted(SETS),
+        help="run one of the quality table's sets (overrides --maps, --queries, --objectives, --seed-from)",
+    )
+    ap.add_argument("--only-maps", default=None, help="with --set: run only these maps of the set")
     ap.add_argument("--maps", default=",".join(MAPS))
     ap.add_argument("--queries", type=int, default=1)
     ap.add_argument(
@@ -297,8 +327,15 @@ def main(argv=None):
     folder = data_dir(a.data)
     out = open(a.out, "a") if a.out else None
     options = {} if a.n_via is None else {"n_via": a.n_via}
-    for name in a.maps.split(","):
-        for q, (sc, ws) in enumerate(instances(folder, name, a.queries)):
+    if a.set:
+        a.objectives, a.seed_from, plan = SETS[a.set]
+        if a.only_maps:
+            want = a.only_maps.split(",")
+            plan = sorted((p for p in plan if p[0] in want), key=lambda p: want.index(p[0]))
+    else:
+        plan = [(name, a.queries) for name in a.maps.split(",")]
+    for name, n_queries in plan:
+        for q, (sc, ws) in enumerate(instances(folder, name, n_queries)):
             if a.only is not None and q not in {int(i) for i in a.only.split(",")}:
                 continue
             t0 = time.perf_counter()

@@ -302,11 +302,12 @@ class FreePathArchive(Callback):
         """The re-routing searches' weight range and genes. Uniform rows:
         ``log10(b / a)`` uniform over ``lam_range``. With two objectives,
         length and a cell cost (the searches' trade-off), rows ``aimed`` take
-        it instead uniform between the trade-offs to the parent's two
-        neighbours on the archive's front (``log10`` of length gained over
-        cost lost), widened by half a decade, up to :data:`AIM_EXTRA`
-        decades past ``lam_range`` at the safe end: splices there reach
-        the points between the parent and its neighbours."""
+        it instead, for half of them, uniform between the trade-offs to the
+        parent's two neighbours on the archive's front (``log10`` of length
+        gained over cost lost), widened by half a decade, and for the other
+        half from that band's low end to the top; the top is
+        :data:`AIM_EXTRA` decades past ``lam_range``'s (the safe end):
+        splices reach the points between the parent and its neighbours."""
         lo, hi = self.lam_range
         if not self._aim or not aimed.any() or len(self) < 2:
             return self.lam_range, genes
@@ -319,7 +320,13 @@ class FreePathArchive(Callback):
         right = np.concatenate([slope, [top]])[pick]  # to the safer one
         a = np.clip(np.minimum(left, right) - 0.5, lo, top)
         b = np.clip(np.maximum(left, right) + 0.5, lo, top)
-        lam = np.where(aimed, a + (b - a) * genes, lo + (hi - lo) * genes)
+        # half of the aimed rows in the band, half from its low end to the top
+        # (small detours that pay off only at a steeper trade-off: the
+        # non-supported points between two neighbours)
+        wide = genes >= 0.5
+        g = np.where(wide, 2.0 * genes - 1.0, 2.0 * genes)
+        b = np.where(wide, top, b)
+        lam = np.where(aimed, a + (b - a) * g, lo + (hi - lo) * genes)
         return (lo, top), (lam - lo) / (top - lo)
 
     def _merge(self, flat, offsets, keys, X, genome) -> None:
