@@ -221,7 +221,19 @@ class _Timed(HypervolumeRatioCallback):
 
 
 def run(
-    ws, ref, objectives, encoding, seed_from, pop, gen, seed, options, refine=None, progress=None, label=None
+    ws,
+    ref,
+    objectives,
+    encoding,
+    seed_from,
+    pop,
+    gen,
+    seed,
+    options,
+    refine=None,
+    progress=None,
+    label=None,
+    save=None,
 ):
     problem = FreePathProblem(ws, objectives, encoding=encoding, **options)
     rate = throughput(problem, 5 * pop, seed)
@@ -240,6 +252,8 @@ def run(
         refine=refine,
     )
     front = res.front
+    if save:
+        np.savez_compressed(save, exact=ref.F, ga=front.F)
     hist = tracker.history
     checkpoints = {str(g): round(hist[g - 1][2], 6) for g in (1, 10, 25, 50, 100, 200, 500) if g <= len(hist)}
 
@@ -290,9 +304,56 @@ def summary(path) -> str:
     return "\n".join(rows)
 
 
+def _rows(path):
+    out = {}
+    for line in open(path):
+        d = json.loads(line)
+        out[(d["map"], d["query"], len(d["objectives"]), d["seed_from"])] = d
+    return out
+
+
+def compare(before, after) -> str:
+    """A Markdown table, one row per instance of ``after`` (JSON lines),
+    beside the same instance in ``before`` when it has it; then the median
+    and range of the HV ratios and of the shares of points found."""
+    b = _rows(before) if before else {}
+    a = _rows(after)
+    rows = [
+        "| map | query | exact points | HV ratio before | found before | HV ratio after | found after "
+        "| GA points | HV at gen 1 | s/gen |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+    ]
+
+    def found(d):
+        return f"{100 * d['coverage']:.0f} % ({round(d['coverage'] * d['exact_size'])})"
+
+    for k, d in a.items():
+        o = b.get(k)
+        was = "| - | - " if o is None else f"| {o['hv_ratio']:.6f} | {found(o)} "
+        rows.append(
+            f"| {d['map']} | {d['query']} | {d['exact_size']} "
+            + was
+            + f"| {d['hv_ratio']:.6f} | {found(d)} | {d['ga_size']} | {d['hv_at_gen'].get('1', float('nan')):.4f} "
+            f"| {d['seconds_per_gen']:.2f} |"
+        )
+    hv = np.array([d["hv_ratio"] for d in a.values()])
+    cov = np.array([d["coverage"] for d in a.values()])
+    rows.append(
+        f"| **all {len(a)}** | | | | | median **{np.median(hv):.6f}**, min **{hv.min():.6f}** "
+        f"| median {100 * np.median(cov):.0f} %, min {100 * cov.min():.0f} % | | | |"
+    )
+    return "\n".join(rows)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--summary", metavar="JSONL", help="print a Markdown table of a results file and exit")
+    ap.add_argument(
+        "--compare",
+        nargs=2,
+        metavar=("BEFORE", "AFTER"),
+        help="print a before/after Markdown table of two results files and exit ('-' for no BEFORE)",
+    )
     ap.add_argument(
         "--set",
         default=None,
@@ -320,9 +381,15 @@ def main(argv=None):
     )
     ap.add_argument("--progress", default=None, help="append the HV ratio every 20 generations to this file")
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
+    ap.add_argument(
+        "--save-fronts", default=None, help="save each run's GA and exact F to DIR/MAP-qQ-mM-SEEDS.npz"
+    )
     a = ap.parse_args(argv)
     if a.summary:
         print(summary(a.summary))
+        return 0
+    if a.compare:
+        print(compare(None if a.compare[0] == "-" else a.compare[0], a.compare[1]))
         return 0
     folder = data_dir(a.data)
     out = open(a.out, "a") if a.out else None
@@ -370,6 +437,9 @@ def main(argv=None):
                             refine,
                             a.progress,
                             dict(map=name, query=q, exact_size=len(ref)),
+                            None
+                            if not a.save_fronts
+                            else os.path.join(a.save_fronts, f"{name}-q{q}-m{len(objectives)}-{sf}.npz"),
                         )
                     )
                     line = json.dumps(rec)

@@ -271,7 +271,11 @@ def test_incremental_update_gives_the_batch_front(objectives):
         X = rng.random((30, p.n_var))
         archive.add(X)
         f, o, k = enc.decode_flat(X)
-        seen = (f, o, k) if seen is None else (*enc.concat_flat(seen[0], seen[1], f, o), np.concatenate([seen[2], k]))
+        seen = (
+            (f, o, k)
+            if seen is None
+            else (*enc.concat_flat(seen[0], seen[1], f, o), np.concatenate([seen[2], k]))
+        )
         np.testing.assert_array_equal(archive.F, _batch_front(p, *seen))
 
 

@@ -269,7 +269,9 @@ class FreePathArchive(Callback):
             s = slice(n_short, n)
             turns = rng.random(n - n_short) if self.turns else None
             lam, g = self._weight_genes(pick[s], aimed[s], genes[s])
-            parts.append(enc.reroute(self._flat, self._offsets, pick[s], i0[s], i0[s] + span[s], g, lam, turns))
+            parts.append(
+                enc.reroute(self._flat, self._offsets, pick[s], i0[s], i0[s] + span[s], g, lam, turns)
+            )
         flat, offsets, keys = parts[0]
         for f2, o2, k2 in parts[1:]:
             flat, offsets = enc.concat_flat(flat, offsets, f2, o2)
@@ -277,7 +279,7 @@ class FreePathArchive(Callback):
         self.n_eval += n
         self._merge(flat, offsets, keys, np.full((n, self._X.shape[1]), np.nan), np.zeros(n, bool))
 
-    def _parents(self, n: int) -> np.ndarray:
+    def _parents(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         """``n`` archived paths to refine: a share ``sparse`` drawn with
         probability proportional to their crowding distance (isolated paths
         and the extremes more often, an extreme as often as twice the most
