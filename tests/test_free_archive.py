@@ -356,8 +356,25 @@ def test_aimed_weight_genes_lie_between_the_neighbours_trade_offs():
         (dict(cap=1), "cap"),
         (dict(cap=2.5), "cap"),
         (dict(cap="many"), "cap"),
+        (dict(extremes=-1), "extremes"),
+        (dict(extremes=0.5), "extremes"),
     ],
 )
 def test_bad_sparse_and_cap(kwargs, match):
     with pytest.raises(ConfigError, match=match):
         FreePathArchive(FreePathProblem(room(seed=1)), **kwargs)
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_extreme_reroutes_reach_the_smoothest_exact_point(seed):
+    """With smoothness as an objective the whole-path re-routings under a
+    heavy turn weight give the front's smoothest point (exact search on a
+    small map says which it is)."""
+    ws = room(h=14, w=16, seed=20 + seed, density=0.2)
+    p = FreePathProblem(ws, OBJ3)
+    archive = FreePathArchive(p, n_refine=4, seed=seed)
+    minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 2), seed=seed, callback=archive)
+    want = free_front(ws, OBJ3).F[:, 2].min()
+    assert archive.F[:, 2].min() == pytest.approx(want, rel=TOL, abs=1e-12)
+    plain = FreePathArchive(p, n_refine=4, seed=seed, extremes=0)
+    assert plain.extremes == 0 and archive.extremes == 4

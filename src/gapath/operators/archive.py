@@ -18,6 +18,9 @@ sub-paths that are Pareto optimal between their ends, so splicing
 weighted-sum sub-paths into front paths reaches front points that no
 weighting of the whole path reaches (the non-supported points).
 
+With smoothness as an objective, ``extremes`` whole paths per generation
+are re-routed under a heavy turn weight (the smooth end of the front).
+
 The archive is updated incrementally (each generation's ``k`` new paths
 against its ``n`` paths: ``O(k n)``) and capped (:data:`CAP` paths by
 default; the most crowded go first, never an extreme, and a path that a
@@ -42,6 +45,11 @@ from gapath.objectives import INTERFERING, SMOOTHNESS
 LAM_RANGE = (-3.0, 12.0)
 #: Decades past ``lam_range``'s top that aimed re-routings reach at the safe end.
 AIM_EXTRA = 2.0
+#: Whole-path re-routings towards the smooth end: weight genes in
+#: ``[0, EXTREME_LAM]`` of ``lam_range``, ``log10`` of the turn weight over
+#: ``EXTREME_TURNS`` (per radian, against length).
+EXTREME_LAM = 0.2
+EXTREME_TURNS = (2.0, 4.0)
 #: Default cap on the archive's size (see :class:`FreePathArchive`).
 CAP = 5000
 
@@ -123,7 +131,7 @@ class FreePathArchive(Callback):
     ConfigError
         On a problem that is not a free-path problem, a negative
         ``n_refine``, a bad ``segment``, ``lam_range``, ``shortcut``,
-        ``sparse`` or ``cap``.
+        ``sparse``, ``extremes`` or ``cap``.
 
     Examples
     --------
@@ -149,6 +157,7 @@ class FreePathArchive(Callback):
         shortcut=None,
         sparse=0.5,
         cap=CAP,
+        extremes=4,
     ):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
@@ -195,6 +204,13 @@ class FreePathArchive(Callback):
         if not 0.0 <= sparse <= 1.0:
             raise ConfigError(f"sparse must be a share in [0, 1], got {sparse!r}")
         self.sparse = sparse
+        try:
+            ok = float(extremes) == int(extremes) and int(extremes) >= 0
+        except (TypeError, ValueError, OverflowError):
+            ok = False
+        if not ok:
+            raise ConfigError(f"extremes must be an integer >= 0, got {extremes!r}")
+        self.extremes = int(extremes)
         if cap is not None:
             try:
                 ok = float(cap) == int(cap) and int(cap) >= 2
@@ -272,12 +288,31 @@ class FreePathArchive(Callback):
             parts.append(
                 enc.reroute(self._flat, self._offsets, pick[s], i0[s], i0[s] + span[s], g, lam, turns)
             )
+        k = self.extremes if self.turns else 0
+        if k:
+            # whole paths re-routed under a heavy turn weight: the smooth end of
+            # the front, whose extreme sets the smoothness ideal of the HV
+            pe = rng.integers(0, len(self), k)
+            whole = np.diff(self._offsets)[pe] - 1
+            parts.append(
+                enc.reroute(
+                    self._flat,
+                    self._offsets,
+                    pe,
+                    np.zeros(k, np.int64),
+                    whole,
+                    EXTREME_LAM * rng.random(k),
+                    self.lam_range,
+                    rng.random(k),
+                    EXTREME_TURNS,
+                )
+            )
         flat, offsets, keys = parts[0]
         for f2, o2, k2 in parts[1:]:
             flat, offsets = enc.concat_flat(flat, offsets, f2, o2)
             keys = np.concatenate([keys, k2])
-        self.n_eval += n
-        self._merge(flat, offsets, keys, np.full((n, self._X.shape[1]), np.nan), np.zeros(n, bool))
+        self.n_eval += n + k
+        self._merge(flat, offsets, keys, np.full((n + k, self._X.shape[1]), np.nan), np.zeros(n + k, bool))
 
     def _parents(self, n: int) -> tuple[np.ndarray, np.ndarray]:
         """``n`` archived paths to refine: a share ``sparse`` drawn with
@@ -472,4 +507,13 @@ def run_archive(algorithm) -> FreePathArchive | None:
     return None
 
 
-__all__ = ["CAP", "LAM_RANGE", "FreePathArchive", "crowding", "dominated_by", "run_archive"]
+__all__ = [
+    "CAP",
+    "EXTREME_LAM",
+    "EXTREME_TURNS",
+    "LAM_RANGE",
+    "FreePathArchive",
+    "crowding",
+    "dominated_by",
+    "run_archive",
+]
