@@ -316,7 +316,9 @@ def compare(before, after) -> str:
     """A Markdown table, one row per instance of ``after`` (JSON lines),
     beside the same instance in ``before`` when it has it; then the median
     and range of the HV ratios and of the shares of points found."""
-    b = _rows(before) if before else {}
+    b = {}
+    for path in before.split(",") if before else ():  # later files override earlier ones
+        b.update(_rows(path))
     a = _rows(after)
     rows = [
         "| map | query | exact points | HV ratio before | found before | HV ratio after | found after "
@@ -352,7 +354,7 @@ def main(argv=None):
         "--compare",
         nargs=2,
         metavar=("BEFORE", "AFTER"),
-        help="print a before/after Markdown table of two results files and exit ('-' for no BEFORE)",
+        help="print a before/after Markdown table of results files and exit (BEFORE: comma-separated files or '-')",
     )
     ap.add_argument(
         "--set",

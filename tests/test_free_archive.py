@@ -327,7 +327,8 @@ def test_capped_archive_is_deterministic():
 def test_aimed_weight_genes_lie_between_the_neighbours_trade_offs():
     ws = room(h=14, w=16, seed=14)
     p = FreePathProblem(ws)
-    a = FreePathArchive(p, n_refine=0)
+    assert FreePathArchive(p).sparse == 0.0 and FreePathArchive(FreePathProblem(ws, OBJ3)).sparse == 0.5
+    a = FreePathArchive(p, n_refine=0, sparse=0.5)
     a.add(np.random.default_rng(1).random((200, p.n_var)))
     assert a._aim and len(a) >= 3
     F = a.F

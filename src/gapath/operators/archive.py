@@ -6,12 +6,13 @@ that (three objectives on random maps: exact fronts of 300-600 points).
 :class:`FreePathArchive` is a pymoo callback that keeps, beside the run,
 every feasible non-dominated path it has seen (the offspring of every
 generation, the initial population included), and each generation *refines*
-it: ``n_refine`` archived paths (half of them picked by crowding distance,
-favouring the front's sparse regions and its extremes, the others
-uniformly) each have one segment (a random stretch of the path) replaced by
-the optimal path between the segment's ends under a weighting of length
-against the cell cost (random; with two objectives, for the paths picked by
-crowding, between the trade-offs to the path's neighbours on the front)
+it: ``n_refine`` archived paths (with three or more objectives half of
+them picked by crowding distance, favouring the front's sparse regions and
+its extremes, the others uniformly) each have one segment (a random
+stretch of the path) replaced by the optimal path between the segment's
+ends under a weighting of length against the cell cost (random; with two
+objectives and ``sparse > 0``, for the paths picked by crowding, between
+the trade-offs to the path's neighbours on the front)
 (:meth:`gapath.encodings.free.FreeEncoding.reroute`, one numba kernel for
 the whole batch). A Pareto-optimal path of additive objectives is made of
 sub-paths that are Pareto optimal between their ends, so splicing
@@ -121,10 +122,31 @@ class FreePathArchive(Callback):
         log-uniformly; wider than the genomes' by default: the last points
         of the safe end of a front trade a step for a potential of 1e-9
         (MovingAI den312d).
+    shortcut : share of the refined paths straightened instead of re-routed
+        (default 0.25 with smoothness as an objective, else 0).
+    sparse : share of the refined paths' parents drawn with probability
+        proportional to their crowding distance in the archive (isolated
+        paths and the extremes of the front more often; with two
+        objectives, length first, their re-routing weights are also aimed,
+        see :meth:`_weight_genes`); the others are drawn uniformly.
+        Default 0.5 with three or more objectives, 0 with two (measured in
+        ``docs/results/free_paths.md``: no gain with two).
+    cap : at most this many archived paths (None: unbounded). Past it the
+        most crowded paths go, never an extreme (the best and worst path of
+        each objective stay, so a cap below ``2 * n_obj`` may be exceeded);
+        the objective vectors of the dropped paths are kept, and a new path
+        one of them dominates is refused (see :meth:`_truncate`).
+    extremes : with smoothness as an objective, whole archived paths
+        re-routed per generation under a heavy turn weight
+        (``log10(c / a)`` in :data:`EXTREME_TURNS`) and a light cell cost
+        (weight genes up to :data:`EXTREME_LAM`): the smooth end of the
+        front, whose extreme sets the HV's smoothness ideal (counted in
+        ``n_eval``).
 
     Attributes
     ----------
     n_eval : paths evaluated by the archive (re-routed ones).
+    n_dropped : paths the cap dropped.
 
     Raises
     ------
@@ -155,7 +177,7 @@ class FreePathArchive(Callback):
         segment=(0.05, 0.5),
         lam_range=LAM_RANGE,
         shortcut=None,
-        sparse=0.5,
+        sparse=None,
         cap=CAP,
         extremes=4,
     ):
@@ -197,6 +219,8 @@ class FreePathArchive(Callback):
         if not 0.0 <= shortcut <= 1.0:
             raise ConfigError(f"shortcut must be a share in [0, 1], got {shortcut!r}")
         self.shortcut = shortcut
+        if sparse is None:  # measured: helps with three objectives, not with two
+            sparse = 0.5 if problem.n_obj >= 3 else 0.0
         try:
             sparse = float(sparse)
         except (TypeError, ValueError):
