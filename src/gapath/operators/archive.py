@@ -46,10 +46,11 @@ from gapath.objectives import INTERFERING, SMOOTHNESS
 LAM_RANGE = (-3.0, 12.0)
 #: Decades past ``lam_range``'s top that aimed re-routings reach at the safe end.
 AIM_EXTRA = 2.0
-#: Whole-path re-routings towards the smooth end: weight genes in
-#: ``[0, EXTREME_LAM]`` of ``lam_range``, ``log10`` of the turn weight over
-#: ``EXTREME_TURNS`` (per radian, against length).
+#: Whole-path re-routings towards the smooth end: their weight genes are
+#: drawn in ``[0, EXTREME_LAM]`` (of ``lam_range``).
 EXTREME_LAM = 0.2
+#: Whole-path re-routings towards the smooth end: the range of ``log10`` of
+#: their turn weight (per radian, against length).
 EXTREME_TURNS = (2.0, 4.0)
 #: Default cap on the archive's size (see :class:`FreePathArchive`).
 CAP = 5000
