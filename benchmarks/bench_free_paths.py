@@ -384,6 +384,12 @@ def main(argv=None):
     ap.add_argument("--progress", default=None, help="append the HV ratio every 20 generations to this file")
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
     ap.add_argument(
+        "--exact-stretches",
+        type=int,
+        default=None,
+        help="exact stretch searches per generation in the archive (gapath.operators.archive.EXACT_STRETCHES)",
+    )
+    ap.add_argument(
         "--save-fronts", default=None, help="save each run's GA and exact F to DIR/MAP-qQ-mM-SEEDS.npz"
     )
     a = ap.parse_args(argv)
@@ -394,6 +400,10 @@ def main(argv=None):
         print(compare(None if a.compare[0] == "-" else a.compare[0], a.compare[1]))
         return 0
     folder = data_dir(a.data)
+    if a.exact_stretches is not None:
+        from gapath.operators import archive
+
+        archive.EXACT_STRETCHES = a.exact_stretches
     out = open(a.out, "a") if a.out else None
     options = {} if a.n_via is None else {"n_via": a.n_via}
     if a.set:
@@ -424,6 +434,8 @@ def main(argv=None):
                         exact_size=len(ref),
                         exact_seconds=exact_s,
                     )
+                    if a.exact_stretches is not None:
+                        rec["exact_stretches"] = a.exact_stretches
                     refine = None if a.refine is None else (False if a.refine == "off" else int(a.refine))
                     rec.update(
                         run(

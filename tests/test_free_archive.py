@@ -379,3 +379,23 @@ def test_extreme_reroutes_reach_the_smoothest_exact_point(seed):
     assert archive.F[:, 2].min() == pytest.approx(want, rel=TOL, abs=1e-12)
     plain = FreePathArchive(p, n_refine=4, seed=seed, extremes=0)
     assert plain.extremes == 0 and archive.extremes == 4
+
+
+@pytest.mark.parametrize("objectives", [("length", "vulnerability"), OBJ3])
+def test_exact_stretches_splice_valid_paths_and_never_beat_exact(objectives):
+    ws = room(h=14, w=16, seed=31)
+    p = FreePathProblem(ws, objectives)
+    archive = FreePathArchive(p, n_refine=0, seed=2, exact_stretches=3)
+    minimize(p, FastNSGA2(12, sampling=FreeSampling("none")), ("n_gen", 4), seed=2, callback=archive)
+    assert archive.n_eval > 0  # spliced paths were evaluated
+    front = archive.front()
+    P, L = pad_paths(front.paths)
+    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    np.testing.assert_allclose(front.F, p.objective_values(M), rtol=0, atol=0)
+    for path in front.paths:
+        check_path(ws, path)
+    exact = free_front(ws, objectives).F
+    for f in front.F:
+        assert not any(dominates(f, r) for r in exact)
+    with pytest.raises(ConfigError, match="exact_stretches"):
+        FreePathArchive(p, exact_stretches=-2)

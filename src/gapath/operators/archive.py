@@ -52,6 +52,10 @@ EXTREME_LAM = 0.2
 #: Whole-path re-routings towards the smooth end: the range of ``log10`` of
 #: their turn weight (per radian, against length).
 EXTREME_TURNS = (2.0, 4.0)
+#: Exact stretch searches per generation (``exact_stretches``'s default).
+EXACT_STRETCHES = 0
+#: Share of a path's cells an exact stretch search spans (drawn uniformly).
+EXACT_SPAN = (0.02, 0.1)
 #: Default cap on the archive's size (see :class:`FreePathArchive`).
 CAP = 5000
 
@@ -137,6 +141,13 @@ class FreePathArchive(Callback):
         each objective stay, so a cap below ``2 * n_obj`` may be exceeded);
         the objective vectors of the dropped paths are kept, and a new path
         one of them dominates is refused (see :meth:`_truncate`).
+    exact_stretches : stretches per generation (default
+        :data:`EXACT_STRETCHES`, 0) of randomly picked archived paths, each
+        spanning a share :data:`EXACT_SPAN` of its path, replaced by every
+        path of the exact front between the stretch's ends
+        (:func:`gapath.planners.exact.free_front`): the non-supported
+        sub-paths no weighted re-routing gives. Objectives with costmap
+        layers: none. Counted in ``n_eval``.
     extremes : with smoothness as an objective, whole archived paths
         re-routed per generation under a heavy turn weight
         (``log10(c / a)`` in :data:`EXTREME_TURNS`) and a light cell cost
@@ -154,7 +165,7 @@ class FreePathArchive(Callback):
     ConfigError
         On a problem that is not a free-path problem, a negative
         ``n_refine``, a bad ``segment``, ``lam_range``, ``shortcut``,
-        ``sparse``, ``extremes`` or ``cap``.
+        ``sparse``, ``extremes``, ``exact_stretches`` or ``cap``.
 
     Examples
     --------
@@ -181,6 +192,7 @@ class FreePathArchive(Callback):
         sparse=None,
         cap=CAP,
         extremes=4,
+        exact_stretches=None,
     ):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
@@ -236,6 +248,17 @@ class FreePathArchive(Callback):
         if not ok:
             raise ConfigError(f"extremes must be an integer >= 0, got {extremes!r}")
         self.extremes = int(extremes)
+        if exact_stretches is None:
+            exact_stretches = EXACT_STRETCHES
+        try:
+            ok = float(exact_stretches) == int(exact_stretches) and int(exact_stretches) >= 0
+        except (TypeError, ValueError, OverflowError):
+            ok = False
+        if not ok:
+            raise ConfigError(f"exact_stretches must be an integer >= 0, got {exact_stretches!r}")
+        # only over the objectives the exact search has (no costmap layers)
+        additive = set(problem.objectives) <= {"length", "vulnerability", "smoothness"}
+        self.exact_stretches = int(exact_stretches) if additive else 0
         if cap is not None:
             try:
                 ok = float(cap) == int(cap) and int(cap) >= 2
@@ -274,6 +297,46 @@ class FreePathArchive(Callback):
         self.add(np.asarray(X, dtype=float))
         if self.n_refine and len(self):
             self.refine(self.n_refine)
+        if self.exact_stretches and len(self):
+            self.exact_refine(self.exact_stretches)
+
+    def exact_refine(self, n: int) -> None:
+        """Replace one short random stretch of ``n`` randomly picked
+        archived paths by each path of the exact front between the
+        stretch's ends, and archive the results."""
+        from gapath.operators._archive_kernels import splice
+        from gapath.planners.exact import free_front
+
+        rng = self.rng
+        ws = self.problem.workspace
+        pick = rng.integers(0, len(self), n)
+        m = np.diff(self._offsets)[pick]
+        lo, hi = EXACT_SPAN
+        span = np.minimum(np.maximum(2, np.rint(rng.uniform(lo, hi, n) * (m - 1))).astype(np.int64), m - 1)
+        i0 = np.floor(rng.random(n) * (m - span)).astype(np.int64)
+        i1 = i0 + span
+        w = ws.shape[1]
+        rows, subs = [], []
+        for r in range(n):  # a few exact searches per generation, each one numba search
+            a = self._offsets[pick[r]]
+            u, v = int(self._flat[a + i0[r]]), int(self._flat[a + i1[r]])
+            if u == v:
+                continue
+            sub_ws = ws.replace(start=(u // w, u % w), goal=(v // w, v % w))
+            sub_ws.__dict__["potential"] = ws.potential  # the same map: reuse its cached field
+            for path in free_front(sub_ws, tuple(self.problem.objectives)).paths:
+                rows.append(r)
+                subs.append(path[:, 0].astype(np.int64) * w + path[:, 1])
+        if not rows:
+            return
+        idx = np.asarray(rows, np.int64)
+        sub_off = np.concatenate([[0], np.cumsum([len(x) for x in subs])]).astype(np.int64)
+        flat, offsets, keys = splice(
+            self._flat, self._offsets, pick[idx], i0[idx], i1[idx], np.concatenate(subs), sub_off, ws.occ.size
+        )
+        k = len(idx)
+        self.n_eval += k
+        self._merge(flat, offsets, keys, np.full((k, self._X.shape[1]), np.nan), np.zeros(k, bool))
 
     def add(self, X) -> None:
         """Archive the decoded paths of genomes ``X`` (those non-dominated)."""
@@ -534,6 +597,8 @@ def run_archive(algorithm) -> FreePathArchive | None:
 
 __all__ = [
     "CAP",
+    "EXACT_SPAN",
+    "EXACT_STRETCHES",
     "EXTREME_LAM",
     "EXTREME_TURNS",
     "LAM_RANGE",
