@@ -52,8 +52,9 @@ EXTREME_LAM = 0.2
 #: Whole-path re-routings towards the smooth end: the range of ``log10`` of
 #: their turn weight (per radian, against length).
 EXTREME_TURNS = (2.0, 4.0)
-#: Exact stretch searches per generation (``exact_stretches``'s default).
-EXACT_STRETCHES = 0
+#: Exact stretch searches per generation with two objectives
+#: (``exact_stretches``'s default; 0 with three or more).
+EXACT_STRETCHES = 8
 #: Share of a path's cells an exact stretch search spans (drawn uniformly).
 EXACT_SPAN = (0.02, 0.1)
 #: Default cap on the archive's size (see :class:`FreePathArchive`).
@@ -142,7 +143,8 @@ class FreePathArchive(Callback):
         the objective vectors of the dropped paths are kept, and a new path
         one of them dominates is refused (see :meth:`_truncate`).
     exact_stretches : stretches per generation (default
-        :data:`EXACT_STRETCHES`, 0) of randomly picked archived paths, each
+        :data:`EXACT_STRETCHES`, 8, with two objectives, 0 with more) of
+        randomly picked archived paths, each
         spanning a share :data:`EXACT_SPAN` of its path, replaced by every
         path of the exact front between the stretch's ends
         (:func:`gapath.planners.exact.free_front`): the non-supported
@@ -248,8 +250,8 @@ class FreePathArchive(Callback):
         if not ok:
             raise ConfigError(f"extremes must be an integer >= 0, got {extremes!r}")
         self.extremes = int(extremes)
-        if exact_stretches is None:
-            exact_stretches = EXACT_STRETCHES
+        if exact_stretches is None:  # measured with two objectives only
+            exact_stretches = EXACT_STRETCHES if problem.n_obj == 2 else 0
         try:
             ok = float(exact_stretches) == int(exact_stretches) and int(exact_stretches) >= 0
         except (TypeError, ValueError, OverflowError):
