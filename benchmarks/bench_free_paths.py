@@ -23,10 +23,29 @@ for the last population's front), the generation and seconds at which it first r
 over ``--pop * 5`` random genomes, cache cold). Wall-clock times on a shared
 machine: noisy.
 
+Besides MovingAI maps (any map of the data folder with a
+``-random-1.scen``, e.g. ``den312d``, ``Berlin_1_256``), ``--maps`` takes
+generated instances, one query each (start and goal in opposite corners):
+
+``maze-sN``
+    :func:`gapath.dynamic.scenarios.complex_maze` with seed ``N``, an 11 x 11
+    lattice of 2-cell corridors and 1-cell walls (32 x 32 cells, like
+    MovingAI maze-32-32-2), braided until the shortest path is at most 1.6
+    times the straight line, start and goal the farthest pair of the
+    bottom-left and top-right corridor cells.
+``rooms-sN``
+    :func:`rooms_map` with seed ``N``: 8 x 8 rooms of 4 x 4 free cells
+    behind 1-cell walls (39 x 39 cells), a door of one cell in every wall of
+    a random spanning tree of the rooms and in 30 % of the other walls,
+    start bottom-left, goal top-right.
+
 Usage::
 
-    python benchmarks/bench_free_paths.py [--maps room-32-32-4,...] [--queries 1]
+    python benchmarks/bench_free_paths.py [--maps room-32-32-4,maze-s1,...] [--queries 1]
         [--encodings via,field] [--seed-from weighted,none] [--pop 200] [--gen 200]
+        [--objectives length,vulnerability,smoothness]
+    python benchmarks/bench_free_paths.py --set two|three|unseeded --encodings field
+        [--only-maps den312d,...] --out FILE      (the quality table's sets)
 """
 
 from __future__ import annotations
@@ -41,14 +60,37 @@ from pathlib import Path
 import numpy as np
 
 from gapath.convergence import HypervolumeRatioCallback
+from gapath.dynamic.scenarios import complex_maze
 from gapath.loaders import load_movingai, load_scenarios
 from gapath.metrics import coverage, hv_ratio
 from gapath.planners.exact import free_front
 from gapath.problems import FreePathProblem
 from gapath.solver import solve
+from gapath.workspace import Workspace
 
 ROOT = Path(__file__).resolve().parents[1]
 MAPS = ("room-32-32-4", "maze-32-32-2", "random-32-32-20", "random-64-64-10")
+_GEN = ("maze-s1", "maze-s2", "maze-s3", "rooms-s1", "rooms-s2", "rooms-s3")
+#: The quality table's sets (docs/results/free_paths.md, "Quality table: every
+#: instance"): name -> (objectives, seed_from, [(map, queries), ...]).
+SETS = {
+    "two": (
+        "length,vulnerability",
+        "weighted",
+        [(m, 5) for m in (*MAPS, "den312d")] + [("Berlin_1_256", 1)] + [(g, 1) for g in _GEN],
+    ),
+    "three": (
+        "length,vulnerability,smoothness",
+        "weighted",
+        [("random-32-32-20", 5), ("random-64-64-10", 5)]
+        + [(m, 1) for m in ("den312d", "room-32-32-4", "maze-32-32-2", "maze-s1", "rooms-s1")],
+    ),
+    "unseeded": (
+        "length,vulnerability",
+        "none",
+        [(m, 1) for m in (*MAPS, "den312d", "maze-s1", "rooms-s1")],
+    ),
+}
 
 
 def data_dir(arg=None) -> Path:
@@ -57,6 +99,84 @@ def data_dir(arg=None) -> Path:
     env = os.environ.get("GAPATH_SHARED_DATA")
     base = Path(env) if env else ROOT.parent / "shared" / "data"
     return base / "movingai" / "mapf"
+
+
+def rooms_map(seed: int, rooms: int = 8, inner: int = 4, extra: float = 0.3) -> Workspace:
+    """A generated room map (see the module docstring): ``rooms x rooms``
+    rooms of ``inner x inner`` free cells, 1-cell walls, one door per wall of
+    a random spanning tree (depth-first) plus ``extra`` of the other walls."""
+    rng = np.random.default_rng(seed)
+    p = inner + 1
+    n = rooms * p - 1
+    occ = np.zeros((n, n), bool)
+    for i in range(1, rooms):
+        occ[i * p - 1, :] = True
+        occ[:, i * p - 1] = True
+
+    def door(a, b):
+        (i1, j1), (i2, j2) = sorted((a, b))
+        k = int(rng.integers(inner))
+        if i1 == i2:
+            occ[i1 * p + k, j2 * p - 1] = False
+        else:
+            occ[i2 * p - 1, j1 * p + k] = False
+
+    seen = np.zeros((rooms, rooms), bool)
+    stack, tree = [(rooms - 1, 0)], set()
+    seen[rooms - 1, 0] = True
+    while stack:
+        i, j = stack[-1]
+        nb = [
+            (i + a, j + b)
+            for a, b in ((0, 1), (1, 0), (0, -1), (-1, 0))
+            if 0 <= i + a < rooms and 0 <= j + b < rooms and not seen[i + a, j + b]
+        ]
+        if not nb:
+            stack.pop()
+            continue
+        nxt = nb[int(rng.integers(len(nb)))]
+        door((i, j), nxt)
+        tree.add(tuple(sorted(((i, j), nxt))))
+        seen[nxt] = True
+        stack.append(nxt)
+    for i in range(rooms):
+        for j in range(rooms):
+            for nxt in ((i, j + 1), (i + 1, j)):
+                if nxt[0] < rooms and nxt[1] < rooms and tuple(sorted(((i, j), nxt))) not in tree:
+                    if rng.random() < extra:
+                        door((i, j), nxt)
+    return Workspace(occ, (n - 1, 0), (0, n - 1), corner_cutting=False, name=f"rooms-s{seed}")
+
+
+class _Query:
+    """A generated instance's one query."""
+
+    def __init__(self, ws):
+        self.start, self.goal, self.optimal = ws.start, ws.goal, None
+
+
+def generated(name: str):
+    """The workspace of a generated instance name, or None."""
+    kind, _, s = name.rpartition("-s")
+    if not s.isdigit():
+        return None
+    if kind == "maze":
+        return complex_maze(int(s), rows=11, cols=11, corridor=2, max_detour=1.6, target_distance=1e6)
+    if kind == "rooms":
+        return rooms_map(int(s))
+    return None
+
+
+def instances(folder: Path, name: str, n: int):
+    """``(query, workspace)`` pairs of a map name (see the module docstring)."""
+    ws = generated(name)
+    if ws is not None:
+        return [(_Query(ws), ws)]
+    out = []
+    for sc in long_queries(folder, name, n):
+        ws = load_movingai(folder / f"{name}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
+        out.append((sc, ws))
+    return out
 
 
 def long_queries(folder: Path, name: str, n: int):
@@ -101,7 +221,19 @@ class _Timed(HypervolumeRatioCallback):
 
 
 def run(
-    ws, ref, objectives, encoding, seed_from, pop, gen, seed, options, refine=None, progress=None, label=None
+    ws,
+    ref,
+    objectives,
+    encoding,
+    seed_from,
+    pop,
+    gen,
+    seed,
+    options,
+    refine=None,
+    progress=None,
+    label=None,
+    save=None,
 ):
     problem = FreePathProblem(ws, objectives, encoding=encoding, **options)
     rate = throughput(problem, 5 * pop, seed)
@@ -120,6 +252,8 @@ def run(
         refine=refine,
     )
     front = res.front
+    if save:
+        np.savez_compressed(save, exact=ref.F, ga=front.F)
     hist = tracker.history
     checkpoints = {str(g): round(hist[g - 1][2], 6) for g in (1, 10, 25, 50, 100, 200, 500) if g <= len(hist)}
 
@@ -170,9 +304,65 @@ def summary(path) -> str:
     return "\n".join(rows)
 
 
+def _rows(path):
+    out = {}
+    for line in open(path):
+        d = json.loads(line)
+        out[(d["map"], d["query"], len(d["objectives"]), d["seed_from"])] = d
+    return out
+
+
+def compare(before, after) -> str:
+    """A Markdown table, one row per instance of ``after`` (JSON lines),
+    beside the same instance in ``before`` when it has it; then the median
+    and range of the HV ratios and of the shares of points found."""
+    b = {}
+    for path in before.split(",") if before else ():  # later files override earlier ones
+        b.update(_rows(path))
+    a = _rows(after)
+    rows = [
+        "| map | query | exact points | HV ratio before | found before | HV ratio after | found after "
+        "| GA points | HV at gen 1 | s/gen |",
+        "|---|---|---|---|---|---|---|---|---|---|",
+    ]
+
+    def found(d):
+        return f"{100 * d['coverage']:.0f} % ({round(d['coverage'] * d['exact_size'])})"
+
+    for k, d in a.items():
+        o = b.get(k)
+        was = "| - | - " if o is None else f"| {o['hv_ratio']:.6f} | {found(o)} "
+        rows.append(
+            f"| {d['map']} | {d['query']} | {d['exact_size']} "
+            + was
+            + f"| {d['hv_ratio']:.6f} | {found(d)} | {d['ga_size']} | {d['hv_at_gen'].get('1', float('nan')):.4f} "
+            f"| {d['seconds_per_gen']:.2f} |"
+        )
+    hv = np.array([d["hv_ratio"] for d in a.values()])
+    cov = np.array([d["coverage"] for d in a.values()])
+    rows.append(
+        f"| **all {len(a)}** | | | | | median **{np.median(hv):.6f}**, min **{hv.min():.6f}** "
+        f"| median {100 * np.median(cov):.0f} %, min {100 * cov.min():.0f} % | | | |"
+    )
+    return "\n".join(rows)
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--summary", metavar="JSONL", help="print a Markdown table of a results file and exit")
+    ap.add_argument(
+        "--compare",
+        nargs=2,
+        metavar=("BEFORE", "AFTER"),
+        help="print a before/after Markdown table of results files and exit (BEFORE: comma-separated files or '-')",
+    )
+    ap.add_argument(
+        "--set",
+        default=None,
+        choices=sorted(SETS),
+        help="run one of the quality table's sets (overrides --maps, --queries, --objectives, --seed-from)",
+    )
+    ap.add_argument("--only-maps", default=None, help="with --set: run only these maps of the set")
     ap.add_argument("--maps", default=",".join(MAPS))
     ap.add_argument("--queries", type=int, default=1)
     ap.add_argument(
@@ -193,18 +383,40 @@ def main(argv=None):
     )
     ap.add_argument("--progress", default=None, help="append the HV ratio every 20 generations to this file")
     ap.add_argument("--out", default=None, help="also append the JSON lines to this file")
+    ap.add_argument(
+        "--exact-stretches",
+        type=int,
+        default=None,
+        help="exact stretch searches per generation in the archive (gapath.operators.archive.EXACT_STRETCHES)",
+    )
+    ap.add_argument(
+        "--save-fronts", default=None, help="save each run's GA and exact F to DIR/MAP-qQ-mM-SEEDS.npz"
+    )
     a = ap.parse_args(argv)
     if a.summary:
         print(summary(a.summary))
         return 0
+    if a.compare:
+        print(compare(None if a.compare[0] == "-" else a.compare[0], a.compare[1]))
+        return 0
     folder = data_dir(a.data)
+    if a.exact_stretches is not None:
+        from gapath.operators import archive
+
+        archive.EXACT_STRETCHES = a.exact_stretches
     out = open(a.out, "a") if a.out else None
     options = {} if a.n_via is None else {"n_via": a.n_via}
-    for name in a.maps.split(","):
-        for q, sc in enumerate(long_queries(folder, name, a.queries)):
+    if a.set:
+        a.objectives, a.seed_from, plan = SETS[a.set]
+        if a.only_maps:
+            want = a.only_maps.split(",")
+            plan = sorted((p for p in plan if p[0] in want), key=lambda p: want.index(p[0]))
+    else:
+        plan = [(name, a.queries) for name in a.maps.split(",")]
+    for name, n_queries in plan:
+        for q, (sc, ws) in enumerate(instances(folder, name, n_queries)):
             if a.only is not None and q not in {int(i) for i in a.only.split(",")}:
                 continue
-            ws = load_movingai(folder / f"{name}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
             t0 = time.perf_counter()
             objectives = tuple(a.objectives.split(","))
             ref = free_front(ws, objectives)
@@ -222,6 +434,8 @@ def main(argv=None):
                         exact_size=len(ref),
                         exact_seconds=exact_s,
                     )
+                    if a.exact_stretches is not None:
+                        rec["exact_stretches"] = a.exact_stretches
                     refine = None if a.refine is None else (False if a.refine == "off" else int(a.refine))
                     rec.update(
                         run(
@@ -237,6 +451,9 @@ def main(argv=None):
                             refine,
                             a.progress,
                             dict(map=name, query=q, exact_size=len(ref)),
+                            None
+                            if not a.save_fronts
+                            else os.path.join(a.save_fronts, f"{name}-q{q}-m{len(objectives)}-{sf}.npz"),
                         )
                     )
                     line = json.dumps(rec)

@@ -236,3 +236,166 @@ def test_turn_weighted_reroute_of_a_whole_path_is_no_less_smooth_than_plain():
         assert (Mt[:, 2] <= Mp[:, 2] + 1e-9).all()
         for i in range(2):
             check_path(ws, turny[0][i, : turny[1][i]])
+
+
+# -- incremental update, parent picking, cap (eighth session) -------------------
+
+
+def _batch_front(problem, flat, offsets, keys):
+    """The archive's front as the first archive computed it: every path seen,
+    one row per path, the feasible non-dominated ones (select_front)."""
+    from gapath.front import select_front
+
+    enc = problem.encoding
+    P, L = enc.padded(flat, offsets)
+    M = problem.path_metrics(P, L)
+    _, first = np.unique(keys, axis=0, return_index=True)
+    rows = np.sort(first)
+    rows = rows[M[rows, 3] == 0]
+    F = problem.objective_values(M[rows])
+    return F[select_front(F, M[rows])]
+
+
+@pytest.mark.parametrize("objectives", [("length", "vulnerability"), OBJ3])
+def test_incremental_update_gives_the_batch_front(objectives):
+    """Genome batches added one at a time give the front of all of them
+    taken together (the archive is non-dominated, so the incremental
+    update loses nothing)."""
+    ws = room(h=14, w=16, seed=11)
+    p = FreePathProblem(ws, objectives)
+    enc = p.encoding
+    archive = FreePathArchive(p, n_refine=0, cap=None)
+    rng = np.random.default_rng(4)
+    seen = None
+    for _ in range(6):
+        X = rng.random((30, p.n_var))
+        archive.add(X)
+        f, o, k = enc.decode_flat(X)
+        seen = (
+            (f, o, k)
+            if seen is None
+            else (*enc.concat_flat(seen[0], seen[1], f, o), np.concatenate([seen[2], k]))
+        )
+        np.testing.assert_array_equal(archive.F, _batch_front(p, *seen))
+
+
+@pytest.mark.parametrize("cap", [8, 12])
+def test_cap_holds_and_keeps_the_extremes(cap):
+    ws = room(h=20, w=24, seed=12)  # 25 points uncapped
+    p = FreePathProblem(ws, OBJ3)
+    archive = FreePathArchive(p, n_refine=30, seed=3, cap=cap)
+    free = FreePathArchive(p, n_refine=0, cap=None)  # the same offspring, uncapped, no refinement
+
+    class Both:
+        def __call__(self, algorithm):
+            archive.notify(algorithm)
+            free.notify(algorithm)
+            assert len(archive) <= cap
+
+    minimize(p, FastNSGA2(20, sampling=FreeSampling("none")), ("n_gen", 8), seed=2, callback=Both())
+    A = archive.front()
+    assert 0 < len(A) <= cap
+    assert archive.n_dropped > 0
+    for path in A.paths:
+        check_path(ws, path)
+    P, L = pad_paths(A.paths)
+    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    np.testing.assert_allclose(A.F, p.objective_values(M), rtol=0, atol=0)
+    assert len(nondominated(A.F, tol=TOL)) == len(A)
+    # no kept path is dominated by a dropped one, nor by a path the uncapped archive holds
+    from gapath.operators.archive import dominated_by
+
+    assert not dominated_by(A.F, archive._shadow).any()
+    # the best value of every objective is never lost to the cap
+    for j in range(p.n_obj):
+        assert A.F[:, j].min() <= free.F[:, j].min() * (1 + TOL)
+
+
+def test_capped_archive_is_deterministic():
+    ws = room(h=20, w=24, seed=12)
+    out = []
+    for _ in range(2):
+        p = FreePathProblem(ws, OBJ3)
+        a = FreePathArchive(p, n_refine=25, seed=7, cap=6)
+        minimize(p, FastNSGA2(16, sampling=FreeSampling("none")), ("n_gen", 5), seed=4, callback=a)
+        out.append(a)
+    np.testing.assert_array_equal(out[0].F, out[1].F)
+    assert [x.tolist() for x in out[0].paths()] == [x.tolist() for x in out[1].paths()]
+    np.testing.assert_array_equal(out[0]._shadow, out[1]._shadow)
+
+
+def test_aimed_weight_genes_lie_between_the_neighbours_trade_offs():
+    ws = room(h=14, w=16, seed=14)
+    p = FreePathProblem(ws)
+    assert FreePathArchive(p).sparse == 0.0 and FreePathArchive(FreePathProblem(ws, OBJ3)).sparse == 0.5
+    a = FreePathArchive(p, n_refine=0, sparse=0.5)
+    a.add(np.random.default_rng(1).random((200, p.n_var)))
+    assert a._aim and len(a) >= 3
+    F = a.F
+    n = 400
+    pick, aimed = a._parents(n)
+    assert aimed.sum() == n // 2
+    (lo, top), g = a._weight_genes(pick, aimed, np.random.default_rng(2).random(n))
+    assert lo == a.lam_range[0] and top > a.lam_range[1]
+    assert ((g >= 0) & (g <= 1)).all()
+    lam = lo + (top - lo) * g
+    slope = np.clip(np.log10(np.diff(F[:, 0]) / -np.diff(F[:, 1])), lo, top)
+    for i, lm, aim in zip(pick, lam, aimed):
+        if not aim:
+            assert a.lam_range[0] - 1e-9 <= lm <= a.lam_range[1] + 1e-9
+            continue
+        near = (slope[i - 1] if i > 0 else lo, slope[i] if i < len(F) - 1 else top)
+        assert max(lo, min(near) - 0.5) - 1e-9 <= lm <= top + 1e-9
+    assert not FreePathArchive(FreePathProblem(ws, OBJ3))._aim
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        (dict(sparse=-0.1), "sparse"),
+        (dict(sparse="x"), "sparse"),
+        (dict(cap=1), "cap"),
+        (dict(cap=2.5), "cap"),
+        (dict(cap="many"), "cap"),
+        (dict(extremes=-1), "extremes"),
+        (dict(extremes=0.5), "extremes"),
+    ],
+)
+def test_bad_sparse_and_cap(kwargs, match):
+    with pytest.raises(ConfigError, match=match):
+        FreePathArchive(FreePathProblem(room(seed=1)), **kwargs)
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_extreme_reroutes_reach_the_smoothest_exact_point(seed):
+    """With smoothness as an objective the whole-path re-routings under a
+    heavy turn weight give the front's smoothest point (exact search on a
+    small map says which it is)."""
+    ws = room(h=14, w=16, seed=20 + seed, density=0.2)
+    p = FreePathProblem(ws, OBJ3)
+    archive = FreePathArchive(p, n_refine=4, seed=seed)
+    minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 2), seed=seed, callback=archive)
+    want = free_front(ws, OBJ3).F[:, 2].min()
+    assert archive.F[:, 2].min() == pytest.approx(want, rel=TOL, abs=1e-12)
+    plain = FreePathArchive(p, n_refine=4, seed=seed, extremes=0)
+    assert plain.extremes == 0 and archive.extremes == 4
+
+
+@pytest.mark.parametrize("objectives", [("length", "vulnerability"), OBJ3])
+def test_exact_stretches_splice_valid_paths_and_never_beat_exact(objectives):
+    ws = room(h=14, w=16, seed=31)
+    p = FreePathProblem(ws, objectives)
+    archive = FreePathArchive(p, n_refine=0, seed=2, exact_stretches=3)
+    minimize(p, FastNSGA2(12, sampling=FreeSampling("none")), ("n_gen", 4), seed=2, callback=archive)
+    assert archive.n_eval > 0  # spliced paths were evaluated
+    front = archive.front()
+    P, L = pad_paths(front.paths)
+    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    np.testing.assert_allclose(front.F, p.objective_values(M), rtol=0, atol=0)
+    for path in front.paths:
+        check_path(ws, path)
+    exact = free_front(ws, objectives).F
+    for f in front.F:
+        assert not any(dominates(f, r) for r in exact)
+    with pytest.raises(ConfigError, match="exact_stretches"):
+        FreePathArchive(p, exact_stretches=-2)

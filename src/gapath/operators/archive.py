@@ -6,14 +6,26 @@ that (three objectives on random maps: exact fronts of 300-600 points).
 :class:`FreePathArchive` is a pymoo callback that keeps, beside the run,
 every feasible non-dominated path it has seen (the offspring of every
 generation, the initial population included), and each generation *refines*
-it: ``n_refine`` archived paths, picked at random, each have one segment
-(a random stretch of the path) replaced by the optimal path between the
-segment's ends under a random weighting of length against the cell cost
+it: ``n_refine`` archived paths (with three or more objectives half of
+them picked by crowding distance, favouring the front's sparse regions and
+its extremes, the others uniformly) each have one segment (a random
+stretch of the path) replaced by the optimal path between the segment's
+ends under a weighting of length against the cell cost (random; with two
+objectives and ``sparse > 0``, for the paths picked by crowding, between
+the trade-offs to the path's neighbours on the front)
 (:meth:`gapath.encodings.free.FreeEncoding.reroute`, one numba kernel for
 the whole batch). A Pareto-optimal path of additive objectives is made of
 sub-paths that are Pareto optimal between their ends, so splicing
 weighted-sum sub-paths into front paths reaches front points that no
 weighting of the whole path reaches (the non-supported points).
+
+With smoothness as an objective, ``extremes`` whole paths per generation
+are re-routed under a heavy turn weight (the smooth end of the front).
+
+The archive is updated incrementally (each generation's ``k`` new paths
+against its ``n`` paths: ``O(k n)``) and capped (:data:`CAP` paths by
+default; the most crowded go first, never an extreme, and a path that a
+dropped one dominates is refused).
 
 Re-routed paths have no genome: they stay in the archive and are not fed
 back to the population. :func:`gapath.solver.solve` returns the archive's
@@ -26,11 +38,77 @@ import numpy as np
 from pymoo.core.callback import Callback
 
 from gapath.errors import ConfigError
-from gapath.front import PathFront, select_front
-from gapath.objectives import INTERFERING
+from gapath.front import PathFront
+from gapath.metrics import TOL, close, dedupe
+from gapath.objectives import INTERFERING, SMOOTHNESS
 
 #: Default range of ``log10`` of the re-routing searches' cell-cost weight.
 LAM_RANGE = (-3.0, 12.0)
+#: Decades past ``lam_range``'s top that aimed re-routings reach at the safe end.
+AIM_EXTRA = 2.0
+#: Whole-path re-routings towards the smooth end: their weight genes are
+#: drawn in ``[0, EXTREME_LAM]`` (of ``lam_range``).
+EXTREME_LAM = 0.2
+#: Whole-path re-routings towards the smooth end: the range of ``log10`` of
+#: their turn weight (per radian, against length).
+EXTREME_TURNS = (2.0, 4.0)
+#: Exact stretch searches per generation with two objectives
+#: (``exact_stretches``'s default; 0 with three or more).
+EXACT_STRETCHES = 8
+#: Share of a path's cells an exact stretch search spans (drawn uniformly).
+EXACT_SPAN = (0.02, 0.1)
+#: Default cap on the archive's size (see :class:`FreePathArchive`).
+CAP = 5000
+
+
+def dominated_by(B, A, tol: float = TOL) -> np.ndarray:
+    """Which rows of ``B`` some row of ``A`` dominates, up to SPEC's
+    tolerance (as :func:`gapath.metrics.nondominated` with ``tol``).
+
+    Examples
+    --------
+    >>> dominated_by([[2.0, 2.0], [0.0, 3.0], [1.0, 1.0 + 1e-12]], [[1.0, 1.0]]).tolist()
+    [True, False, False]
+    """
+    B, A = np.asarray(B, float), np.asarray(A, float)
+    out = np.zeros(len(B), bool)
+    if len(B) == 0 or len(A) == 0:
+        return out
+    chunk = max(1, 2_000_000 // max(1, A.size))
+    for s in range(0, len(B), chunk):
+        b = B[s : s + chunk, None, :]
+        eq = close(A[None, :, :], b, tol)
+        not_worse = ((A[None, :, :] <= b) | eq).all(axis=2)
+        better = ((A[None, :, :] < b) & ~eq).any(axis=2)
+        out[s : s + chunk] = (not_worse & better).any(axis=1)
+    return out
+
+
+def crowding(F) -> np.ndarray:
+    """Crowding distance of the rows of ``F`` (a non-dominated set): per
+    objective, the gap between a row's two neighbours in that objective's
+    order over the objective's range, summed; ``inf`` for the best and the
+    worst row of each objective (the extremes).
+
+    Examples
+    --------
+    >>> crowding([[0.0, 4.0], [1.0, 2.0], [3.0, 1.0], [4.0, 0.0]]).tolist()
+    [inf, 1.5, 1.25, inf]
+    """
+    F = np.asarray(F, float)
+    n, m = F.shape
+    cd = np.zeros(n)
+    if n <= 2:
+        cd[:] = np.inf
+        return cd
+    for j in range(m):
+        order = np.argsort(F[:, j], kind="stable")
+        f = F[order, j]
+        span = f[-1] - f[0]
+        if span > 0:
+            cd[order[1:-1]] += (f[2:] - f[:-2]) / span
+        cd[order[0]] = cd[order[-1]] = np.inf
+    return cd
 
 
 class FreePathArchive(Callback):
@@ -50,16 +128,46 @@ class FreePathArchive(Callback):
         log-uniformly; wider than the genomes' by default: the last points
         of the safe end of a front trade a step for a potential of 1e-9
         (MovingAI den312d).
+    shortcut : share of the refined paths straightened instead of re-routed
+        (default 0.25 with smoothness as an objective, else 0).
+    sparse : share of the refined paths' parents drawn with probability
+        proportional to their crowding distance in the archive (isolated
+        paths and the extremes of the front more often; with two
+        objectives, length first, their re-routing weights are also aimed,
+        see :meth:`_weight_genes`); the others are drawn uniformly.
+        Default 0.5 with three or more objectives, 0 with two (measured in
+        ``docs/results/free_paths.md``: no gain with two).
+    cap : at most this many archived paths (None: unbounded). Past it the
+        most crowded paths go, never an extreme (the best and worst path of
+        each objective stay, so a cap below ``2 * n_obj`` may be exceeded);
+        the objective vectors of the dropped paths are kept, and a new path
+        one of them dominates is refused (see :meth:`_truncate`).
+    exact_stretches : stretches per generation (default
+        :data:`EXACT_STRETCHES`, 8, with two objectives, 0 with more) of
+        randomly picked archived paths, each
+        spanning a share :data:`EXACT_SPAN` of its path, replaced by every
+        path of the exact front between the stretch's ends
+        (:func:`gapath.planners.exact.free_front`): the non-supported
+        sub-paths no weighted re-routing gives. Objectives with costmap
+        layers: none. Counted in ``n_eval``.
+    extremes : with smoothness as an objective, whole archived paths
+        re-routed per generation under a heavy turn weight
+        (``log10(c / a)`` in :data:`EXTREME_TURNS`) and a light cell cost
+        (weight genes up to :data:`EXTREME_LAM`): the smooth end of the
+        front, whose extreme sets the HV's smoothness ideal (counted in
+        ``n_eval``).
 
     Attributes
     ----------
     n_eval : paths evaluated by the archive (re-routed ones).
+    n_dropped : paths the cap dropped.
 
     Raises
     ------
     ConfigError
         On a problem that is not a free-path problem, a negative
-        ``n_refine`` or a bad ``segment``.
+        ``n_refine``, a bad ``segment``, ``lam_range``, ``shortcut``,
+        ``sparse``, ``extremes``, ``exact_stretches`` or ``cap``.
 
     Examples
     --------
@@ -83,6 +191,10 @@ class FreePathArchive(Callback):
         segment=(0.05, 0.5),
         lam_range=LAM_RANGE,
         shortcut=None,
+        sparse=None,
+        cap=CAP,
+        extremes=4,
+        exact_stretches=None,
     ):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
@@ -111,6 +223,8 @@ class FreePathArchive(Callback):
         self.lam_range = (lam_lo, lam_hi)
         #: with smoothness as an objective the re-routing searches weigh turns
         self.turns = "smoothness" in problem.objectives
+        #: aim the weights at the neighbours' trade-offs (two objectives, length first)
+        self._aim = problem.n_obj == 2 and problem.objectives[0] == "length" and not self.turns
         if shortcut is None:
             shortcut = 0.25 if self.turns else 0.0
         try:
@@ -120,8 +234,46 @@ class FreePathArchive(Callback):
         if not 0.0 <= shortcut <= 1.0:
             raise ConfigError(f"shortcut must be a share in [0, 1], got {shortcut!r}")
         self.shortcut = shortcut
+        if sparse is None:  # measured: helps with three objectives, not with two
+            sparse = 0.5 if problem.n_obj >= 3 else 0.0
+        try:
+            sparse = float(sparse)
+        except (TypeError, ValueError):
+            raise ConfigError(f"sparse must be a share in [0, 1], got {sparse!r}") from None
+        if not 0.0 <= sparse <= 1.0:
+            raise ConfigError(f"sparse must be a share in [0, 1], got {sparse!r}")
+        self.sparse = sparse
+        try:
+            ok = float(extremes) == int(extremes) and int(extremes) >= 0
+        except (TypeError, ValueError, OverflowError):
+            ok = False
+        if not ok:
+            raise ConfigError(f"extremes must be an integer >= 0, got {extremes!r}")
+        self.extremes = int(extremes)
+        if exact_stretches is None:  # measured with two objectives only
+            exact_stretches = EXACT_STRETCHES if problem.n_obj == 2 else 0
+        try:
+            ok = float(exact_stretches) == int(exact_stretches) and int(exact_stretches) >= 0
+        except (TypeError, ValueError, OverflowError):
+            ok = False
+        if not ok:
+            raise ConfigError(f"exact_stretches must be an integer >= 0, got {exact_stretches!r}")
+        # only over the objectives the exact search has (no costmap layers)
+        additive = set(problem.objectives) <= {"length", "vulnerability", "smoothness"}
+        self.exact_stretches = int(exact_stretches) if additive else 0
+        if cap is not None:
+            try:
+                ok = float(cap) == int(cap) and int(cap) >= 2
+            except (TypeError, ValueError, OverflowError):
+                ok = False
+            if not ok:
+                raise ConfigError(f"cap must be an integer >= 2 or None, got {cap!r}")
+            cap = int(cap)
+        self.cap = cap
         self.rng = np.random.default_rng(seed)
         self.n_eval = 0
+        self.n_dropped = 0
+        self._shadow = np.zeros((0, problem.n_obj))
         enc = problem.encoding
         self._flat = np.zeros(0, np.int64)
         self._offsets = np.zeros(1, np.int64)
@@ -147,6 +299,46 @@ class FreePathArchive(Callback):
         self.add(np.asarray(X, dtype=float))
         if self.n_refine and len(self):
             self.refine(self.n_refine)
+        if self.exact_stretches and len(self):
+            self.exact_refine(self.exact_stretches)
+
+    def exact_refine(self, n: int) -> None:
+        """Replace one short random stretch of ``n`` randomly picked
+        archived paths by each path of the exact front between the
+        stretch's ends, and archive the results."""
+        from gapath.operators._archive_kernels import splice
+        from gapath.planners.exact import free_front
+
+        rng = self.rng
+        ws = self.problem.workspace
+        pick = rng.integers(0, len(self), n)
+        m = np.diff(self._offsets)[pick]
+        lo, hi = EXACT_SPAN
+        span = np.minimum(np.maximum(2, np.rint(rng.uniform(lo, hi, n) * (m - 1))).astype(np.int64), m - 1)
+        i0 = np.floor(rng.random(n) * (m - span)).astype(np.int64)
+        i1 = i0 + span
+        w = ws.shape[1]
+        rows, subs = [], []
+        for r in range(n):  # a few exact searches per generation, each one numba search
+            a = self._offsets[pick[r]]
+            u, v = int(self._flat[a + i0[r]]), int(self._flat[a + i1[r]])
+            if u == v:
+                continue
+            sub_ws = ws.replace(start=(u // w, u % w), goal=(v // w, v % w))
+            sub_ws.__dict__["potential"] = ws.potential  # the same map: reuse its cached field
+            for path in free_front(sub_ws, tuple(self.problem.objectives)).paths:
+                rows.append(r)
+                subs.append(path[:, 0].astype(np.int64) * w + path[:, 1])
+        if not rows:
+            return
+        idx = np.asarray(rows, np.int64)
+        sub_off = np.concatenate([[0], np.cumsum([len(x) for x in subs])]).astype(np.int64)
+        flat, offsets, keys = splice(
+            self._flat, self._offsets, pick[idx], i0[idx], i1[idx], np.concatenate(subs), sub_off, ws.occ.size
+        )
+        k = len(idx)
+        self.n_eval += k
+        self._merge(flat, offsets, keys, np.full((k, self._X.shape[1]), np.nan), np.zeros(k, bool))
 
     def add(self, X) -> None:
         """Archive the decoded paths of genomes ``X`` (those non-dominated)."""
@@ -157,14 +349,15 @@ class FreePathArchive(Callback):
         self._merge(flat, offsets, keys, X, np.ones(len(X), bool))
 
     def refine(self, n: int) -> None:
-        """Change one random segment of ``n`` randomly picked archived paths
-        and archive the results: a share ``shortcut`` of them straightened
+        """Change one random segment of ``n`` archived paths (picked by
+        :meth:`_parents`) and archive the results: a share ``shortcut`` of
+        them straightened
         (:meth:`~gapath.encodings.free.FreeEncoding.shortcut`), the others
-        re-routed under a random weight gene
-        (:meth:`~gapath.encodings.free.FreeEncoding.reroute`)."""
+        re-routed under a weight gene (:meth:`_weight_genes`,
+        :meth:`~gapath.encodings.free.FreeEncoding.reroute`)."""
         rng = self.rng
         enc = self.problem.encoding
-        pick = rng.integers(0, len(self), n)
+        pick, aimed = self._parents(n)
         m = np.diff(self._offsets)[pick]
         lo, hi = self.segment
         span = np.maximum(2, np.rint(rng.uniform(lo, hi, n) * (m - 1))).astype(np.int64)
@@ -181,45 +374,174 @@ class FreePathArchive(Callback):
         if n_short < n:
             s = slice(n_short, n)
             turns = rng.random(n - n_short) if self.turns else None
+            lam, g = self._weight_genes(pick[s], aimed[s], genes[s])
+            parts.append(
+                enc.reroute(self._flat, self._offsets, pick[s], i0[s], i0[s] + span[s], g, lam, turns)
+            )
+        k = self.extremes if self.turns else 0
+        if k:
+            # whole paths re-routed under a heavy turn weight: the smooth end of
+            # the front, whose extreme sets the smoothness ideal of the HV
+            pe = rng.integers(0, len(self), k)
+            whole = np.diff(self._offsets)[pe] - 1
             parts.append(
                 enc.reroute(
                     self._flat,
                     self._offsets,
-                    pick[s],
-                    i0[s],
-                    i0[s] + span[s],
-                    genes[s],
+                    pe,
+                    np.zeros(k, np.int64),
+                    whole,
+                    EXTREME_LAM * rng.random(k),
                     self.lam_range,
-                    turns,
+                    rng.random(k),
+                    EXTREME_TURNS,
                 )
             )
         flat, offsets, keys = parts[0]
         for f2, o2, k2 in parts[1:]:
             flat, offsets = enc.concat_flat(flat, offsets, f2, o2)
             keys = np.concatenate([keys, k2])
-        self.n_eval += n
-        self._merge(flat, offsets, keys, np.full((n, self._X.shape[1]), np.nan), np.zeros(n, bool))
+        self.n_eval += n + k
+        self._merge(flat, offsets, keys, np.full((n + k, self._X.shape[1]), np.nan), np.zeros(n + k, bool))
+
+    def _parents(self, n: int) -> tuple[np.ndarray, np.ndarray]:
+        """``n`` archived paths to refine: a share ``sparse`` drawn with
+        probability proportional to their crowding distance (isolated paths
+        and the extremes more often, an extreme as often as twice the most
+        isolated other path), the others uniformly, in a random order."""
+        rng = self.rng
+        N = len(self)
+        pick = rng.integers(0, N, n)
+        aimed = np.zeros(n, bool)
+        n_sp = int(round(self.sparse * n))
+        if n_sp and N > 1:
+            w = crowding(self.F)
+            fin = np.isfinite(w)
+            top = w[fin].max() if fin.any() else 0.0
+            w = np.where(fin, w, 2.0 * top if top > 0 else 1.0)
+            pick[:n_sp] = rng.choice(N, n_sp, p=w / w.sum())
+            aimed[:n_sp] = True
+            order = rng.permutation(n)
+            pick, aimed = pick[order], aimed[order]
+        return pick, aimed
+
+    def _weight_genes(self, pick, aimed, genes):
+        """The re-routing searches' weight range and genes. Uniform rows:
+        ``log10(b / a)`` uniform over ``lam_range``. With two objectives,
+        length and a cell cost (the searches' trade-off), rows ``aimed`` take
+        it instead, for half of them, uniform between the trade-offs to the
+        parent's two neighbours on the archive's front (``log10`` of length
+        gained over cost lost), widened by half a decade, and for the other
+        half from that band's low end to the top; the top is
+        :data:`AIM_EXTRA` decades past ``lam_range``'s (the safe end):
+        splices reach the points between the parent and its neighbours."""
+        lo, hi = self.lam_range
+        if not self._aim or not aimed.any() or len(self) < 2:
+            return self.lam_range, genes
+        top = hi + AIM_EXTRA
+        F = self.F  # lexicographic: length up, cost down
+        with np.errstate(divide="ignore", invalid="ignore"):
+            slope = np.log10(np.diff(F[:, 0]) / -np.diff(F[:, 1]))
+        slope = np.clip(np.nan_to_num(slope, nan=lo, posinf=top, neginf=lo), lo, top)
+        left = np.concatenate([[lo], slope])[pick]  # to the shorter neighbour
+        right = np.concatenate([slope, [top]])[pick]  # to the safer one
+        a = np.clip(np.minimum(left, right) - 0.5, lo, top)
+        b = np.clip(np.maximum(left, right) + 0.5, lo, top)
+        # half of the aimed rows in the band, half from its low end to the top
+        # (small detours that pay off only at a steeper trade-off: the
+        # non-supported points between two neighbours)
+        wide = genes >= 0.5
+        g = np.where(wide, 2.0 * genes - 1.0, 2.0 * genes)
+        b = np.where(wide, top, b)
+        lam = np.where(aimed, a + (b - a) * g, lo + (hi - lo) * genes)
+        return (lo, top), (lam - lo) / (top - lo)
 
     def _merge(self, flat, offsets, keys, X, genome) -> None:
+        """Archive the feasible paths ``(flat, offsets)`` that no archived
+        (or dropped) path dominates, drop the archived ones they dominate.
+
+        Incremental: the new paths are tested against each other and the
+        archive (``O(k n)`` for ``k`` new paths and ``n`` archived), which
+        gives exactly the front of the archive and the new paths together
+        (the archive is non-dominated and holds one path per objective
+        vector, the smoothest); then the cap (:meth:`_truncate`)."""
         enc = self.problem.encoding
         P, L = enc.padded(flat, offsets)
         M = self.problem.path_metrics(P, L)
-        ok = M[:, INTERFERING] == 0
-        if len(self):
+        keys = np.asarray(keys, np.int64)
+        _, first = np.unique(keys, axis=0, return_index=True)  # one row per path
+        rows = np.sort(first)
+        rows = rows[M[rows, INTERFERING] == 0]
+        n_a = len(self)
+        if n_a and len(rows):
+            rows = rows[~_rows_in(keys[rows], self._keys)]
+        if len(rows) == 0:
+            return
+        Fc = self.problem.objective_values(M[rows])
+        FA = self.F
+        keep_a = ~dominated_by(FA, Fc)
+        dom = dominated_by(Fc, Fc) | dominated_by(Fc, FA) | dominated_by(Fc, self._shadow)
+        rows, Fc = rows[~dom], Fc[~dom]
+        if len(rows) == 0 and keep_a.all():
+            return
+        a_idx = np.flatnonzero(keep_a)
+        if len(rows):
+            # one path per objective vector: only archived paths equal to a new one compete
+            near = a_idx[_close_any(FA[a_idx], Fc)]
+            Fs = np.concatenate([FA[near], Fc])
+            prefer_a = self._M[near, SMOOTHNESS] if len(near) else np.zeros(0)
+            prefer = np.concatenate([prefer_a, M[rows, SMOOTHNESS]])
+            won = np.zeros(len(Fs), bool)
+            won[dedupe(Fs, prefer=prefer)] = True
+            a_idx = np.setdiff1d(a_idx, near[~won[: len(near)]])
+            rows = rows[won[len(near) :]]
+            Fc = Fc[won[len(near) :]]
+            if len(self._shadow):
+                self._shadow = self._shadow[~dominated_by(self._shadow, Fc)]
+        # the kept rows of [archive; new], in lexicographic order of F
+        F = np.concatenate([FA[a_idx], Fc])
+        take = np.concatenate([a_idx, n_a + rows])[np.lexsort(F.T[::-1])]
+        if n_a:
             flat, offsets = enc.concat_flat(self._flat, self._offsets, flat, offsets)
             keys = np.concatenate([self._keys, keys])
             M = np.concatenate([self._M, M])
             X = np.concatenate([self._X, X])
             genome = np.concatenate([self._genome, genome])
-            ok = np.concatenate([np.ones(len(self), bool), ok])
-        # one row per path (the archived copy first), then the front
-        _, first = np.unique(keys, axis=0, return_index=True)
-        rows = np.sort(first)
-        rows = rows[ok[rows]]
-        F = self.problem.objective_values(M[rows])
-        keep = rows[select_front(F, M[rows])]
-        self._flat, self._offsets = enc.take_flat(flat, offsets, keep)
-        self._keys, self._M, self._X, self._genome = keys[keep], M[keep], X[keep], genome[keep]
+        self._flat, self._offsets = enc.take_flat(flat, offsets, take)
+        self._keys, self._M, self._X, self._genome = keys[take], M[take], X[take], genome[take]
+        if self.cap is not None and len(self) > self.cap:
+            self._truncate()
+
+    def _truncate(self) -> None:
+        """Cut the archive to ``cap`` paths: in rounds, the most crowded
+        (smallest :func:`crowding` distance) archived paths go, at most a
+        tenth of the archive per round; a path best or worst in some
+        objective (infinite crowding distance) never goes. Every archived
+        path is non-dominated, so no dropped path dominates a kept one; the
+        dropped objective vectors are remembered (``dropped``) and a new path
+        one of them dominates is not archived, so the archive never holds a
+        path a path it dropped dominates (up to SPEC's tolerance)."""
+        enc = self.problem.encoding
+        keep = np.arange(len(self))
+        F = self.F
+        while len(keep) > self.cap:
+            cd = crowding(F[keep])
+            movable = np.flatnonzero(np.isfinite(cd))
+            if len(movable) == 0:
+                break
+            r = min(len(keep) - self.cap, max(1, len(keep) // 10), len(movable))
+            drop = movable[np.argsort(cd[movable], kind="stable")[:r]]
+            keep = np.delete(keep, drop)
+        gone = np.setdiff1d(np.arange(len(self)), keep)
+        self._shadow = np.concatenate([self._shadow, F[gone]])
+        self.n_dropped += len(gone)
+        self._flat, self._offsets = enc.take_flat(self._flat, self._offsets, keep)
+        self._keys, self._M, self._X, self._genome = (
+            self._keys[keep],
+            self._M[keep],
+            self._X[keep],
+            self._genome[keep],
+        )
 
     # -- the result --------------------------------------------------------------
     def paths(self) -> list[np.ndarray]:
@@ -233,6 +555,27 @@ class FreePathArchive(Callback):
         one, else it is empty (``(k, 0)``)."""
         X = self._X if self._genome.all() else np.empty((len(self), 0))
         return PathFront(tuple(self.problem.objectives), self.F, self._M, X, self.paths())
+
+
+def _rows_in(B, A) -> np.ndarray:
+    """Which rows of the integer array ``B`` are rows of ``A``."""
+    both = np.concatenate([A, B])
+    _, inv = np.unique(both, axis=0, return_inverse=True)
+    inv = np.asarray(inv).ravel()
+    in_a = np.zeros(inv.max() + 1, bool)
+    in_a[inv[: len(A)]] = True
+    return in_a[inv[len(A) :]]
+
+
+def _close_any(B, A, tol: float = TOL) -> np.ndarray:
+    """Which rows of ``B`` equal some row of ``A`` within SPEC's tolerance."""
+    out = np.zeros(len(B), bool)
+    if len(B) == 0 or len(A) == 0:
+        return out
+    chunk = max(1, 2_000_000 // max(1, A.size))
+    for s in range(0, len(B), chunk):
+        out[s : s + chunk] = close(B[s : s + chunk, None, :], A[None, :, :], tol).all(axis=2).any(axis=1)
+    return out
 
 
 def run_archive(algorithm) -> FreePathArchive | None:
@@ -254,4 +597,15 @@ def run_archive(algorithm) -> FreePathArchive | None:
     return None
 
 
-__all__ = ["LAM_RANGE", "FreePathArchive", "run_archive"]
+__all__ = [
+    "CAP",
+    "EXACT_SPAN",
+    "EXACT_STRETCHES",
+    "EXTREME_LAM",
+    "EXTREME_TURNS",
+    "LAM_RANGE",
+    "FreePathArchive",
+    "crowding",
+    "dominated_by",
+    "run_archive",
+]
