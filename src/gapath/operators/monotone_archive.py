@@ -184,7 +184,8 @@ class MonotonePathArchive(Callback):
         L, V = self._M[:, LENGTH], self._M[:, VULNERABILITY]
         span_len, span_vul = np.ptp(L) if len(L) > 1 else 0.0, np.ptp(V) if len(V) > 1 else 0.0
         ratio = (span_len if span_len > 0 else 1.0) / (span_vul if span_vul > 0 else 1.0)
-        w = ratio * 10.0 ** rng.uniform(*self.weight_range, n)
+        lo, hi = self.weight_range
+        w = ratio * 10.0 ** rng.uniform(lo, hi, n)
         order = np.argsort(L, kind="stable")
         dl, dv = np.diff(L[order]), -np.diff(V[order])
         ties = dl[(dl > 0) & (dv > 0)] / dv[(dl > 0) & (dv > 0)]
