@@ -279,7 +279,7 @@ def multi_front(
         interrupt.check()
         t_heur = time.perf_counter() - t0
         sidx = np.zeros((n_cells + 1, 3), np.int64)  # per-state set blocks, the goal's last
-        li, lg, lf, hid, sols, st, sv, si, sfree = _k_init(
+        li, lg, lf, hid, sols, st, sv, si, sfree, tdir = _k_init(
             sr * w + sc, layers, okind, ocol, cs, hs, hd, ht, hfl, hop, psum, timed, n_float
         )
         fixed = sum(a.nbytes for a in (hs, hd, ht, hfl, layers, table, psum, hop, mask))
@@ -287,15 +287,15 @@ def multi_front(
         peak = 0
         while True:
             pops, t1 = st[S_POPS], time.perf_counter()
-            sidx, li, lg, lf, hid, sols, sv, si, status = _k_run(
+            sidx, li, lg, lf, hid, sols, sv, si, tdir, status = _k_run(
                 mask, w, goal, layers, table, okind, ocol, cs, hs, hd, ht, hfl, hop, psum,
                 timed, smooth, tie_break == "smoothest", sidx, li, lg, lf, hid, sols, st,
-                sv, si, sfree, slices.n, budget,
+                sv, si, sfree, tdir, slices.n, budget,
             )  # fmt: skip
             interrupt.check()
             now = time.perf_counter()
             slices.update(st[S_POPS] - pops, now - t1)
-            peak = max(peak, fixed + sum(a.nbytes for a in (sidx, li, lg, lf, hid, sols, sv, si)))
+            peak = max(peak, fixed + sum(a.nbytes for a in (sidx, li, lg, lf, hid, sols, sv, si, tdir)))
             stats = {
                 "expansions": int(st[S_EXPANDED]),
                 "generated": int(st[S_GENERATED]),
