@@ -10,6 +10,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from gapath.planners._exact_kernels import _tolerant_front
+
 from gapath.planners._multi_kernels import (
     B_CNT,
     B_HEAD,
@@ -31,6 +33,7 @@ from gapath.planners._multi_kernels import (
     T_NEXT,
     T_OFF,
     _covered,
+    _front_filter,
     _gap,
     _insert,
     _width,
@@ -152,7 +155,7 @@ def test_sets_match_a_plain_list(k, at_goal, seed):
         q[0] = x[0]
         ties, smooth = bool(rng.integers(2)), bool(rng.integers(2))
         to_go = int(rng.integers(0, 3))
-        got, _ = _covered(sv, si, tdir, sidx[0, B_HEAD], q, 0, okind, x[1], x[2], at_goal, to_go, ties, smooth, stk)
+        got, _, _ = _covered(sv, si, tdir, sidx[0, B_HEAD], q, 0, okind, x[1], x[2], at_goal, to_go, ties, smooth, stk)
         want = any(_ref_covers(a, x, okind, at_goal, to_go, ties, smooth) for a in ref)
         assert got == want, (step, x)
         if want and rng.random() < 0.8:
@@ -166,3 +169,18 @@ def test_sets_match_a_plain_list(k, at_goal, seed):
         largest = max(largest, len(ref))
     if k >= 3 and okind[-1] != K_TURN:
         assert largest > 40  # trees of several levels were exercised
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_front_filter_is_the_pairwise_scan(seed):
+    """The final front through a kd-tree keeps the rows the scan over all pairs
+    keeps, in the same order: coarse values (many exact and tolerance ties,
+    nudges within and beyond it, scales from 1e-3 to 1e6), 1 to 5 columns."""
+    rng = np.random.default_rng(seed)
+    for _ in range(300):
+        n, m = int(rng.integers(1, 90)), int(rng.integers(1, 6))
+        F = rng.integers(0, rng.integers(1, 6), (n, m)) * rng.choice([1.0, 1e6, 1e-3])
+        F = F + rng.choice([0, 0, 3e-10, -3e-10, 1e-6, 4e-3], (n, m)) * (1 + np.abs(F))
+        F = np.ascontiguousarray(F)
+        order = rng.permutation(n)
+        assert np.array_equal(_front_filter(F, order), _tolerant_front(F, order))

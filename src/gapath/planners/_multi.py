@@ -34,16 +34,21 @@ from gapath.planners._multi_kernels import (
     OVER_BUDGET,
     S_EXPANDED,
     S_GENERATED,
+    S_BUILT,
+    S_DROP_NODES,
+    S_GOAL_NODES,
     S_GOAL_TESTS,
     S_N,
     S_N_FREE,
     S_POPS,
     S_SIZE,
     S_SOLS,
+    S_STATE_NODES,
     S_STATE_TESTS,
     STEP_LIMIT,
     TURNS,
     _cell_to_go,
+    _front_filter,
     _hops,
     _k_init,
     _k_run,
@@ -215,7 +220,6 @@ def multi_front(
     """The k-objective exact free front (see :func:`gapath.planners.exact.free_front`)."""
     from gapath.planners import exact
     from gapath.planners._exact_heuristics import _free_heuristics, _move_masks
-    from gapath.planners._exact_kernels import _tolerant_front
 
     names, spec = parse_objectives(objectives, costmap)
     _check_costmap(workspace, costmap)
@@ -334,7 +338,7 @@ def multi_front(
     F = np.column_stack([columns[i] for i in range(len(names))]) if len(sols) else np.zeros((0, len(names)))
     # among tolerance-equal vectors prefer the smoothest path, then the shortest
     pick = np.lexsort((n_straight + SQRT2 * n_diag, turns))
-    keep = _tolerant_front(np.ascontiguousarray(F), pick)
+    keep = _front_filter(np.ascontiguousarray(F), pick)
     keep = keep[np.lexsort(F[keep].T[::-1])]
     cells, offsets = _k_trace(li, sols[keep], w)
     paths = [cells[offsets[i] : offsets[i + 1]] for i in range(len(keep))]
@@ -347,6 +351,10 @@ def multi_front(
         "state_tests": int(st[S_STATE_TESTS]),
         "set_sizes": _set_sizes(sidx),
         "goal_tests": int(st[S_GOAL_TESTS]),
+        "state_nodes": int(st[S_STATE_NODES]),
+        "goal_nodes": int(st[S_GOAL_NODES]),
+        "drop_nodes": int(st[S_DROP_NODES]),
+        "built": int(st[S_BUILT]),
         "heuristic_seconds": t_heur,
         "seconds": time.perf_counter() - t0,
         "search": "k-objective",

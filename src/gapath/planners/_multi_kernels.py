@@ -54,7 +54,10 @@ S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_FREE, S_N_FREE, S_
 S_PTOP, S_STATE_TESTS, S_GOAL_TESTS = range(10, 13)
 # the tree directory: head of its free list, rows in use
 S_TFREE, S_TTOP = range(13, 15)
-N_ST = 15
+# tree nodes visited by the state and goal checks and by the insertions' drops,
+# members written by tree builds
+S_STATE_NODES, S_GOAL_NODES, S_DROP_NODES, S_BUILT = range(15, 19)
+N_ST = 19
 
 
 @numba.njit(cache=True, inline="always")
@@ -346,38 +349,82 @@ def _tree_free(tdir, st, t):
 
 
 @numba.njit(cache=True)
+def _select(perm, tv, j, lo, hi, kth):
+    """Reorder ``perm[lo:hi]`` so that ``perm[kth]`` holds the member of rank
+    ``kth - lo`` by ``tv[:, j]``, the smaller ones before it and the larger ones
+    after it (quickselect, median-of-three pivots)."""
+    while hi - lo > 3:
+        a, b, c = perm[lo], perm[(lo + hi) >> 1], perm[hi - 1]
+        va, vb, vc = tv[a, j], tv[b, j], tv[c, j]
+        if va > vb:
+            va, vb = vb, va
+        if vb > vc:
+            vb = vc
+            if va > vb:
+                vb = va
+        pv = vb
+        i, e = lo, hi - 1
+        while i <= e:
+            while tv[perm[i], j] < pv:
+                i += 1
+            while tv[perm[e], j] > pv:
+                e -= 1
+            if i <= e:
+                perm[i], perm[e] = perm[e], perm[i]
+                i += 1
+                e -= 1
+        # [lo, e] <= pv <= [i, hi)
+        if kth <= e:
+            hi = e + 1
+        elif kth >= i:
+            lo = i
+        else:
+            return
+    for a in range(lo + 1, hi):  # insertion sort of the last few
+        p = perm[a]
+        v = tv[p, j]
+        b = a - 1
+        while b >= lo and tv[perm[b], j] > v:
+            perm[b + 1] = perm[b]
+            b -= 1
+        perm[b + 1] = p
+
+
+@numba.njit(cache=True)
 def _build(sv, si, off, tv, ti, m, k):
     """Write the members ``tv[:m]`` (g-values), ``ti[:m]`` (turns, heading) as a
     kd-tree at pool rows ``off ..``, boxes included."""
+    b0 = k
+    b1 = k + k - 1
+    if m == 1:
+        for c in range(k):
+            sv[off, c] = tv[0, c]
+        for j in range(1, k):
+            sv[off, b0 + j - 1] = tv[0, j]
+            sv[off, b1 + j - 1] = tv[0, j]
+        si[off, M_TURNS] = ti[0, 0]
+        si[off, M_HEAD] = ti[0, 1]
+        si[off, M_ALIVE] = 1
+        return
     perm = np.arange(m)
-    lo_s = np.empty(m + 66, np.int64)
-    hi_s = np.empty(m + 66, np.int64)
-    dep_s = np.empty(m + 66, np.int64)
-    rlo = np.empty(m, np.int64)  # the ranges, parents before children
-    rhi = np.empty(m, np.int64)
+    stack = np.empty((m + 66, 3), np.int64)
+    rr = np.empty((m, 2), np.int64)  # the ranges, parents before children
     nr = 0
-    lo_s[0], hi_s[0], dep_s[0] = 0, m, 0
+    stack[0, 0], stack[0, 1], stack[0, 2] = 0, m, 0
     top = 1
     while top > 0:
         top -= 1
-        lo, hi, d = lo_s[top], hi_s[top], dep_s[top]
+        lo, hi, d = stack[top, 0], stack[top, 1], stack[top, 2]
         if hi <= lo:
             continue
-        rlo[nr] = lo
-        rhi[nr] = hi
+        rr[nr, 0] = lo
+        rr[nr, 1] = hi
         nr += 1
-        if hi - lo > 1 and k > 1:
-            j = 1 + d % (k - 1)
-            vals = np.empty(hi - lo)
-            for i in range(lo, hi):
-                vals[i - lo] = tv[perm[i], j]
-            o = np.argsort(vals)
-            seg = perm[lo:hi].copy()
-            for i in range(hi - lo):
-                perm[lo + i] = seg[o[i]]
         mid = (lo + hi) >> 1
-        lo_s[top], hi_s[top], dep_s[top] = lo, mid, d + 1
-        lo_s[top + 1], hi_s[top + 1], dep_s[top + 1] = mid + 1, hi, d + 1
+        if hi - lo > 1 and k > 1:
+            _select(perm, tv, 1 + d % (k - 1), lo, hi, mid)
+        stack[top, 0], stack[top, 1], stack[top, 2] = lo, mid, d + 1
+        stack[top + 1, 0], stack[top + 1, 1], stack[top + 1, 2] = mid + 1, hi, d + 1
         top += 2
     for i in range(m):
         r = off + i
@@ -387,10 +434,8 @@ def _build(sv, si, off, tv, ti, m, k):
         si[r, M_TURNS] = ti[p, 0]
         si[r, M_HEAD] = ti[p, 1]
         si[r, M_ALIVE] = 1
-    b0 = k
-    b1 = k + k - 1
     for t in range(nr - 1, -1, -1):  # children before parents
-        lo, hi = rlo[t], rhi[t]
+        lo, hi = rr[t, 0], rr[t, 1]
         mid = (lo + hi) >> 1
         r = off + mid
         for j in range(1, k):
@@ -407,34 +452,6 @@ def _build(sv, si, off, tv, ti, m, k):
 
 
 @numba.njit(cache=True, inline="always")
-def _covers(sv, si, r, q, qr, okind, tx, hx, at_goal, to_go, ties, smooth):
-    """Does the member in pool row ``r`` cover ``q[qr]`` (see :func:`_covered`)?"""
-    k = okind.shape[0]
-    gap = 0 if at_goal else _gap(si[r, M_HEAD], hx)
-    strict = False
-    for jj in range(k):
-        j = jj + 1 if jj < k - 1 else 0  # the primary last: it rarely decides
-        ga = sv[r, j]
-        gx = q[qr, j]
-        if okind[j] == K_TURN:
-            ga += gap
-            if ga > gx:
-                return False
-            if ga < gx:
-                strict = True
-        else:
-            if not _le(ga, gx):
-                return False
-            if not _eq(ga, gx):
-                strict = True
-    if strict or smooth or not ties:
-        return True
-    if at_goal:
-        return si[r, M_TURNS] <= tx + to_go
-    return si[r, M_TURNS] + gap <= tx
-
-
-@numba.njit(cache=True)
 def _covered(sv, si, tdir, head, q, qr, okind, tx, hx, at_goal, to_go, ties, smooth, stk):
     """True if a member of the set whose first tree is ``head - 1`` covers the
     vector ``q[qr]``: at a state, ``q[qr]`` is a label's g-vector and a member
@@ -444,10 +461,12 @@ def _covered(sv, si, tdir, head, q, qr, okind, tx, hx, at_goal, to_go, ties, smo
     tolerance and strictly on one, or equal and (with ``ties``, smoothness not
     an objective) not less smooth (at the goal: not more turns than the label's
     ``tx`` plus ``to_go``, a lower bound of the turns still to come). ``stk``:
-    scratch of ``N_STACK`` ints. Returns ``(covered, members tested)``."""
+    scratch of ``N_STACK`` ints. Returns ``(covered, members tested, tree nodes
+    visited)``."""
     k = okind.shape[0]
     b0 = k
     tested = 0
+    nodes = 0
     t = head - 1
     while t >= 0:
         off = tdir[t, T_OFF]
@@ -459,6 +478,7 @@ def _covered(sv, si, tdir, head, q, qr, okind, tx, hx, at_goal, to_go, ties, smo
             lo, hi = stk[top], stk[top + 1]
             mid = (lo + hi) >> 1
             r = off + mid
+            nodes += 1
             inside = True
             for j in range(1, k):
                 if not _le(sv[r, b0 + j - 1], q[qr, j]):
@@ -468,8 +488,35 @@ def _covered(sv, si, tdir, head, q, qr, okind, tx, hx, at_goal, to_go, ties, smo
                 continue
             if si[r, M_ALIVE]:
                 tested += 1
-                if _covers(sv, si, r, q, qr, okind, tx, hx, at_goal, to_go, ties, smooth):
-                    return True, tested
+                # the member test (written out: a call would pass the arrays again)
+                gap = 0 if at_goal else _gap(si[r, M_HEAD], hx)
+                ok = True
+                strict = False
+                for jj in range(k):
+                    j = jj + 1 if jj < k - 1 else 0  # the primary last: it rarely decides
+                    ga = sv[r, j]
+                    gx = q[qr, j]
+                    if okind[j] == K_TURN:
+                        ga += gap
+                        if ga > gx:
+                            ok = False
+                            break
+                        if ga < gx:
+                            strict = True
+                    else:
+                        if not _le(ga, gx):
+                            ok = False
+                            break
+                        if not _eq(ga, gx):
+                            strict = True
+                if ok:
+                    if strict or smooth or not ties:
+                        return True, tested, nodes
+                    if at_goal:
+                        if si[r, M_TURNS] <= tx + to_go:
+                            return True, tested, nodes
+                    elif si[r, M_TURNS] + gap <= tx:
+                        return True, tested, nodes
             if hi > mid + 1:
                 stk[top] = mid + 1
                 stk[top + 1] = hi
@@ -479,31 +526,19 @@ def _covered(sv, si, tdir, head, q, qr, okind, tx, hx, at_goal, to_go, ties, smo
                 stk[top + 1] = mid
                 top += 2
         t = tdir[t, T_NEXT] - 1
-    return False, tested
+    return False, tested, nodes
 
 
-@numba.njit(cache=True)
-def _drops(sv, si, r, q, qr, okind, tx, hx, at_goal):
-    """Does the new member ``q[qr]`` make the member in row ``r`` redundant: weakly
-    better on every objective but the primary (later labels are not better in the
-    primary, NAMOA*-dr)?"""
-    k = okind.shape[0]
-    gap = 0 if at_goal else _gap(hx, si[r, M_HEAD])
-    for j in range(1, k):
-        if okind[j] == K_TURN:
-            if tx + gap > si[r, M_TURNS]:
-                return False
-        elif not _le(q[qr, j], sv[r, j]):
-            return False
-    return True
-
-
-@numba.njit(cache=True)
+@numba.njit(cache=True, inline="always")
 def _drop_in_tree(sv, si, off, m, q, qr, okind, tx, hx, at_goal, stk):
-    """Mark dead the members of a tree the new member drops; returns how many."""
+    """Mark dead the members of a tree the new member drops (those it makes
+    redundant for later checks: weakly better on every objective but the
+    primary, as later labels are not better in the primary, NAMOA*-dr);
+    returns how many and the nodes visited."""
     k = okind.shape[0]
     b1 = k + k - 1
     n = 0
+    nodes = 0
     stk[0] = 0
     stk[1] = m
     top = 2
@@ -512,6 +547,7 @@ def _drop_in_tree(sv, si, off, m, q, qr, okind, tx, hx, at_goal, stk):
         lo, hi = stk[top], stk[top + 1]
         mid = (lo + hi) >> 1
         r = off + mid
+        nodes += 1
         inside = True
         for j in range(1, k):
             if not _le(q[qr, j], sv[r, b1 + j - 1]):
@@ -519,9 +555,20 @@ def _drop_in_tree(sv, si, off, m, q, qr, okind, tx, hx, at_goal, stk):
                 break
         if not inside:
             continue
-        if si[r, M_ALIVE] and _drops(sv, si, r, q, qr, okind, tx, hx, at_goal):
-            si[r, M_ALIVE] = 0
-            n += 1
+        if si[r, M_ALIVE]:
+            gap = 0 if at_goal else _gap(hx, si[r, M_HEAD])
+            drop = True
+            for j in range(1, k):
+                if okind[j] == K_TURN:
+                    if tx + gap > si[r, M_TURNS]:
+                        drop = False
+                        break
+                elif not _le(q[qr, j], sv[r, j]):
+                    drop = False
+                    break
+            if drop:  # weakly better on every objective but the primary (NAMOA*-dr)
+                si[r, M_ALIVE] = 0
+                n += 1
         if hi > mid + 1:
             stk[top] = mid + 1
             stk[top + 1] = hi
@@ -530,7 +577,7 @@ def _drop_in_tree(sv, si, off, m, q, qr, okind, tx, hx, at_goal, stk):
             stk[top] = lo
             stk[top + 1] = mid
             top += 2
-    return n
+    return n, nodes
 
 
 @numba.njit(cache=True)
@@ -551,7 +598,7 @@ def _gather(sv, si, off, m, tv, ti, n, k):
 def _insert(sv, si, sidx, sfree, tdir, st, s, q, qr, okind, tx, hx, at_goal, stk):
     """Add the member with g-vector ``q[qr]``, turns ``tx`` and heading ``hx``
     to the set of ``s`` and drop the members it makes redundant for later
-    checks (:func:`_drops`). The caller has made sure the pool holds
+    checks (:func:`_drop_in_tree`). The caller has made sure the pool holds
     ``_room(live members of s)`` more rows and ``tdir`` two more trees."""
     k = okind.shape[0]
     # drops: marked dead; an emptied tree is freed, a half-dead one rebuilt
@@ -559,7 +606,8 @@ def _insert(sv, si, sidx, sfree, tdir, st, s, q, qr, okind, tx, hx, at_goal, stk
     t = sidx[s, B_HEAD] - 1
     while t >= 0:
         nxt = tdir[t, T_NEXT] - 1
-        nd = _drop_in_tree(sv, si, tdir[t, T_OFF], tdir[t, T_M], q, qr, okind, tx, hx, at_goal, stk)
+        nd, nn = _drop_in_tree(sv, si, tdir[t, T_OFF], tdir[t, T_M], q, qr, okind, tx, hx, at_goal, stk)
+        st[S_DROP_NODES] += nn
         if nd > 0:
             tdir[t, T_LIVE] -= nd
             sidx[s, B_CNT] -= nd
@@ -581,6 +629,7 @@ def _insert(sv, si, sidx, sfree, tdir, st, s, q, qr, okind, tx, hx, at_goal, stk
                 _release(si, sfree, tdir[t, T_OFF], tdir[t, T_CAP])
                 off, cap = _alloc(si, sfree, st, live)
                 _build(sv, si, off, tv, ti, live, k)
+                st[S_BUILT] += live
                 tdir[t, T_OFF] = off
                 tdir[t, T_M] = live
                 tdir[t, T_CAP] = cap
@@ -589,7 +638,7 @@ def _insert(sv, si, sidx, sfree, tdir, st, s, q, qr, okind, tx, hx, at_goal, stk
     # the new member's tree absorbs the next ones while they are smaller than twice it
     total = 1
     t = sidx[s, B_HEAD] - 1
-    while t >= 0 and tdir[t, T_LIVE] < 2 * total:
+    while t >= 0 and tdir[t, T_LIVE] < 4 * total:
         total += tdir[t, T_LIVE]
         t = tdir[t, T_NEXT] - 1
     tv = np.empty((total, k))
@@ -609,6 +658,7 @@ def _insert(sv, si, sidx, sfree, tdir, st, s, q, qr, okind, tx, hx, at_goal, stk
         t = nxt
     off, cap = _alloc(si, sfree, st, total)
     _build(sv, si, off, tv, ti, total, k)
+    st[S_BUILT] += total
     u = _tree_new(tdir, st)
     tdir[u, T_OFF] = off
     tdir[u, T_M] = total
@@ -864,6 +914,8 @@ def _k_steps(
     pops0 = st[S_POPS]
     t_state = 0
     t_goal = 0
+    v_state = 0
+    v_goal = 0
     while size > 0:
         if steps == n_steps:
             status = PAUSED
@@ -898,18 +950,20 @@ def _k_steps(
         # lazy checks: the sets may have grown since x was generated
         covered = False
         if c != goal:
-            covered, nt = _covered(
+            covered, nt, nv = _covered(
                 sv, si, tdir, sidx[s, B_HEAD], gq, 0, okind, tx, hx, False, 0, ties, smooth, stk
             )
             t_state += nt
+            v_state += nv
         if not covered:
             to_go = 0
             if use_ht:
                 to_go = ht[c * 9 + (hx if hx >= 0 else 8)]
-            covered, nt = _covered(
+            covered, nt, nv = _covered(
                 sv, si, tdir, sidx[gs, B_HEAD], lf, x, okind, tx, hx, True, to_go, ties, smooth, stk
             )
             t_goal += nt
+            v_goal += nv
         if covered:
             li[x, NEXT] = free  # nothing refers to x: recycle its row
             free = x
@@ -950,17 +1004,19 @@ def _k_steps(
             s2 = (n_x + 1) * n_cells + cell if timed else cell
             if cell != goal and sidx[s2, B_CNT] > 0:
                 _gvec(li, lg, j, okind, ocol, cell_size, gq, 0)
-                cov, nt = _covered(
+                cov, nt, nv = _covered(
                     sv, si, tdir, sidx[s2, B_HEAD], gq, 0, okind, tj, d, False, 0, ties, smooth, stk
                 )
                 t_state += nt
+                v_state += nv
                 if cov:
                     continue
             to_go = ht[cell * 9 + d] if use_ht else 0
-            cov, nt = _covered(
+            cov, nt, nv = _covered(
                 sv, si, tdir, sidx[gs, B_HEAD], lf, j, okind, tj, d, True, to_go, ties, smooth, stk
             )
             t_goal += nt
+            v_goal += nv
             if cov:
                 continue
             if j == free:
@@ -981,6 +1037,8 @@ def _k_steps(
     st[S_POPS] = pops0 + steps
     st[S_STATE_TESTS] += t_state
     st[S_GOAL_TESTS] += t_goal
+    st[S_STATE_NODES] += v_state
+    st[S_GOAL_NODES] += v_goal
     return status
 
 
@@ -1007,3 +1065,101 @@ def _k_trace(li, sols, w):
             j -= 1
             a = li[a, PARENT]
     return cells, offsets
+
+
+# -- the final front: tolerant dominance and duplicates through a kd-tree -------------
+
+
+@numba.njit(cache=True)
+def _front_filter(F, order):
+    """The rows of ``F`` that no other row dominates up to the tolerance, one
+    per tolerance-equal vector: the first one in ``order`` (a permutation of
+    the rows, most preferred first), in that order. The same rows as
+    :func:`gapath.planners._exact_kernels._tolerant_front` (a scan over all
+    pairs); here each row queries a kd-tree over all rows (:func:`_build`, the
+    objectives as its columns ``1 ..``), which descends only into boxes that may
+    hold a row within the tolerance of it, and only the rows that have a
+    tolerance-equal partner are compared pairwise in ``order``."""
+    n, m = F.shape
+    if n == 0:
+        return np.empty(0, np.int64)
+    k = m + 1  # column 0 unused: _build boxes columns 1 .. k-1
+    tv = np.zeros((n, k))
+    tv[:, 1:] = F
+    ti = np.zeros((n, 2), np.int64)
+    for i in range(n):
+        ti[i, 0] = i
+    sv = np.empty((n, _width(k)))
+    si = np.empty((n, N_SI), np.int32)
+    _build(sv, si, 0, tv, ti, n, k)
+    b0 = k
+    b1 = k + k - 1
+    keep = np.ones(n, np.bool_)
+    partner = np.zeros(n, np.bool_)
+    stk = np.empty(N_STACK, np.int64)
+    for i in range(n):
+        # a row that dominates i (weakly everywhere, strictly somewhere), and
+        # whether one is tolerance-equal to i
+        stk[0] = 0
+        stk[1] = n
+        top = 2
+        while top > 0 and keep[i]:
+            top -= 2
+            lo, hi = stk[top], stk[top + 1]
+            mid = (lo + hi) >> 1
+            inside = True
+            for o in range(m):
+                if not _le(sv[mid, b0 + o], F[i, o]):
+                    inside = False
+                    break
+            if not inside:
+                continue
+            j = si[mid, M_TURNS]
+            if j != i:
+                not_worse = True
+                better = False
+                for o in range(m):
+                    if not _le(F[j, o], F[i, o]):
+                        not_worse = False
+                        break
+                    if not _eq(F[j, o], F[i, o]):
+                        better = True
+                if not_worse:
+                    if better:
+                        keep[i] = False
+                    else:
+                        partner[i] = True
+            if hi > mid + 1:
+                stk[top] = mid + 1
+                stk[top + 1] = hi
+                top += 2
+            if mid > lo:
+                stk[top] = lo
+                stk[top + 1] = mid
+                top += 2
+    out = np.empty(n, np.int64)
+    cnt = 0
+    eqs = np.empty(n, np.int64)  # kept rows with a tolerance-equal one, in order
+    n_eq = 0
+    for i in order:
+        if not keep[i]:
+            continue
+        if partner[i]:
+            dup = False
+            for jj in range(n_eq):
+                j = eqs[jj]
+                same = True
+                for o in range(m):
+                    if not _eq(F[j, o], F[i, o]):
+                        same = False
+                        break
+                if same:
+                    dup = True
+                    break
+            if dup:
+                continue
+            eqs[n_eq] = i
+            n_eq += 1
+        out[cnt] = i
+        cnt += 1
+    return out[:cnt]
