@@ -92,7 +92,20 @@ def _run(ws, names, cm=None, search="auto", max_labels=None, max_seconds=None):
         "expansions": st["expansions"],
         "labels": st["labels"],
         "peak_mb": round(st["peak_bytes"] / 2**20, 1),
-        **{k: st[k] for k in ("generated", "state_tests", "goal_tests", "set_sizes") if k in st},
+        **{
+            k: st[k]
+            for k in (
+                "generated",
+                "state_tests",
+                "goal_tests",
+                "state_nodes",
+                "goal_nodes",
+                "drop_nodes",
+                "built",
+                "set_sizes",
+            )
+            if k in st
+        },
     }
 
 
