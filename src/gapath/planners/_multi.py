@@ -54,10 +54,13 @@ from gapath.planners._multi_kernels import (
     _k_run,
     _k_trace,
     _step_to_go,
+    _timed_solar_to_go,
 )
 
 #: Objective names of the k-objective search that need no costmap.
 BASE_OBJECTIVES = ("length", "vulnerability", "smoothness")
+#: Floats of the timed-solar bound table (step index x cell), 128 MB.
+TIMED_BOUND_FLOATS = 1 << 24
 #: Suffix of a summed cell layer objective (``elevation_sum``).
 SUM_SUFFIX = "_sum"
 
@@ -269,9 +272,14 @@ def multi_front(
             np.ascontiguousarray(costmap.solar_table(n_table + n_cells + 1)) if solar else np.zeros((1, 8))
         )
         psum = np.zeros(1)
+        hsol = np.zeros((0, 1))
         if timed:
             psum = np.concatenate([[0.0], np.cumsum(table.min(axis=1))])
             table = np.ascontiguousarray(table[:n_table])
+            # per (step index, cell) solar bounds for the first steps (a table of
+            # at most TIMED_BOUND_FLOATS floats), the per-step least cost beyond
+            n_rows = min(n_table - 1, max(1, TIMED_BOUND_FLOATS // n_cells))
+            hsol = _timed_solar_to_go(table, mask, w, goal, hop, psum, n_rows)
         for col, i in enumerate(float_cols):
             kind, layer = spec[i]
             if kind == K_CELL:
@@ -284,16 +292,16 @@ def multi_front(
         t_heur = time.perf_counter() - t0
         sidx = np.zeros((n_cells + 1, 3), np.int64)  # per-state set blocks, the goal's last
         li, lg, lf, hid, sols, st, sv, si, sfree, tdir = _k_init(
-            sr * w + sc, layers, okind, ocol, cs, hs, hd, ht, hfl, hop, psum, timed, n_float
+            sr * w + sc, layers, okind, ocol, cs, hs, hd, ht, hfl, hop, psum, hsol, timed, n_float
         )
-        fixed = sum(a.nbytes for a in (hs, hd, ht, hfl, layers, table, psum, hop, mask))
+        fixed = sum(a.nbytes for a in (hs, hd, ht, hfl, layers, table, psum, hsol, hop, mask))
         slices = exact._Slices(1 << 12, 1 << 8, 1 << 24)
         peak = 0
         while True:
             pops, t1 = st[S_POPS], time.perf_counter()
             sidx, li, lg, lf, hid, sols, sv, si, tdir, status = _k_run(
                 mask, w, goal, layers, table, okind, ocol, cs, hs, hd, ht, hfl, hop, psum,
-                timed, smooth, tie_break == "smoothest", sidx, li, lg, lf, hid, sols, st,
+                hsol, timed, smooth, tie_break == "smoothest", sidx, li, lg, lf, hid, sols, st,
                 sv, si, sfree, tdir, slices.n, budget,
             )  # fmt: skip
             interrupt.check()

@@ -219,6 +219,40 @@ def _step_to_go(cost8, mask, w, goal):
     return h
 
 
+@numba.njit(cache=True)
+def _timed_solar_to_go(table, mask, w, goal, hop, psum, n_rows):
+    """Lower bounds ``h[n, c]`` of the solar cost from cell ``c`` to the goal for a
+    walk whose next step has index ``n`` (``n < n_rows``): backwards over the step
+    index, ``h[n, c] = min_d table[n, d] + h[n + 1, c + d]`` (0 at the goal), from
+    ``h[n_rows, c] = psum[n_rows + hop[c]] - psum[n_rows]`` (the least cost of each
+    of the fewest steps left), and never below that bound at any ``n``. Any walk
+    from ``(n, c)`` to the goal costs at least ``h[n, c]`` (induction on its steps),
+    so ``g + h`` stays admissible; every label of a state ``(n, c)`` shares it."""
+    n_cells = mask.shape[0]
+    h = np.empty((n_rows + 1, n_cells))
+    for c in range(n_cells):
+        h[n_rows, c] = psum[n_rows + hop[c]] - psum[n_rows] if hop[c] >= 0 else np.inf
+    for n in range(n_rows - 1, -1, -1):
+        for c in range(n_cells):
+            if c == goal:
+                h[n, c] = 0.0
+                continue
+            if hop[c] < 0:
+                h[n, c] = np.inf
+                continue
+            best = np.inf
+            mk = mask[c]
+            for d in range(8):
+                if (mk >> d) & 1:
+                    u = c + DR[d] * w + DC[d]
+                    v = table[n, d] + h[n + 1, u]
+                    if v < best:
+                        best = v
+            lb = psum[n + hop[c]] - psum[n]
+            h[n, c] = best if best > lb else lb
+    return h[:n_rows]
+
+
 # -- open list: binary heap of label rows, lexicographic on lf rows -------------
 
 
@@ -686,7 +720,7 @@ def _gvec(li, lg, x, okind, ocol, cell_size, q, qr):
 
 
 @numba.njit(cache=True)
-def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, timed, n_float):
+def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, hsol, timed, n_float):
     """The state of a new search: the start label alone on the open list.
     Returns ``(li, lg, lf, hid, sols, st, sv, si, sfree, tdir)``."""
     k = okind.shape[0]
@@ -705,7 +739,7 @@ def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, t
     for j in range(k):  # the start cell counts for the cell sums
         if okind[j] == K_CELL:
             lg[0, ocol[j]] = layers[ocol[j], start]
-    _fvec(li, lg, lf, 0, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, timed)
+    _fvec(li, lg, lf, 0, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, hsol, timed)
     hid[0] = 0
     st = np.zeros(N_ST, np.int64)
     st[S_N] = 1
@@ -722,7 +756,7 @@ def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, t
 
 
 @numba.njit(cache=True, inline="always")
-def _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, timed):
+def _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, hsol, timed):
     """Write the f-vector (``g + h``, internal order) of label ``j``."""
     c = li[j, CELL]
     for o in range(okind.shape[0]):
@@ -737,7 +771,10 @@ def _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, tim
             lf[j, o] = np.float64(t)
         elif kind == K_SOLAR and timed:
             n = li[j, NS] + li[j, ND]
-            lf[j, o] = lg[j, ocol[o]] + (psum[n + hop[c]] - psum[n])
+            if n < hsol.shape[0]:
+                lf[j, o] = lg[j, ocol[o]] + hsol[n, c]
+            else:
+                lf[j, o] = lg[j, ocol[o]] + (psum[n + hop[c]] - psum[n])
         else:
             lf[j, o] = lg[j, ocol[o]] + hfl[ocol[o], c]
 
@@ -758,6 +795,7 @@ def _k_run(
     hfl,
     hop,
     psum,
+    hsol,
     timed,
     smooth,
     ties,
@@ -797,6 +835,7 @@ def _k_run(
             hfl,
             hop,
             psum,
+            hsol,
             timed,
             smooth,
             ties,
@@ -876,6 +915,7 @@ def _k_steps(
     hfl,
     hop,
     psum,
+    hsol,
     timed,
     smooth,
     ties,
@@ -999,7 +1039,7 @@ def _k_steps(
                     lg[j, ocol[o]] = lg[x, ocol[o]] + layers[ocol[o], cell]
                 elif kind == K_SOLAR:
                     lg[j, ocol[o]] = lg[x, ocol[o]] + table[n_x if timed else 0, d]
-            _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, timed)
+            _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, hsol, timed)
             n_generated += 1
             s2 = (n_x + 1) * n_cells + cell if timed else cell
             if cell != goal and sidx[s2, B_CNT] > 0:
