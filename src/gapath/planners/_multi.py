@@ -59,6 +59,9 @@ from gapath.planners._multi_kernels import (
 
 #: Objective names of the k-objective search that need no costmap.
 BASE_OBJECTIVES = ("length", "vulnerability", "smoothness")
+#: Steps per cell the timed-solar search may take (its solar table's rows);
+#: longer walks stop the search with a ConfigError.
+TIMED_STEPS = 40
 #: Floats of the timed-solar bound table (step index x cell), 128 MB.
 TIMED_BOUND_FLOATS = 1 << 24
 #: Suffix of a summed cell layer objective (``elevation_sum``).
@@ -267,7 +270,7 @@ def multi_front(
         hfl = np.zeros((max(n_float, 1), n_cells))
         # solar: the per-step costs of Costmap.solar_table (numpy, as evaluate_path);
         # with a rate, a table long enough for any label the search may make
-        n_table = 2 * n_cells + 64 if timed else 1
+        n_table = TIMED_STEPS * n_cells + 64 if timed else 1
         table = (
             np.ascontiguousarray(costmap.solar_table(n_table + n_cells + 1)) if solar else np.zeros((1, 8))
         )
@@ -322,7 +325,7 @@ def multi_front(
                 raise ConfigError(
                     f"free search stopped: a path of {table.shape[0]:,} steps is still open "
                     f"(solar_rate={costmap.solar_rate:g} makes the step index part of the state "
-                    f"and the solar table covers twice the number of cells); no front. Use "
+                    f"and the solar table covers 40 times the number of cells); no front. Use "
                     f"solar_rate=0 or a label budget (max_labels)"
                 )
             if progress is not None:
