@@ -19,7 +19,13 @@ Sets of the ``mars`` part (the study's workspaces and costmaps,
 * ``LESR0``: length, elevation_sum, solar, risk_sum with ``solar_rate=0``
   (the solar cost depends on the step direction only);
 * ``LESR``: the same at the study's ``solar_rate=1`` (the step index is part
-  of the state; under ``--max-labels``).
+  of the state, the solar bound is per (step index, cell); under
+  ``--max-labels``).
+
+The ``mars`` lines also carry the set counters of ``ExactFront.stats``:
+members tested (``state_tests``, ``goal_tests``), kd-tree nodes visited
+(``state_nodes``, ``goal_nodes``, ``drop_nodes``) and members written by tree
+builds (``built``).
 """
 
 from __future__ import annotations
@@ -92,7 +98,20 @@ def _run(ws, names, cm=None, search="auto", max_labels=None, max_seconds=None):
         "expansions": st["expansions"],
         "labels": st["labels"],
         "peak_mb": round(st["peak_bytes"] / 2**20, 1),
-        **{k: st[k] for k in ("generated", "state_tests", "goal_tests", "set_sizes") if k in st},
+        **{
+            k: st[k]
+            for k in (
+                "generated",
+                "state_tests",
+                "goal_tests",
+                "state_nodes",
+                "goal_nodes",
+                "drop_nodes",
+                "built",
+                "set_sizes",
+            )
+            if k in st
+        },
     }
 
 

@@ -4,7 +4,11 @@ random small maps: identical F (bit for bit), smoothness, expansions,
 generated labels and solutions, for 1 to 5 objectives among the SPEC
 metrics, summed costmap layers and solar (at rate 0 and, on some cases, a
 non-zero rate where the step index is part of the state), both tie
-rules."""
+rules. With a non-zero solar rate the search now bounds the solar cost per
+(step index, cell) (tighter than the reference's per-step least cost), so
+there the fronts must be equal and the expansions no more; under a label
+budget both may stop, and the tighter bound may finish where the reference
+stops."""
 
 from __future__ import annotations
 
@@ -72,12 +76,16 @@ def test_same_fronts_as_the_linked_lists(block):
         ws, cm, names, tie, budget = _case(seed)
         new = _run(multi_front, ws, cm, names, tie, budget)
         old = _run(reference_front, ws, cm, names, tie, budget)
+        timed = budget is not None and "solar" in names
         if isinstance(old, str) or isinstance(new, str):
-            assert old == new, seed
+            assert old == new or (timed and isinstance(old, str)), seed
             continue
         fronts += 1
         assert old[0].shape == new[0].shape, seed
         assert np.array_equal(old[0], new[0]), seed
         assert np.array_equal(old[1], new[1]), seed
-        assert old[2] == new[2], seed
+        if timed:
+            assert new[2][0] <= old[2][0], seed
+        else:
+            assert old[2] == new[2], seed
     assert fronts >= 20

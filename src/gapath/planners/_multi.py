@@ -34,25 +34,36 @@ from gapath.planners._multi_kernels import (
     OVER_BUDGET,
     S_EXPANDED,
     S_GENERATED,
+    S_BUILT,
+    S_DROP_NODES,
+    S_GOAL_NODES,
     S_GOAL_TESTS,
     S_N,
     S_N_FREE,
     S_POPS,
     S_SIZE,
     S_SOLS,
+    S_STATE_NODES,
     S_STATE_TESTS,
     STEP_LIMIT,
     TURNS,
     _cell_to_go,
+    _front_filter,
     _hops,
     _k_init,
     _k_run,
     _k_trace,
     _step_to_go,
+    _timed_solar_to_go,
 )
 
 #: Objective names of the k-objective search that need no costmap.
 BASE_OBJECTIVES = ("length", "vulnerability", "smoothness")
+#: Steps per cell the timed-solar search may take (its solar table's rows);
+#: longer walks stop the search with a ConfigError.
+TIMED_STEPS = 40
+#: Floats of the timed-solar bound table (step index x cell), 128 MB.
+TIMED_BOUND_FLOATS = 1 << 24
 #: Suffix of a summed cell layer objective (``elevation_sum``).
 SUM_SUFFIX = "_sum"
 
@@ -215,7 +226,6 @@ def multi_front(
     """The k-objective exact free front (see :func:`gapath.planners.exact.free_front`)."""
     from gapath.planners import exact
     from gapath.planners._exact_heuristics import _free_heuristics, _move_masks
-    from gapath.planners._exact_kernels import _tolerant_front
 
     names, spec = parse_objectives(objectives, costmap)
     _check_costmap(workspace, costmap)
@@ -260,14 +270,19 @@ def multi_front(
         hfl = np.zeros((max(n_float, 1), n_cells))
         # solar: the per-step costs of Costmap.solar_table (numpy, as evaluate_path);
         # with a rate, a table long enough for any label the search may make
-        n_table = 2 * n_cells + 64 if timed else 1
+        n_table = TIMED_STEPS * n_cells + 64 if timed else 1
         table = (
             np.ascontiguousarray(costmap.solar_table(n_table + n_cells + 1)) if solar else np.zeros((1, 8))
         )
         psum = np.zeros(1)
+        hsol = np.zeros((0, 1))
         if timed:
             psum = np.concatenate([[0.0], np.cumsum(table.min(axis=1))])
             table = np.ascontiguousarray(table[:n_table])
+            # per (step index, cell) solar bounds for the first steps (a table of
+            # at most TIMED_BOUND_FLOATS floats), the per-step least cost beyond
+            n_rows = min(n_table - 1, max(1, TIMED_BOUND_FLOATS // n_cells))
+            hsol = _timed_solar_to_go(table, mask, w, goal, hop, psum, n_rows)
         for col, i in enumerate(float_cols):
             kind, layer = spec[i]
             if kind == K_CELL:
@@ -279,23 +294,23 @@ def multi_front(
         interrupt.check()
         t_heur = time.perf_counter() - t0
         sidx = np.zeros((n_cells + 1, 3), np.int64)  # per-state set blocks, the goal's last
-        li, lg, lf, hid, sols, st, sv, si, sfree = _k_init(
-            sr * w + sc, layers, okind, ocol, cs, hs, hd, ht, hfl, hop, psum, timed, n_float
+        li, lg, lf, hid, sols, st, sv, si, sfree, tdir = _k_init(
+            sr * w + sc, layers, okind, ocol, cs, hs, hd, ht, hfl, hop, psum, hsol, timed, n_float
         )
-        fixed = sum(a.nbytes for a in (hs, hd, ht, hfl, layers, table, psum, hop, mask))
+        fixed = sum(a.nbytes for a in (hs, hd, ht, hfl, layers, table, psum, hsol, hop, mask))
         slices = exact._Slices(1 << 12, 1 << 8, 1 << 24)
         peak = 0
         while True:
             pops, t1 = st[S_POPS], time.perf_counter()
-            sidx, li, lg, lf, hid, sols, sv, si, status = _k_run(
+            sidx, li, lg, lf, hid, sols, sv, si, tdir, status = _k_run(
                 mask, w, goal, layers, table, okind, ocol, cs, hs, hd, ht, hfl, hop, psum,
-                timed, smooth, tie_break == "smoothest", sidx, li, lg, lf, hid, sols, st,
-                sv, si, sfree, slices.n, budget,
+                hsol, timed, smooth, tie_break == "smoothest", sidx, li, lg, lf, hid, sols, st,
+                sv, si, sfree, tdir, slices.n, budget,
             )  # fmt: skip
             interrupt.check()
             now = time.perf_counter()
             slices.update(st[S_POPS] - pops, now - t1)
-            peak = max(peak, fixed + sum(a.nbytes for a in (sidx, li, lg, lf, hid, sols, sv, si)))
+            peak = max(peak, fixed + sum(a.nbytes for a in (sidx, li, lg, lf, hid, sols, sv, si, tdir)))
             stats = {
                 "expansions": int(st[S_EXPANDED]),
                 "generated": int(st[S_GENERATED]),
@@ -310,7 +325,7 @@ def multi_front(
                 raise ConfigError(
                     f"free search stopped: a path of {table.shape[0]:,} steps is still open "
                     f"(solar_rate={costmap.solar_rate:g} makes the step index part of the state "
-                    f"and the solar table covers twice the number of cells); no front. Use "
+                    f"and the solar table covers 40 times the number of cells); no front. Use "
                     f"solar_rate=0 or a label budget (max_labels)"
                 )
             if progress is not None:
@@ -334,7 +349,7 @@ def multi_front(
     F = np.column_stack([columns[i] for i in range(len(names))]) if len(sols) else np.zeros((0, len(names)))
     # among tolerance-equal vectors prefer the smoothest path, then the shortest
     pick = np.lexsort((n_straight + SQRT2 * n_diag, turns))
-    keep = _tolerant_front(np.ascontiguousarray(F), pick)
+    keep = _front_filter(np.ascontiguousarray(F), pick)
     keep = keep[np.lexsort(F[keep].T[::-1])]
     cells, offsets = _k_trace(li, sols[keep], w)
     paths = [cells[offsets[i] : offsets[i + 1]] for i in range(len(keep))]
@@ -347,6 +362,10 @@ def multi_front(
         "state_tests": int(st[S_STATE_TESTS]),
         "set_sizes": _set_sizes(sidx),
         "goal_tests": int(st[S_GOAL_TESTS]),
+        "state_nodes": int(st[S_STATE_NODES]),
+        "goal_nodes": int(st[S_GOAL_NODES]),
+        "drop_nodes": int(st[S_DROP_NODES]),
+        "built": int(st[S_BUILT]),
         "heuristic_seconds": t_heur,
         "seconds": time.perf_counter() - t0,
         "search": "k-objective",

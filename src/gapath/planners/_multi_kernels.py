@@ -52,7 +52,12 @@ N_INT = 7
 S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_FREE, S_N_FREE, S_POPS, S_SPAN = range(10)
 # pool rows in use, members tested by the state and the goal checks
 S_PTOP, S_STATE_TESTS, S_GOAL_TESTS = range(10, 13)
-N_ST = 13
+# the tree directory: head of its free list, rows in use
+S_TFREE, S_TTOP = range(13, 15)
+# tree nodes visited by the state and goal checks and by the insertions' drops,
+# members written by tree builds
+S_STATE_NODES, S_GOAL_NODES, S_DROP_NODES, S_BUILT = range(15, 19)
+N_ST = 19
 
 
 @numba.njit(cache=True, inline="always")
@@ -214,6 +219,40 @@ def _step_to_go(cost8, mask, w, goal):
     return h
 
 
+@numba.njit(cache=True)
+def _timed_solar_to_go(table, mask, w, goal, hop, psum, n_rows):
+    """Lower bounds ``h[n, c]`` of the solar cost from cell ``c`` to the goal for a
+    walk whose next step has index ``n`` (``n < n_rows``): backwards over the step
+    index, ``h[n, c] = min_d table[n, d] + h[n + 1, c + d]`` (0 at the goal), from
+    ``h[n_rows, c] = psum[n_rows + hop[c]] - psum[n_rows]`` (the least cost of each
+    of the fewest steps left), and never below that bound at any ``n``. Any walk
+    from ``(n, c)`` to the goal costs at least ``h[n, c]`` (induction on its steps),
+    so ``g + h`` stays admissible; every label of a state ``(n, c)`` shares it."""
+    n_cells = mask.shape[0]
+    h = np.empty((n_rows + 1, n_cells))
+    for c in range(n_cells):
+        h[n_rows, c] = psum[n_rows + hop[c]] - psum[n_rows] if hop[c] >= 0 else np.inf
+    for n in range(n_rows - 1, -1, -1):
+        for c in range(n_cells):
+            if c == goal:
+                h[n, c] = 0.0
+                continue
+            if hop[c] < 0:
+                h[n, c] = np.inf
+                continue
+            best = np.inf
+            mk = mask[c]
+            for d in range(8):
+                if (mk >> d) & 1:
+                    u = c + DR[d] * w + DC[d]
+                    v = table[n, d] + h[n + 1, u]
+                    if v < best:
+                        best = v
+            lb = psum[n + hop[c]] - psum[n]
+            h[n, c] = best if best > lb else lb
+    return h[:n_rows]
+
+
 # -- open list: binary heap of label rows, lexicographic on lf rows -------------
 
 
@@ -258,134 +297,44 @@ def _pop(hid, size, lf, k):
     return size
 
 
-# -- per-state sets: contiguous blocks in one pool ------------------------------------
+# -- per-state sets: kd-trees in one pool, by the logarithmic method ------------------
 #
-# The set of a state (and the goal's, the last row of ``sidx``) is a block of rows
-# of the pool ``sv`` (floats) / ``si`` (ints): row ``r`` holds a member's k g-values
-# (internal order, the turns as a float) in ``sv[r, :k]``, and for ``j >= 2`` the
-# least ``g_j`` of the members up to this one in ``sv[r, k + j - 2]`` (prefix
-# minima); ``si[r]`` its turns and heading. A block is sorted by ``g_1`` (the first
-# objective after the primary). A query walks back from the last member whose
-# ``g_1`` is within the tolerance of the label's and stops as soon as a prefix
-# minimum is beyond it (no earlier member can cover the label): for k = 3 the set
-# is a staircase and the walk touches a few rows; the outcome (covered or not, and
-# which members an insertion drops) is that of a scan of the whole set.
-# Blocks double when full; a freed block goes to a free list of its size class.
+# The set of a state (and the goal's, the last row of ``sidx``) is a chain of static
+# kd-trees (Bentley and Saxe's logarithmic method): a new member starts a tree of its
+# own at the head of the chain, which absorbs the next trees while they are smaller
+# than twice its size (a binary counter: at most about log2(n) trees, each member
+# rebuilt O(log n) times). A tree of ``m`` members is a block of ``m`` rows of the pool
+# ``sv`` (floats) / ``si`` (ints) laid out implicitly: the node of rows ``[lo, hi)``
+# is row ``(lo + hi) // 2``, the median of the range in one of the objectives other
+# than the primary (cycling with the depth), its subtrees ``[lo, mid)`` and ``[mid + 1,
+# hi)``. Row ``r`` holds a member's k g-values (internal order, turns as a float) in
+# ``sv[r, :k]`` and the least and the largest ``g_j`` (``j >= 1``) of its subtree in the
+# columns after them (the box); ``si[r]`` its turns, heading and whether it is alive.
+# A query descends only into subtrees whose box may hold a member that covers the
+# label (least values within the tolerance of the label's), an insertion only into
+# those that may hold a member it drops (largest values at least the new member's);
+# ``_le`` is monotone, so the pruning is exact and every decision is that of a scan of
+# the whole set. A dropped member is marked dead (a tree whose live members fall below
+# half is rebuilt); ``tdir`` rows describe the trees (pool offset, rows, live members,
+# next tree + 1, block capacity), ``sidx[s]`` the set (first tree + 1, live members,
+# trees). Blocks come from free lists per size class (``4 << c`` rows).
 
-B_OFF, B_CNT, B_CAP = range(3)
-M_TURNS, M_HEAD = range(2)
+B_HEAD, B_CNT, B_NTREE = range(3)
+T_OFF, T_M, T_LIVE, T_NEXT, T_CAP = range(5)
+N_T = 5
+M_TURNS, M_HEAD, M_ALIVE = range(3)
+N_SI = 3
 #: Size classes of the pool's blocks (``4 << c`` rows).
 N_CLASS = 40
-#: Members per chunk of a block (chunk minima let a query skip a chunk).
-CHUNK = 8
+#: Entries of the traversal stack (two per tree level).
+N_STACK = 256
 
 
-@numba.njit(cache=True)
-def _cut(sv, off, cnt, q1):
-    """Number of members whose ``g_1`` is ``<=`` ``q1`` within the tolerance
-    (``_le`` is monotone in its first argument, the block sorted by ``g_1``)."""
-    lo, hi = 0, cnt
-    while lo < hi:
-        m = (lo + hi) >> 1
-        if _le(sv[off + m, 1], q1):
-            lo = m + 1
-        else:
-            hi = m
-    return lo
-
-
-@numba.njit(cache=True)
-def _covered(sv, si, off, cnt, q, qr, okind, tx, hx, at_goal, to_go, ties, smooth):
-    """True if a member of the block covers the vector ``q[qr]``: at a state,
-    ``q[qr]`` is a label's g-vector and a member with heading ``ha`` charges
-    its turns with ``_gap(ha, hx)``; at the goal (``at_goal``), ``q[qr]`` is
-    the label's f-vector (a lower bound of its completions' costs). Covering:
-    weakly better on every objective within the tolerance and strictly on
-    one, or equal and (with ``ties``, smoothness not an objective) not less
-    smooth (at the goal: not more turns than the label's ``tx`` plus
-    ``to_go``, a lower bound of the turns still to come). Returns ``(covered,
-    members tested)``."""
-    k = okind.shape[0]
-    if cnt == 0:
-        return False, 0
-    i = _cut(sv, off, cnt, q[qr, 1]) - 1 if k > 1 else cnt - 1
-    tested = 0
-    cm = k + max(k - 2, 0)  # first column of the chunk minima
-    top = i
-    while i >= 0:
-        r = off + i
-        stop = False
-        for j in range(2, k):
-            if not _le(sv[r, k + j - 2], q[qr, j]):
-                stop = True
-                break
-        if stop:
-            break
-        if k > 2 and (i == top or (i + 1) % CHUNK == 0):
-            # entering a chunk (from its end, or the cut): its minima first
-            c0 = off + (i // CHUNK) * CHUNK
-            skip = False
-            for j in range(2, k):
-                if not _le(sv[c0, cm + j - 2], q[qr, j]):
-                    skip = True
-                    break
-            if skip:
-                i = (i // CHUNK) * CHUNK - 1
-                continue
-        i -= 1
-        tested += 1
-        gap = 0 if at_goal else _gap(si[r, M_HEAD], hx)
-        ok = True
-        strict = False
-        for jj in range(k):
-            j = jj + 1 if jj < k - 1 else 0  # the primary last: it rarely decides
-            ga = sv[r, j]
-            gx = q[qr, j]
-            if okind[j] == K_TURN:
-                ga += gap
-                if ga > gx:
-                    ok = False
-                    break
-                if ga < gx:
-                    strict = True
-            else:
-                if not _le(ga, gx):
-                    ok = False
-                    break
-                if not _eq(ga, gx):
-                    strict = True
-        if not ok:
-            continue
-        if strict or smooth or not ties:
-            return True, tested
-        if at_goal:
-            if si[r, M_TURNS] <= tx + to_go:
-                return True, tested
-        elif si[r, M_TURNS] + gap <= tx:
-            return True, tested
-    return False, tested
-
-
-@numba.njit(cache=True)
-def _prefix_min(sv, off, cnt, k, first):
-    """Recompute the prefix minima of the block from member ``first`` on, and
-    the minima of the chunks from ``first``'s on (kept in the chunk's first
-    row)."""
-    cm = k + max(k - 2, 0)
-    for i in range(first, cnt):
-        r = off + i
-        for j in range(2, k):
-            v = sv[r, j]
-            if i > 0 and sv[r - 1, k + j - 2] < v:
-                v = sv[r - 1, k + j - 2]
-            sv[r, k + j - 2] = v
-    for c0 in range((first // CHUNK) * CHUNK, cnt, CHUNK):
-        for j in range(2, k):
-            v = sv[off + c0, j]
-            for i in range(c0 + 1, min(c0 + CHUNK, cnt)):
-                if sv[off + i, j] < v:
-                    v = sv[off + i, j]
-            sv[off + c0, cm + j - 2] = v
+@numba.njit(cache=True, inline="always")
+def _width(k):
+    """Float columns of a pool row: k g-values, then the box (least and largest
+    of each objective after the primary)."""
+    return k + 2 * (k - 1)
 
 
 @numba.njit(cache=True)
@@ -397,157 +346,368 @@ def _block_class(cap):
 
 
 @numba.njit(cache=True)
-def _insert(sv, si, sidx, sfree, st, s, q, qr, okind, tx, hx, at_goal):
-    """Add the member with g-vector ``q[qr]``, turns ``tx`` and heading ``hx``
-    to the set of ``s`` and drop the members it makes redundant for later
-    checks: those it weakly dominates on every objective but the primary
-    (later labels are not better in the primary, NAMOA*-dr). The caller has
-    made sure the pool holds ``2 * cap + 4`` more rows."""
-    k = okind.shape[0]
-    off, cnt, cap = sidx[s, B_OFF], sidx[s, B_CNT], sidx[s, B_CAP]
-    # members it drops have g_1 >= its own within the tolerance: a suffix
-    first = cnt
-    if cnt > 0:
-        if k > 1:
-            lo, hi = 0, cnt
-            while lo < hi:
-                m = (lo + hi) >> 1
-                if _le(q[qr, 1], sv[off + m, 1]):
-                    hi = m
-                else:
-                    lo = m + 1
-            first = lo
-        else:
-            first = 0
-    wr = first
-    n_before = cnt
-    for i in range(first, cnt):
-        r = off + i
-        gap = 0 if at_goal else _gap(hx, si[r, M_HEAD])
-        drop = True
-        for j in range(1, k):
-            if okind[j] == K_TURN:
-                if tx + gap > si[r, M_TURNS]:
-                    drop = False
-                    break
-            elif not _le(q[qr, j], sv[r, j]):
-                drop = False
-                break
-        if not drop:
-            if wr != i:
-                for c in range(sv.shape[1]):
-                    sv[off + wr, c] = sv[r, c]
-                si[off + wr, 0] = si[r, 0]
-                si[off + wr, 1] = si[r, 1]
-            wr += 1
-    cnt = wr
-    if cnt + 1 > cap:  # move to a block twice as large
-        ncap = 4 if cap == 0 else 2 * cap
-        c = _block_class(ncap)
-        if sfree[c] >= 0:
-            noff = sfree[c]
-            sfree[c] = si[noff, 0]
-        else:
-            noff = st[S_PTOP]
-            st[S_PTOP] += ncap
-        for i in range(cnt):
-            for cc in range(sv.shape[1]):
-                sv[noff + i, cc] = sv[off + i, cc]
-            si[noff + i, 0] = si[off + i, 0]
-            si[noff + i, 1] = si[off + i, 1]
-        if cap > 0:
-            oc = _block_class(cap)
-            si[off, 0] = sfree[oc]
-            sfree[oc] = off
-        off, cap = noff, ncap
-        sidx[s, B_OFF] = off
-        sidx[s, B_CAP] = cap
-    # its place: after the members with g_1 <= its own
-    pos = cnt
-    if k > 1:
-        lo, hi = 0, cnt
-        while lo < hi:
-            m = (lo + hi) >> 1
-            if sv[off + m, 1] <= q[qr, 1]:
-                lo = m + 1
-            else:
-                hi = m
-        pos = lo
-    if wr < n_before or k <= 2:  # members dropped: shift, recompute the minima after them
-        for i in range(cnt, pos, -1):
-            for cc in range(k):
-                sv[off + i, cc] = sv[off + i - 1, cc]
-            si[off + i, 0] = si[off + i - 1, 0]
-            si[off + i, 1] = si[off + i - 1, 1]
-        for cc in range(k):
-            sv[off + pos, cc] = q[qr, cc]
-        si[off + pos, M_TURNS] = tx
-        si[off + pos, M_HEAD] = hx
-        cnt += 1
-        sidx[s, B_CNT] = cnt
-        if k > 2:
-            _prefix_min(sv, off, cnt, k, min(pos, first))
-        return
-    _shift_in(sv, si, off, cnt, pos, q, qr, k, tx, hx)
-    sidx[s, B_CNT] = cnt + 1
+def _alloc(si, sfree, st, m):
+    """A pool block of at least ``m`` rows: ``(offset, capacity)``."""
+    c = _block_class(m)
+    if sfree[c] >= 0:
+        off = sfree[c]
+        sfree[c] = si[off, 0]
+    else:
+        off = st[S_PTOP]
+        st[S_PTOP] += 4 << c
+    return off, 4 << c
 
 
 @numba.njit(cache=True)
-def _shift_in(sv, si, off, cnt, pos, q, qr, k, tx, hx):
-    """Insert a member at ``pos`` of a block of ``cnt`` members (k > 2) and
-    update the prefix and chunk minima incrementally (nothing was dropped)."""
-    cm = k + k - 2
-    wid = sv.shape[1]
-    fv = sv.reshape(-1)  # whole rows move up one row (a memmove)
-    for t in range((off + cnt + 1) * wid - 1, (off + pos + 1) * wid - 1, -1):
-        fv[t] = fv[t - wid]
-    fi = si.reshape(-1)
-    for t in range(2 * (off + cnt + 1) - 1, 2 * (off + pos + 1) - 1, -1):
-        fi[t] = fi[t - 2]
-    r = off + pos
-    for cc in range(k):
-        sv[r, cc] = q[qr, cc]
-    si[r, M_TURNS] = tx
-    si[r, M_HEAD] = hx
-    for j in range(2, k):
-        v = q[qr, j]
-        if pos > 0 and sv[r - 1, k + j - 2] < v:
-            v = sv[r - 1, k + j - 2]
-        sv[r, k + j - 2] = v
-    for i in range(pos + 1, cnt + 1):  # the prefix minima after it: min with its values
+def _release(si, sfree, off, cap):
+    c = _block_class(cap)
+    si[off, 0] = sfree[c]
+    sfree[c] = off
+
+
+@numba.njit(cache=True)
+def _tree_new(tdir, st):
+    t = st[S_TFREE]
+    if t >= 0:
+        st[S_TFREE] = tdir[t, T_NEXT]
+    else:
+        t = st[S_TTOP]
+        st[S_TTOP] += 1
+    return t
+
+
+@numba.njit(cache=True)
+def _tree_free(tdir, st, t):
+    tdir[t, T_NEXT] = st[S_TFREE]
+    st[S_TFREE] = t
+
+
+@numba.njit(cache=True)
+def _select(perm, tv, j, lo, hi, kth):
+    """Reorder ``perm[lo:hi]`` so that ``perm[kth]`` holds the member of rank
+    ``kth - lo`` by ``tv[:, j]``, the smaller ones before it and the larger ones
+    after it (quickselect, median-of-three pivots)."""
+    while hi - lo > 3:
+        a, b, c = perm[lo], perm[(lo + hi) >> 1], perm[hi - 1]
+        va, vb, vc = tv[a, j], tv[b, j], tv[c, j]
+        if va > vb:
+            va, vb = vb, va
+        if vb > vc:
+            vb = vc
+            if va > vb:
+                vb = va
+        pv = vb
+        i, e = lo, hi - 1
+        while i <= e:
+            while tv[perm[i], j] < pv:
+                i += 1
+            while tv[perm[e], j] > pv:
+                e -= 1
+            if i <= e:
+                perm[i], perm[e] = perm[e], perm[i]
+                i += 1
+                e -= 1
+        # [lo, e] <= pv <= [i, hi)
+        if kth <= e:
+            hi = e + 1
+        elif kth >= i:
+            lo = i
+        else:
+            return
+    for a in range(lo + 1, hi):  # insertion sort of the last few
+        p = perm[a]
+        v = tv[p, j]
+        b = a - 1
+        while b >= lo and tv[perm[b], j] > v:
+            perm[b + 1] = perm[b]
+            b -= 1
+        perm[b + 1] = p
+
+
+@numba.njit(cache=True)
+def _build(sv, si, off, tv, ti, m, k):
+    """Write the members ``tv[:m]`` (g-values), ``ti[:m]`` (turns, heading) as a
+    kd-tree at pool rows ``off ..``, boxes included."""
+    b0 = k
+    b1 = k + k - 1
+    if m == 1:
+        for c in range(k):
+            sv[off, c] = tv[0, c]
+        for j in range(1, k):
+            sv[off, b0 + j - 1] = tv[0, j]
+            sv[off, b1 + j - 1] = tv[0, j]
+        si[off, M_TURNS] = ti[0, 0]
+        si[off, M_HEAD] = ti[0, 1]
+        si[off, M_ALIVE] = 1
+        return
+    perm = np.arange(m)
+    stack = np.empty((m + 66, 3), np.int64)
+    rr = np.empty((m, 2), np.int64)  # the ranges, parents before children
+    nr = 0
+    stack[0, 0], stack[0, 1], stack[0, 2] = 0, m, 0
+    top = 1
+    while top > 0:
+        top -= 1
+        lo, hi, d = stack[top, 0], stack[top, 1], stack[top, 2]
+        if hi <= lo:
+            continue
+        rr[nr, 0] = lo
+        rr[nr, 1] = hi
+        nr += 1
+        mid = (lo + hi) >> 1
+        if hi - lo > 1 and k > 1:
+            _select(perm, tv, 1 + d % (k - 1), lo, hi, mid)
+        stack[top, 0], stack[top, 1], stack[top, 2] = lo, mid, d + 1
+        stack[top + 1, 0], stack[top + 1, 1], stack[top + 1, 2] = mid + 1, hi, d + 1
+        top += 2
+    for i in range(m):
         r = off + i
-        same = True
-        for j in range(2, k):
-            if sv[r, k + j - 2] > q[qr, j]:
-                sv[r, k + j - 2] = q[qr, j]
-                same = False
-        if same:
-            break
-    n = cnt + 1
-    cp = pos // CHUNK
-    for c in range(cp, (n - 1) // CHUNK + 1):
-        c0 = off + c * CHUNK
-        end = min((c + 1) * CHUNK, n)
-        old = c * CHUNK < cnt  # the chunk existed: its minima are in its old first row
-        o0 = c0 + 1 if c * CHUNK >= pos else c0
-        out = (c + 1) * CHUNK < n  # a member left it for the next chunk
-        for j in range(2, k):
-            if old:
-                m = sv[o0, cm + j - 2]
-                inc = q[qr, j] if c == cp else sv[c0, j]
-                if out and sv[off + (c + 1) * CHUNK, j] <= m:
-                    m = sv[c0, j]  # the least may have left: recompute
-                    for i in range(c * CHUNK + 1, end):
-                        if sv[off + i, j] < m:
-                            m = sv[off + i, j]
-                elif inc < m:
-                    m = inc
-            else:
-                m = sv[c0, j]
-                for i in range(c * CHUNK + 1, end):
-                    if sv[off + i, j] < m:
-                        m = sv[off + i, j]
-            sv[c0, cm + j - 2] = m
+        p = perm[i]
+        for c in range(k):
+            sv[r, c] = tv[p, c]
+        si[r, M_TURNS] = ti[p, 0]
+        si[r, M_HEAD] = ti[p, 1]
+        si[r, M_ALIVE] = 1
+    for t in range(nr - 1, -1, -1):  # children before parents
+        lo, hi = rr[t, 0], rr[t, 1]
+        mid = (lo + hi) >> 1
+        r = off + mid
+        for j in range(1, k):
+            sv[r, b0 + j - 1] = sv[r, j]
+            sv[r, b1 + j - 1] = sv[r, j]
+        for a, b in ((lo, mid), (mid + 1, hi)):
+            if b > a:
+                rc = off + ((a + b) >> 1)
+                for j in range(1, k):
+                    if sv[rc, b0 + j - 1] < sv[r, b0 + j - 1]:
+                        sv[r, b0 + j - 1] = sv[rc, b0 + j - 1]
+                    if sv[rc, b1 + j - 1] > sv[r, b1 + j - 1]:
+                        sv[r, b1 + j - 1] = sv[rc, b1 + j - 1]
+
+
+@numba.njit(cache=True, inline="always")
+def _covered(sv, si, tdir, head, q, qr, okind, tx, hx, at_goal, to_go, ties, smooth, stk):
+    """True if a member of the set whose first tree is ``head - 1`` covers the
+    vector ``q[qr]``: at a state, ``q[qr]`` is a label's g-vector and a member
+    with heading ``ha`` charges its turns with ``_gap(ha, hx)``; at the goal
+    (``at_goal``), ``q[qr]`` is the label's f-vector (a lower bound of its
+    completions' costs). Covering: weakly better on every objective within the
+    tolerance and strictly on one, or equal and (with ``ties``, smoothness not
+    an objective) not less smooth (at the goal: not more turns than the label's
+    ``tx`` plus ``to_go``, a lower bound of the turns still to come). ``stk``:
+    scratch of ``N_STACK`` ints. Returns ``(covered, members tested, tree nodes
+    visited)``."""
+    k = okind.shape[0]
+    b0 = k
+    tested = 0
+    nodes = 0
+    t = head - 1
+    while t >= 0:
+        off = tdir[t, T_OFF]
+        stk[0] = 0
+        stk[1] = tdir[t, T_M]
+        top = 2
+        while top > 0:
+            top -= 2
+            lo, hi = stk[top], stk[top + 1]
+            mid = (lo + hi) >> 1
+            r = off + mid
+            nodes += 1
+            inside = True
+            for j in range(1, k):
+                if not _le(sv[r, b0 + j - 1], q[qr, j]):
+                    inside = False
+                    break
+            if not inside:
+                continue
+            if si[r, M_ALIVE]:
+                tested += 1
+                # the member test (written out: a call would pass the arrays again)
+                gap = 0 if at_goal else _gap(si[r, M_HEAD], hx)
+                ok = True
+                strict = False
+                for jj in range(k):
+                    j = jj + 1 if jj < k - 1 else 0  # the primary last: it rarely decides
+                    ga = sv[r, j]
+                    gx = q[qr, j]
+                    if okind[j] == K_TURN:
+                        ga += gap
+                        if ga > gx:
+                            ok = False
+                            break
+                        if ga < gx:
+                            strict = True
+                    else:
+                        if not _le(ga, gx):
+                            ok = False
+                            break
+                        if not _eq(ga, gx):
+                            strict = True
+                if ok:
+                    if strict or smooth or not ties:
+                        return True, tested, nodes
+                    if at_goal:
+                        if si[r, M_TURNS] <= tx + to_go:
+                            return True, tested, nodes
+                    elif si[r, M_TURNS] + gap <= tx:
+                        return True, tested, nodes
+            if hi > mid + 1:
+                stk[top] = mid + 1
+                stk[top + 1] = hi
+                top += 2
+            if mid > lo:  # the lower half first
+                stk[top] = lo
+                stk[top + 1] = mid
+                top += 2
+        t = tdir[t, T_NEXT] - 1
+    return False, tested, nodes
+
+
+@numba.njit(cache=True, inline="always")
+def _drop_in_tree(sv, si, off, m, q, qr, okind, tx, hx, at_goal, stk):
+    """Mark dead the members of a tree the new member drops (those it makes
+    redundant for later checks: weakly better on every objective but the
+    primary, as later labels are not better in the primary, NAMOA*-dr);
+    returns how many and the nodes visited."""
+    k = okind.shape[0]
+    b1 = k + k - 1
+    n = 0
+    nodes = 0
+    stk[0] = 0
+    stk[1] = m
+    top = 2
+    while top > 0:
+        top -= 2
+        lo, hi = stk[top], stk[top + 1]
+        mid = (lo + hi) >> 1
+        r = off + mid
+        nodes += 1
+        inside = True
+        for j in range(1, k):
+            if not _le(q[qr, j], sv[r, b1 + j - 1]):
+                inside = False
+                break
+        if not inside:
+            continue
+        if si[r, M_ALIVE]:
+            gap = 0 if at_goal else _gap(hx, si[r, M_HEAD])
+            drop = True
+            for j in range(1, k):
+                if okind[j] == K_TURN:
+                    if tx + gap > si[r, M_TURNS]:
+                        drop = False
+                        break
+                elif not _le(q[qr, j], sv[r, j]):
+                    drop = False
+                    break
+            if drop:  # weakly better on every objective but the primary (NAMOA*-dr)
+                si[r, M_ALIVE] = 0
+                n += 1
+        if hi > mid + 1:
+            stk[top] = mid + 1
+            stk[top + 1] = hi
+            top += 2
+        if mid > lo:
+            stk[top] = lo
+            stk[top + 1] = mid
+            top += 2
+    return n, nodes
+
+
+@numba.njit(cache=True)
+def _gather(sv, si, off, m, tv, ti, n, k):
+    """Append the live members of a tree to ``tv``/``ti`` from row ``n``."""
+    for i in range(m):
+        r = off + i
+        if si[r, M_ALIVE]:
+            for c in range(k):
+                tv[n, c] = sv[r, c]
+            ti[n, 0] = si[r, M_TURNS]
+            ti[n, 1] = si[r, M_HEAD]
+            n += 1
+    return n
+
+
+@numba.njit(cache=True)
+def _insert(sv, si, sidx, sfree, tdir, st, s, q, qr, okind, tx, hx, at_goal, stk):
+    """Add the member with g-vector ``q[qr]``, turns ``tx`` and heading ``hx``
+    to the set of ``s`` and drop the members it makes redundant for later
+    checks (:func:`_drop_in_tree`). The caller has made sure the pool holds
+    ``_room(live members of s)`` more rows and ``tdir`` two more trees."""
+    k = okind.shape[0]
+    # drops: marked dead; an emptied tree is freed, a half-dead one rebuilt
+    prev = -1
+    t = sidx[s, B_HEAD] - 1
+    while t >= 0:
+        nxt = tdir[t, T_NEXT] - 1
+        nd, nn = _drop_in_tree(sv, si, tdir[t, T_OFF], tdir[t, T_M], q, qr, okind, tx, hx, at_goal, stk)
+        st[S_DROP_NODES] += nn
+        if nd > 0:
+            tdir[t, T_LIVE] -= nd
+            sidx[s, B_CNT] -= nd
+            live = tdir[t, T_LIVE]
+            if live == 0:
+                if prev >= 0:
+                    tdir[prev, T_NEXT] = nxt + 1
+                else:
+                    sidx[s, B_HEAD] = nxt + 1
+                _release(si, sfree, tdir[t, T_OFF], tdir[t, T_CAP])
+                _tree_free(tdir, st, t)
+                sidx[s, B_NTREE] -= 1
+                t = nxt
+                continue
+            if 2 * live < tdir[t, T_M]:
+                tv = np.empty((live, k))
+                ti = np.empty((live, 2), np.int64)
+                _gather(sv, si, tdir[t, T_OFF], tdir[t, T_M], tv, ti, 0, k)
+                _release(si, sfree, tdir[t, T_OFF], tdir[t, T_CAP])
+                off, cap = _alloc(si, sfree, st, live)
+                _build(sv, si, off, tv, ti, live, k)
+                st[S_BUILT] += live
+                tdir[t, T_OFF] = off
+                tdir[t, T_M] = live
+                tdir[t, T_CAP] = cap
+        prev = t
+        t = nxt
+    # the new member's tree absorbs the next ones while they are smaller than twice it
+    total = 1
+    t = sidx[s, B_HEAD] - 1
+    while t >= 0 and tdir[t, T_LIVE] < 4 * total:
+        total += tdir[t, T_LIVE]
+        t = tdir[t, T_NEXT] - 1
+    tv = np.empty((total, k))
+    ti = np.empty((total, 2), np.int64)
+    for c in range(k):
+        tv[0, c] = q[qr, c]
+    ti[0, 0] = tx
+    ti[0, 1] = hx
+    n = 1
+    t = sidx[s, B_HEAD] - 1
+    while n < total:
+        n = _gather(sv, si, tdir[t, T_OFF], tdir[t, T_M], tv, ti, n, k)
+        nxt = tdir[t, T_NEXT] - 1
+        _release(si, sfree, tdir[t, T_OFF], tdir[t, T_CAP])
+        _tree_free(tdir, st, t)
+        sidx[s, B_NTREE] -= 1
+        t = nxt
+    off, cap = _alloc(si, sfree, st, total)
+    _build(sv, si, off, tv, ti, total, k)
+    st[S_BUILT] += total
+    u = _tree_new(tdir, st)
+    tdir[u, T_OFF] = off
+    tdir[u, T_M] = total
+    tdir[u, T_LIVE] = total
+    tdir[u, T_CAP] = cap
+    tdir[u, T_NEXT] = t + 1
+    sidx[s, B_HEAD] = u + 1
+    sidx[s, B_NTREE] += 1
+    sidx[s, B_CNT] += 1
+
+
+@numba.njit(cache=True, inline="always")
+def _room(live):
+    """Pool rows an insertion into a set of ``live`` members may take."""
+    return 4 * (live + 1) + 256
 
 
 @numba.njit(cache=True, inline="always")
@@ -560,9 +720,9 @@ def _gvec(li, lg, x, okind, ocol, cell_size, q, qr):
 
 
 @numba.njit(cache=True)
-def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, timed, n_float):
+def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, hsol, timed, n_float):
     """The state of a new search: the start label alone on the open list.
-    Returns ``(li, lg, lf, hid, sols, st, sv, si, sfree)``."""
+    Returns ``(li, lg, lf, hid, sols, st, sv, si, sfree, tdir)``."""
     k = okind.shape[0]
     li = np.empty((1024, N_INT), np.int32)
     lg = np.zeros((1024, max(n_float, 1)))
@@ -579,7 +739,7 @@ def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, t
     for j in range(k):  # the start cell counts for the cell sums
         if okind[j] == K_CELL:
             lg[0, ocol[j]] = layers[ocol[j], start]
-    _fvec(li, lg, lf, 0, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, timed)
+    _fvec(li, lg, lf, 0, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, hsol, timed)
     hid[0] = 0
     st = np.zeros(N_ST, np.int64)
     st[S_N] = 1
@@ -587,14 +747,16 @@ def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, t
     st[S_GENERATED] = 1
     st[S_FREE] = -1
     st[S_SPAN] = 1
-    sv = np.empty((1024, k + 2 * max(k - 2, 0)))
-    si = np.empty((1024, 2), np.int32)
+    st[S_TFREE] = -1
+    sv = np.empty((1024, _width(k)))
+    si = np.empty((1024, N_SI), np.int32)
     sfree = np.full(N_CLASS, -1, np.int64)
-    return li, lg, lf, hid, sols, st, sv, si, sfree
+    tdir = np.empty((256, N_T), np.int64)
+    return li, lg, lf, hid, sols, st, sv, si, sfree, tdir
 
 
 @numba.njit(cache=True, inline="always")
-def _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, timed):
+def _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, hsol, timed):
     """Write the f-vector (``g + h``, internal order) of label ``j``."""
     c = li[j, CELL]
     for o in range(okind.shape[0]):
@@ -609,7 +771,10 @@ def _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, tim
             lf[j, o] = np.float64(t)
         elif kind == K_SOLAR and timed:
             n = li[j, NS] + li[j, ND]
-            lf[j, o] = lg[j, ocol[o]] + (psum[n + hop[c]] - psum[n])
+            if n < hsol.shape[0]:
+                lf[j, o] = lg[j, ocol[o]] + hsol[n, c]
+            else:
+                lf[j, o] = lg[j, ocol[o]] + (psum[n + hop[c]] - psum[n])
         else:
             lf[j, o] = lg[j, ocol[o]] + hfl[ocol[o], c]
 
@@ -630,6 +795,7 @@ def _k_run(
     hfl,
     hop,
     psum,
+    hsol,
     timed,
     smooth,
     ties,
@@ -643,11 +809,12 @@ def _k_run(
     sv,
     si,
     sfree,
+    tdir,
     n_steps,
     max_labels,
 ):
     """Advance the search by at most ``n_steps`` pops. Returns ``(sidx, li,
-    lg, lf, hid, sols, sv, si, status)``, status DONE (open list empty),
+    lg, lf, hid, sols, sv, si, tdir, status)``, status DONE (open list empty),
     PAUSED, OVER_BUDGET or STEP_LIMIT; the arrays may have been reallocated
     (grown by doubling)."""
     pops0 = st[S_POPS]
@@ -668,6 +835,7 @@ def _k_run(
             hfl,
             hop,
             psum,
+            hsol,
             timed,
             smooth,
             ties,
@@ -681,11 +849,12 @@ def _k_run(
             sv,
             si,
             sfree,
+            tdir,
             n_steps - (st[S_POPS] - pops0),
             max_labels,
         )
         if status != NEED_ROOM:
-            return sidx, li, lg, lf, hid, sols, sv, si, status
+            return sidx, li, lg, lf, hid, sols, sv, si, tdir, status
         if st[S_N] + 8 > li.shape[0]:
             cap = 2 * li.shape[0]
             li2 = np.empty((cap, li.shape[1]), li.dtype)
@@ -703,16 +872,20 @@ def _k_run(
             sols2 = np.empty(2 * sols.shape[0], sols.dtype)
             sols2[: sols.shape[0]] = sols
             sols = sols2
-        need = st[S_PTOP] + 2 * max(sidx[:, B_CAP].max(), 4) + 4
+        need = st[S_PTOP] + _room(sidx[:, B_CNT].max())
         if need > sv.shape[0]:
             cap = 2 * sv.shape[0]
             while cap < need:
                 cap *= 2
             sv2 = np.empty((cap, sv.shape[1]))
             sv2[: sv.shape[0]] = sv
-            si2 = np.empty((cap, 2), si.dtype)
+            si2 = np.empty((cap, si.shape[1]), si.dtype)
             si2[: si.shape[0]] = si
             sv, si = sv2, si2
+        if st[S_TTOP] + 2 > tdir.shape[0]:
+            tdir2 = np.empty((2 * tdir.shape[0], N_T), tdir.dtype)
+            tdir2[: tdir.shape[0]] = tdir
+            tdir = tdir2
         if timed:
             x = hid[0]
             span = st[S_SPAN]
@@ -742,6 +915,7 @@ def _k_steps(
     hfl,
     hop,
     psum,
+    hsol,
     timed,
     smooth,
     ties,
@@ -755,6 +929,7 @@ def _k_steps(
     sv,
     si,
     sfree,
+    tdir,
     n_steps,
     max_labels,
 ):
@@ -773,11 +948,14 @@ def _k_steps(
     use_ht = ht.shape[0] > 1
     gs = sidx.shape[0] - 1  # the goal's set
     gq = np.empty((1, k))
+    stk = np.empty(N_STACK, np.int64)
     status = DONE
     steps = 0
     pops0 = st[S_POPS]
     t_state = 0
     t_goal = 0
+    v_state = 0
+    v_goal = 0
     while size > 0:
         if steps == n_steps:
             status = PAUSED
@@ -800,7 +978,7 @@ def _k_steps(
         c = li[x, CELL]
         s = n_x * n_cells + c if timed else c
         tgt = gs if c == goal else s
-        if st[S_PTOP] + 2 * max(sidx[tgt, B_CAP], 4) + 4 > sv.shape[0]:
+        if st[S_PTOP] + _room(sidx[tgt, B_CNT]) > sv.shape[0] or st[S_TTOP] + 2 > tdir.shape[0]:
             status = NEED_ROOM
             break
         steps += 1
@@ -812,31 +990,33 @@ def _k_steps(
         # lazy checks: the sets may have grown since x was generated
         covered = False
         if c != goal:
-            covered, nt = _covered(
-                sv, si, sidx[s, B_OFF], sidx[s, B_CNT], gq, 0, okind, tx, hx, False, 0, ties, smooth
+            covered, nt, nv = _covered(
+                sv, si, tdir, sidx[s, B_HEAD], gq, 0, okind, tx, hx, False, 0, ties, smooth, stk
             )
             t_state += nt
+            v_state += nv
         if not covered:
             to_go = 0
             if use_ht:
                 to_go = ht[c * 9 + (hx if hx >= 0 else 8)]
-            covered, nt = _covered(
-                sv, si, sidx[gs, B_OFF], sidx[gs, B_CNT], lf, x, okind, tx, hx, True, to_go, ties, smooth
+            covered, nt, nv = _covered(
+                sv, si, tdir, sidx[gs, B_HEAD], lf, x, okind, tx, hx, True, to_go, ties, smooth, stk
             )
             t_goal += nt
+            v_goal += nv
         if covered:
             li[x, NEXT] = free  # nothing refers to x: recycle its row
             free = x
             n_free += 1
             continue
         if c == goal:  # a solution: recorded, never expanded
-            _insert(sv, si, sidx, sfree, st, gs, gq, 0, okind, tx, hx, True)
+            _insert(sv, si, sidx, sfree, tdir, st, gs, gq, 0, okind, tx, hx, True, stk)
             sols[n_sols] = x
             n_sols += 1
             continue
 
         n_expanded += 1
-        _insert(sv, si, sidx, sfree, st, s, gq, 0, okind, tx, hx, False)
+        _insert(sv, si, sidx, sfree, tdir, st, s, gq, 0, okind, tx, hx, False, stk)
         r, col = c // w, c % w
         mk = mask[c]
         for d in range(8):
@@ -859,22 +1039,24 @@ def _k_steps(
                     lg[j, ocol[o]] = lg[x, ocol[o]] + layers[ocol[o], cell]
                 elif kind == K_SOLAR:
                     lg[j, ocol[o]] = lg[x, ocol[o]] + table[n_x if timed else 0, d]
-            _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, timed)
+            _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, hsol, timed)
             n_generated += 1
             s2 = (n_x + 1) * n_cells + cell if timed else cell
             if cell != goal and sidx[s2, B_CNT] > 0:
                 _gvec(li, lg, j, okind, ocol, cell_size, gq, 0)
-                cov, nt = _covered(
-                    sv, si, sidx[s2, B_OFF], sidx[s2, B_CNT], gq, 0, okind, tj, d, False, 0, ties, smooth
+                cov, nt, nv = _covered(
+                    sv, si, tdir, sidx[s2, B_HEAD], gq, 0, okind, tj, d, False, 0, ties, smooth, stk
                 )
                 t_state += nt
+                v_state += nv
                 if cov:
                     continue
             to_go = ht[cell * 9 + d] if use_ht else 0
-            cov, nt = _covered(
-                sv, si, sidx[gs, B_OFF], sidx[gs, B_CNT], lf, j, okind, tj, d, True, to_go, ties, smooth
+            cov, nt, nv = _covered(
+                sv, si, tdir, sidx[gs, B_HEAD], lf, j, okind, tj, d, True, to_go, ties, smooth, stk
             )
             t_goal += nt
+            v_goal += nv
             if cov:
                 continue
             if j == free:
@@ -895,6 +1077,8 @@ def _k_steps(
     st[S_POPS] = pops0 + steps
     st[S_STATE_TESTS] += t_state
     st[S_GOAL_TESTS] += t_goal
+    st[S_STATE_NODES] += v_state
+    st[S_GOAL_NODES] += v_goal
     return status
 
 
@@ -921,3 +1105,101 @@ def _k_trace(li, sols, w):
             j -= 1
             a = li[a, PARENT]
     return cells, offsets
+
+
+# -- the final front: tolerant dominance and duplicates through a kd-tree -------------
+
+
+@numba.njit(cache=True)
+def _front_filter(F, order):
+    """The rows of ``F`` that no other row dominates up to the tolerance, one
+    per tolerance-equal vector: the first one in ``order`` (a permutation of
+    the rows, most preferred first), in that order. The same rows as
+    :func:`gapath.planners._exact_kernels._tolerant_front` (a scan over all
+    pairs); here each row queries a kd-tree over all rows (:func:`_build`, the
+    objectives as its columns ``1 ..``), which descends only into boxes that may
+    hold a row within the tolerance of it, and only the rows that have a
+    tolerance-equal partner are compared pairwise in ``order``."""
+    n, m = F.shape
+    if n == 0:
+        return np.empty(0, np.int64)
+    k = m + 1  # column 0 unused: _build boxes columns 1 .. k-1
+    tv = np.zeros((n, k))
+    tv[:, 1:] = F
+    ti = np.zeros((n, 2), np.int64)
+    for i in range(n):
+        ti[i, 0] = i
+    sv = np.empty((n, _width(k)))
+    si = np.empty((n, N_SI), np.int32)
+    _build(sv, si, 0, tv, ti, n, k)
+    b0 = k
+    b1 = k + k - 1
+    keep = np.ones(n, np.bool_)
+    partner = np.zeros(n, np.bool_)
+    stk = np.empty(N_STACK, np.int64)
+    for i in range(n):
+        # a row that dominates i (weakly everywhere, strictly somewhere), and
+        # whether one is tolerance-equal to i
+        stk[0] = 0
+        stk[1] = n
+        top = 2
+        while top > 0 and keep[i]:
+            top -= 2
+            lo, hi = stk[top], stk[top + 1]
+            mid = (lo + hi) >> 1
+            inside = True
+            for o in range(m):
+                if not _le(sv[mid, b0 + o], F[i, o]):
+                    inside = False
+                    break
+            if not inside:
+                continue
+            j = si[mid, M_TURNS]
+            if j != i:
+                not_worse = True
+                better = False
+                for o in range(m):
+                    if not _le(F[j, o], F[i, o]):
+                        not_worse = False
+                        break
+                    if not _eq(F[j, o], F[i, o]):
+                        better = True
+                if not_worse:
+                    if better:
+                        keep[i] = False
+                    else:
+                        partner[i] = True
+            if hi > mid + 1:
+                stk[top] = mid + 1
+                stk[top + 1] = hi
+                top += 2
+            if mid > lo:
+                stk[top] = lo
+                stk[top + 1] = mid
+                top += 2
+    out = np.empty(n, np.int64)
+    cnt = 0
+    eqs = np.empty(n, np.int64)  # kept rows with a tolerance-equal one, in order
+    n_eq = 0
+    for i in order:
+        if not keep[i]:
+            continue
+        if partner[i]:
+            dup = False
+            for jj in range(n_eq):
+                j = eqs[jj]
+                same = True
+                for o in range(m):
+                    if not _eq(F[j, o], F[i, o]):
+                        same = False
+                        break
+                if same:
+                    dup = True
+                    break
+            if dup:
+                continue
+            eqs[n_eq] = i
+            n_eq += 1
+        out[cnt] = i
+        cnt += 1
+    return out[:cnt]

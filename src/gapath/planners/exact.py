@@ -795,9 +795,12 @@ def free_front(
         other: the state is then (step count, cell), which is exact. The
         paths are then walks (a detour may shift later steps to cheaper
         indices, so a Pareto-optimal path may revisit a cell) and the
-        search is larger; the heuristic is the sum of the cheapest step
-        cost of each index over the fewest steps to the goal (admissible and
-        consistent). With ``solar_rate == 0`` the cost depends on the
+        search is larger; the heuristic is a backward pass over the step
+        index, the least solar cost of a walk from the cell to the goal
+        starting at that index (admissible; every label of a state shares
+        it), for the first ``2**24 / cells`` indices, and beyond them the
+        sum of the cheapest step cost of each index over the fewest steps
+        to the goal. With ``solar_rate == 0`` the cost depends on the
         direction only, states are cells and paths are simple.
 
     Objective values are computed as in :mod:`gapath.objectives` (step
