@@ -182,12 +182,12 @@ def test_bad_archive_settings(kwargs, match):
         FreePathArchive(FreePathProblem(room(seed=1)), **kwargs)
 
 
-def test_archive_needs_a_free_problem_and_refine_needs_free_paths():
+def test_archive_needs_a_free_problem():
+    # (monotone runs take ``refine`` too since MonotonePathArchive:
+    # tests/test_monotone_archive.py)
     ws = room(seed=1)
     with pytest.raises(ConfigError, match="FreePathProblem"):
         FreePathArchive(GridPathProblem(ws))
-    with pytest.raises(ConfigError, match="refine"):
-        solve(ws, paths="monotone", pop_size=10, n_gen=2, refine=5)
 
 
 @settings(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
