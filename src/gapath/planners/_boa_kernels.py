@@ -190,6 +190,24 @@ def _boa_run(
             edges = _grow(edges, est[E_EDGES] + 9)
 
 
+@numba.njit(cache=True, inline="always")
+def _sift_up(hf, i, f_len, f_vul, k3):
+    """Push keys ``(f_len, f_vul, k3)`` into the 4-ary heap ``hf`` (three floats
+    an entry) whose first free slot is ``i``: sift the hole up, then write."""
+    while i > 0:
+        pa = (i - 1) >> 2
+        b1, b2 = hf[3 * pa], hf[3 * pa + 1]
+        if not (f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))):
+            break
+        hf[3 * i] = b1
+        hf[3 * i + 1] = b2
+        hf[3 * i + 2] = hf[3 * pa + 2]
+        i = pa
+    hf[3 * i] = f_len
+    hf[3 * i + 1] = f_vul
+    hf[3 * i + 2] = k3
+
+
 @numba.njit(cache=True)
 def _boa_steps(
     occ,
@@ -304,23 +322,9 @@ def _boa_steps(
                 f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
                 f_vul = lf[y, F_VUL] + hv[cy]
                 k3 = np.float64(li[y, TURNS]) * ROW_SPAN + np.float64(y)
-                i = size
+                _sift_up(hf, size, f_len, f_vul, k3)
                 size += 1
                 nwin -= 1
-                while i > 0:
-                    pa = (i - 1) >> 2
-                    b1, b2 = hf[3 * pa], hf[3 * pa + 1]
-                    if not (
-                        f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))
-                    ):
-                        break
-                    hf[3 * i] = b1
-                    hf[3 * i + 1] = b2
-                    hf[3 * i + 2] = hf[3 * pa + 2]
-                    i = pa
-                hf[3 * i] = f_len
-                hf[3 * i + 1] = f_vul
-                hf[3 * i + 2] = k3
                 y = nxt
         # pop the least key (the heap written out: helpers that take the arrays
         # cost reference counting); the keys are distinct (the row is in the
@@ -368,18 +372,7 @@ def _boa_steps(
                 hf[3 * i + 1] = a2
                 hf[3 * i + 2] = a3
                 i = ia
-            while i > 0:
-                pa = (i - 1) >> 2
-                b1, b2, b3 = hf[3 * pa], hf[3 * pa + 1], hf[3 * pa + 2]
-                if not (k1 < b1 or (k1 == b1 and (k2 < b2 or (k2 == b2 and k3 < b3)))):
-                    break
-                hf[3 * i] = b1
-                hf[3 * i + 1] = b2
-                hf[3 * i + 2] = b3
-                i = pa
-            hf[3 * i] = k1
-            hf[3 * i + 1] = k2
-            hf[3 * i + 2] = k3
+            _sift_up(hf, i, k1, k2, k3)
         c = li[x, CELL]
         q = lf[x, F_VUL]
 
@@ -500,22 +493,8 @@ def _boa_steps(
                 continue
             # push (sift the hole up); third key: turns, then the row (exact below 2**53)
             k3 = np.float64(turns_j) * ROW_SPAN + np.float64(j)
-            i = size
+            _sift_up(hf, size, f_len, f_vul, k3)
             size += 1
-            while i > 0:
-                pa = (i - 1) >> 2
-                b1, b2 = hf[3 * pa], hf[3 * pa + 1]
-                if not (
-                    f_len < b1 or (f_len == b1 and (f_vul < b2 or (f_vul == b2 and k3 < hf[3 * pa + 2])))
-                ):
-                    break
-                hf[3 * i] = b1
-                hf[3 * i + 1] = b2
-                hf[3 * i + 2] = hf[3 * pa + 2]
-                i = pa
-            hf[3 * i] = f_len
-            hf[3 * i + 1] = f_vul
-            hf[3 * i + 2] = k3
     st[S_N] = n
     st[S_SIZE] = size + nwin + nover
     est[E_CUR] = cur
