@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 from gapath.planners._exact_kernels import _tolerant_front
-
 from gapath.planners._multi_kernels import (
     B_CNT,
     B_HEAD,
@@ -155,7 +154,9 @@ def test_sets_match_a_plain_list(k, at_goal, seed):
         q[0] = x[0]
         ties, smooth = bool(rng.integers(2)), bool(rng.integers(2))
         to_go = int(rng.integers(0, 3))
-        got, _, _ = _covered(sv, si, tdir, sidx[0, B_HEAD], q, 0, okind, x[1], x[2], at_goal, to_go, ties, smooth, stk)
+        got, _, _ = _covered(
+            sv, si, tdir, sidx[0, B_HEAD], q, 0, okind, x[1], x[2], at_goal, to_go, ties, smooth, stk
+        )
         want = any(_ref_covers(a, x, okind, at_goal, to_go, ties, smooth) for a in ref)
         assert got == want, (step, x)
         if want and rng.random() < 0.8:

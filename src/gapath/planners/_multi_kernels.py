@@ -1133,7 +1133,6 @@ def _front_filter(F, order):
     si = np.empty((n, N_SI), np.int32)
     _build(sv, si, 0, tv, ti, n, k)
     b0 = k
-    b1 = k + k - 1
     keep = np.ones(n, np.bool_)
     partner = np.zeros(n, np.bool_)
     stk = np.empty(N_STACK, np.int64)
