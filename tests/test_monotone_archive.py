@@ -16,7 +16,8 @@ from gapath.monotone import Frame, profiles_of_paths
 from gapath.objectives import evaluate_paths, pad_paths
 from gapath.operators import PlannerSampling
 from gapath.operators._monotone_archive_kernels import entries_of, reroute_columns, reroute_sweep
-from gapath.operators.monotone_archive import MonotonePathArchive, default_refine, run_monotone_archive
+from gapath.operators.archive import run_archive
+from gapath.operators.monotone_archive import MonotonePathArchive, default_refine
 from gapath.planners.exact import monotone_front
 from gapath.planners.weighted_sum import weighted_sum_path
 from gapath.problems import FreePathProblem, GridPathProblem
@@ -163,10 +164,10 @@ def test_solve_with_the_archive_is_valid_deterministic_and_no_worse():
     assert all(np.array_equal(p, q) for p, q in zip(a.front.paths, b.front.paths))
     assert a.settings["refine"] == default_refine(30) == 6
     assert a.n_eval == b.n_eval > solve(ws, refine=False, **kw).n_eval
-    assert run_monotone_archive(a.pymoo_result.algorithm) is not None
+    assert run_archive(a.pymoo_result.algorithm) is not None
     # the population evolves as without the archive: the archive holds its front
     plain = solve(ws, refine=False, **kw)
-    assert run_monotone_archive(plain.pymoo_result.algorithm) is None
+    assert run_archive(plain.pymoo_result.algorithm) is None
     for f in plain.front.F:
         assert ((a.front.F <= f + 1e-9).all(axis=1)).any()
 
@@ -175,7 +176,7 @@ def test_solve_keeps_ahmed_and_deb_runs_without_an_archive():
     ws = feasible_map(9)
     kw = dict(pop_size=20, n_gen=5, seed=2)
     r = solve(ws, **kw)
-    assert "refine" not in r.settings and run_monotone_archive(r.pymoo_result.algorithm) is None
+    assert "refine" not in r.settings and run_archive(r.pymoo_result.algorithm) is None
     s = solve(ws, refine=False, **kw)
     assert np.array_equal(r.front.F, s.front.F) and np.array_equal(r.front.X, s.front.X)
 

@@ -34,6 +34,8 @@ front (``PathFront.X`` is then empty) for free paths.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 from pymoo.core.callback import Callback
 
@@ -111,7 +113,72 @@ def crowding(F) -> np.ndarray:
     return cd
 
 
-class FreePathArchive(Callback):
+class PathArchive(Callback):
+    """What the run archives share (:class:`FreePathArchive`,
+    :class:`gapath.operators.monotone_archive.MonotonePathArchive`): a pymoo
+    callback that, after every generation, adds the generation's offspring
+    (the first population at the first generation) with :meth:`add` and then,
+    if it holds a path, refines itself once with :meth:`improve`.
+
+    A subclass keeps ``self.problem`` and ``self._M``, the SPEC metric rows
+    of its paths (one row a path), and defines :meth:`add`, :meth:`improve`,
+    :meth:`genomes` and :meth:`paths`.
+    """
+
+    problem: Any
+    _M: np.ndarray
+
+    def __len__(self) -> int:
+        return len(self._M)
+
+    @property
+    def F(self) -> np.ndarray:
+        """Unpenalised objectives of the archived paths."""
+        if len(self) == 0:
+            return np.zeros((0, self.problem.n_obj))
+        return self.problem.objective_values(self._M)
+
+    def notify(self, algorithm):
+        self.add(offspring_genomes(algorithm, self.problem.n_var))
+        if len(self):
+            self.improve()
+
+    def add(self, X) -> None:
+        """Add the paths of the genomes ``X`` (``(n, n_var)``)."""
+        raise NotImplementedError
+
+    def improve(self) -> None:
+        """One generation's refinement of the archive."""
+        raise NotImplementedError
+
+    def genomes(self) -> np.ndarray:
+        """The archived paths' genomes, or ``(k, 0)`` when some path has none."""
+        raise NotImplementedError
+
+    def paths(self) -> list[np.ndarray]:
+        """The archived paths (``(m_i, 2)`` workspace cells)."""
+        raise NotImplementedError
+
+    def front(self) -> PathFront:
+        """The archive as a :class:`gapath.front.PathFront` (lexicographic
+        order); its ``X`` is :meth:`genomes`."""
+        return PathFront(tuple(self.problem.objectives), self.F, self._M.copy(), self.genomes(), self.paths())
+
+
+def offspring_genomes(algorithm, n_var: int) -> np.ndarray:
+    """The genomes of ``algorithm``'s last offspring (the first population
+    at the first generation): read from :class:`gapath.algorithms.FastNSGA2`'s
+    arrays when it has them (no pymoo ``Population`` built), else from
+    ``algorithm.off``."""
+    arrays = getattr(algorithm, "_offspring", None)
+    X = getattr(arrays, "X", None)
+    if X is None:
+        off = getattr(algorithm, "off", None)
+        X = None if off is None or len(off) == 0 else off.get("X")
+    return np.zeros((0, n_var)) if X is None else np.asarray(X, dtype=float)
+
+
+class FreePathArchive(PathArchive):
     """Every feasible non-dominated free path seen in a run, refined each
     generation by re-routing segments (see the module docstring).
 
@@ -282,22 +349,11 @@ class FreePathArchive(Callback):
         self._X = np.zeros((0, enc.n_var))
         self._genome = np.zeros(0, bool)
 
-    def __len__(self) -> int:
-        return len(self._keys)
-
-    @property
-    def F(self) -> np.ndarray:
-        """Unpenalised objectives of the archived paths."""
-        if len(self) == 0:
-            return np.zeros((0, self.problem.n_obj))
-        return self.problem.objective_values(self._M)
-
     # -- the generation hook ---------------------------------------------------
-    def notify(self, algorithm):
-        off = algorithm.off
-        X = np.zeros((0, self.problem.n_var)) if off is None or len(off) == 0 else off.get("X")
-        self.add(np.asarray(X, dtype=float))
-        if self.n_refine and len(self):
+    def improve(self) -> None:
+        """One generation's refinement: :meth:`refine` ``n_refine`` paths,
+        then :meth:`exact_refine` ``exact_stretches`` stretches."""
+        if self.n_refine:
             self.refine(self.n_refine)
         if self.exact_stretches and len(self):
             self.exact_refine(self.exact_stretches)
@@ -549,12 +605,10 @@ class FreePathArchive(Callback):
         P, L = self.problem.encoding.padded(self._flat, self._offsets)
         return [P[i, : L[i]].copy() for i in range(len(L))]
 
-    def front(self) -> PathFront:
-        """The archive as a :class:`gapath.front.PathFront` (lexicographic
-        order); its ``X`` holds the genomes when every archived path has
-        one, else it is empty (``(k, 0)``)."""
-        X = self._X if self._genome.all() else np.empty((len(self), 0))
-        return PathFront(tuple(self.problem.objectives), self.F, self._M, X, self.paths())
+    def genomes(self) -> np.ndarray:
+        """The archived paths' genomes when every one has one (re-routed
+        paths have none), else ``(k, 0)``."""
+        return self._X if self._genome.all() else np.empty((len(self), 0))
 
 
 def _rows_in(B, A) -> np.ndarray:
@@ -578,9 +632,11 @@ def _close_any(B, A, tol: float = TOL) -> np.ndarray:
     return out
 
 
-def run_archive(algorithm) -> FreePathArchive | None:
-    """The :class:`FreePathArchive` among the callbacks of ``algorithm``
-    (as :func:`gapath.solver.solve` installs it), or None.
+def run_archive(algorithm) -> PathArchive | None:
+    """The run's archive (a :class:`FreePathArchive` or a
+    :class:`gapath.operators.monotone_archive.MonotonePathArchive`) among the
+    callbacks of ``algorithm`` (as :func:`gapath.solver.solve` installs it),
+    or None.
 
     Examples
     --------
@@ -592,7 +648,7 @@ def run_archive(algorithm) -> FreePathArchive | None:
     """
     cb = getattr(algorithm, "callback", None)
     for c in (cb, *getattr(cb, "callbacks", ())):
-        if isinstance(c, FreePathArchive):
+        if isinstance(c, PathArchive):
             return c
     return None
 
@@ -605,7 +661,9 @@ __all__ = [
     "EXTREME_TURNS",
     "LAM_RANGE",
     "FreePathArchive",
+    "PathArchive",
     "crowding",
     "dominated_by",
+    "offspring_genomes",
     "run_archive",
 ]

@@ -29,13 +29,13 @@ dominates the last population's.
 from __future__ import annotations
 
 import numpy as np
-from pymoo.core.callback import Callback
 
 from gapath.errors import ConfigError
-from gapath.front import PathFront, select_front
+from gapath.front import select_front
 from gapath.monotone import expand_profiles, split_paths
 from gapath.objectives import INTERFERING, LENGTH, VULNERABILITY
 from gapath.operators._monotone_archive_kernels import entries_of, reroute_sweep
+from gapath.operators.archive import PathArchive
 
 #: Default range of ``log10`` of the re-routing weight of vulnerability
 #: against length, around the ratio of the archive's spans.
@@ -75,7 +75,7 @@ def _pair(value, name, lo_bound=None, hi_bound=None):
     return lo, hi
 
 
-class MonotonePathArchive(Callback):
+class MonotonePathArchive(PathArchive):
     """Every feasible non-dominated column-monotone path of a run, refined
     each generation by re-routing stretches of columns (see the module
     docstring).
@@ -141,20 +141,10 @@ class MonotonePathArchive(Callback):
         self._exits = np.zeros((0, frame.n_cols), np.int64)
         self._M = np.zeros((0, 4))
 
-    def __len__(self) -> int:
-        return len(self._exits)
-
-    @property
-    def F(self) -> np.ndarray:
-        """Unpenalised objectives of the archived paths."""
-        if len(self) == 0:
-            return np.zeros((0, self.problem.n_obj))
-        return self.problem.objective_values(self._M)
-
     # -- the generation hook ---------------------------------------------------
-    def notify(self, algorithm):
-        self.add(_offspring_genomes(algorithm, self.problem.n_var))
-        if self.n_refine and len(self):
+    def improve(self) -> None:
+        """One generation's refinement: :meth:`refine` ``n_refine`` paths."""
+        if self.n_refine:
             self.refine(self.n_refine)
 
     def add(self, X) -> None:
@@ -270,42 +260,5 @@ class MonotonePathArchive(Callback):
         """The archived paths (``(m_i, 2)`` workspace cells)."""
         return split_paths(*expand_profiles(self.frame, *self.profiles()))
 
-    def front(self) -> PathFront:
-        """The archive as a :class:`gapath.front.PathFront` (lexicographic
-        order), genomes included."""
-        return PathFront(tuple(self.problem.objectives), self.F, self._M.copy(), self.genomes(), self.paths())
 
-
-def _offspring_genomes(algorithm, n_var: int) -> np.ndarray:
-    """The genomes of ``algorithm``'s last offspring (the first population
-    at the first generation): read from :class:`gapath.algorithms.FastNSGA2`'s
-    arrays when it has them (no pymoo ``Population`` built), else from
-    ``algorithm.off``."""
-    arrays = getattr(algorithm, "_offspring", None)
-    X = getattr(arrays, "X", None)
-    if X is None:
-        off = getattr(algorithm, "off", None)
-        X = None if off is None or len(off) == 0 else off.get("X")
-    return np.zeros((0, n_var)) if X is None else np.asarray(X)
-
-
-def run_monotone_archive(algorithm) -> MonotonePathArchive | None:
-    """The :class:`MonotonePathArchive` among the callbacks of ``algorithm``
-    (as :func:`gapath.solver.solve` installs it), or None.
-
-    Examples
-    --------
-    >>> from gapath import default_workspace
-    >>> from gapath.solver import solve
-    >>> r = solve(default_workspace(), refine=True, pop_size=10, n_gen=2)
-    >>> len(run_monotone_archive(r.pymoo_result.algorithm)) == len(r.front)
-    True
-    """
-    cb = getattr(algorithm, "callback", None)
-    for c in (cb, *getattr(cb, "callbacks", ())):
-        if isinstance(c, MonotonePathArchive):
-            return c
-    return None
-
-
-__all__ = ["SEGMENT", "WEIGHT_RANGE", "MonotonePathArchive", "default_refine", "run_monotone_archive"]
+__all__ = ["SEGMENT", "WEIGHT_RANGE", "MonotonePathArchive", "default_refine"]
