@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -15,8 +17,6 @@ from gapath.metrics import TOL, close, nondominated
 from gapath.monotone import Frame, profiles_of_paths
 from gapath.objectives import evaluate_paths, pad_paths
 from gapath.operators import PlannerSampling
-import itertools
-
 from gapath.operators._monotone_archive_kernels import (
     entries_of,
     pareto_stretches,
@@ -276,7 +276,9 @@ def test_pareto_stretches_agree_with_brute_force_on_tiny_windows(corner_cutting)
             for a in range(-1, n - 1):
                 for z in range(max(a + 1, 1), min(n, a + 4)):
                     cols = list(range(max(a + 1, 0), z))
-                    out, where = pareto_stretches(ex, np.array([src]), np.array([a]), np.array([z]), *args, 100, False)
+                    out, where = pareto_stretches(
+                        ex, np.array([src]), np.array([a]), np.array([z]), *args, 100, False
+                    )
                     assert (where == 0).all()
                     # outside the stretch nothing changes
                     outside = [k for k in range(n) if k not in cols]
@@ -319,7 +321,9 @@ def test_archive_with_pareto_stretches_is_valid_deterministic_and_leaves_the_pop
 
     def run(n_pareto):
         archive = MonotonePathArchive(problem, n_refine=10, seed=seed, n_pareto=n_pareto, pareto_span=(3, 8))
-        res = minimize(problem, FastNSGA2(30, sampling=PlannerSampling()), ("n_gen", 10), seed=seed, callback=archive)
+        res = minimize(
+            problem, FastNSGA2(30, sampling=PlannerSampling()), ("n_gen", 10), seed=seed, callback=archive
+        )
         return archive, res
 
     a, ra = run(5)

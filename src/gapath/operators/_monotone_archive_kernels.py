@@ -264,7 +264,6 @@ def pareto_stretches(
     n_b = len(pick)
     h = occ.shape[0]
     n_cols = exits.shape[1]
-    inf = np.inf
     straight = cell_size
     diagonal = SQRT2 * cell_size
     out = np.empty((n_b * cap, n_cols), np.int64)
@@ -342,8 +341,10 @@ def pareto_stretches(
                         tL[nt], tV[nt], tP[nt] = rL[t] + straight, rV[t] + here, rP[t]
                         nt += 1
                     p = e - s
-                    if 0 <= p < h and cnt[j - 1, p] > 0 and (
-                        corner_cutting or not cuts_corner(occ, p, c - 1, e, c)
+                    if (
+                        0 <= p < h
+                        and cnt[j - 1, p] > 0
+                        and (corner_cutting or not cuts_corner(occ, p, c - 1, e, c))
                     ):
                         for t in range(cnt[j - 1, p]):
                             q = base_prev + p * cap + t

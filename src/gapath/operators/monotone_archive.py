@@ -386,4 +386,13 @@ def run_monotone_archive(algorithm) -> MonotonePathArchive | None:
     return None
 
 
-__all__ = ["N_PARETO", "PARETO_CAP", "PARETO_SPAN", "SEGMENT", "WEIGHT_RANGE", "MonotonePathArchive", "default_refine", "run_monotone_archive"]
+__all__ = [
+    "N_PARETO",
+    "PARETO_CAP",
+    "PARETO_SPAN",
+    "SEGMENT",
+    "WEIGHT_RANGE",
+    "MonotonePathArchive",
+    "default_refine",
+    "run_monotone_archive",
+]
