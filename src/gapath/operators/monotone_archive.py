@@ -18,6 +18,15 @@ Pareto-optimal path is made of stretches that are Pareto optimal between
 their ends, splicing weighted-sum stretches into front paths reaches the
 non-supported points that no weighting of the whole path reaches.
 
+Some non-supported points are reachable that way only through a narrow
+window of weights. So each generation ``n_pareto`` more archived paths
+(default :data:`N_PARETO`) have a random stretch (up to the whole path)
+replaced by **every** Pareto-optimal (length, vulnerability) stretch
+between the same ends
+(:func:`~gapath.operators._monotone_archive_kernels.pareto_stretches`: a
+bi-objective label programme over the stretch's columns, at most
+:data:`PARETO_CAP` labels per exit row, one numba kernel for the batch).
+
 Every re-routed path is again a path of the encodings' path set (the
 relative moves of :mod:`gapath.encodings`), so it has a genome: the archive
 returns a full :class:`gapath.front.PathFront` (``X`` included). The
@@ -43,10 +52,13 @@ WEIGHT_RANGE = (-4.0, 8.0)
 #: Default range of the share of a path's columns a re-routed stretch spans.
 SEGMENT = (0.05, 1.0)
 #: Default range of the number of columns a Pareto stretch spans (its
-#: first and last columns kept), see :meth:`MonotonePathArchive.pareto`.
-PARETO_SPAN = (3, 10)
-#: Default Pareto stretches per generation (``n_pareto=None``).
-N_PARETO = 0
+#: first and last columns kept, the start cell counting as one), see
+#: :meth:`MonotonePathArchive.pareto`; a larger ``hi`` than the path is
+#: the whole path.
+PARETO_SPAN = (3, 10**6)
+#: Default Pareto stretches per generation (``n_pareto=None`` with
+#: ``n_refine > 0``; docs/results/monotone_lift.md, "Pareto stretches").
+N_PARETO = 2
 #: Default cap on the non-dominated partial stretches kept per exit row.
 PARETO_CAP = 32
 
@@ -101,7 +113,7 @@ class MonotonePathArchive(Callback):
         spans (so 0 weighs both normalised objectives alike).
 
     n_pareto : Pareto stretches per generation (0: none; default
-        :data:`N_PARETO`):
+        :data:`N_PARETO`, 0 if ``n_refine`` is 0):
         each replaces a stretch of an archived path by every
         Pareto-optimal stretch between the same ends
         (:meth:`pareto`).
@@ -159,7 +171,7 @@ class MonotonePathArchive(Callback):
         if n_refine < 0:
             raise ConfigError(f"n_refine must be an integer >= 0, got {n_refine!r}")
         try:
-            n_pareto = N_PARETO if n_pareto is None else int(n_pareto)
+            n_pareto = (N_PARETO if n_refine else 0) if n_pareto is None else int(n_pareto)
             pareto_cap = PARETO_CAP if pareto_cap is None else int(pareto_cap)
         except (TypeError, ValueError):
             raise ConfigError(
@@ -167,9 +179,9 @@ class MonotonePathArchive(Callback):
             ) from None
         if n_pareto < 0 or pareto_cap < 1:
             raise ConfigError(f"need n_pareto >= 0 and pareto_cap >= 1, got {n_pareto!r}, {pareto_cap!r}")
-        span = _pair(PARETO_SPAN if pareto_span is None else pareto_span, "pareto_span", 2, frame.n_cols + 1)
+        span = _pair(PARETO_SPAN if pareto_span is None else pareto_span, "pareto_span", 2, np.inf)
         self.n_pareto = n_pareto
-        self.pareto_span = (int(span[0]), int(span[1]))
+        self.pareto_span = (int(span[0]), int(min(span[1], frame.n_cols + 1)))
         self.pareto_cap = pareto_cap
         self.problem = problem
         self.frame = frame
