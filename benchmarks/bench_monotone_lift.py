@@ -24,7 +24,8 @@ refine=True)`` (what ``gapath solve --paths monotone`` runs); ``refine=N``
 sets the re-routed paths per generation; ``--maps bundled`` runs the
 bundled map. ``--segment LO,HI`` and ``--weights LO,HI`` set the archive's
 ``segment`` and ``weight_range``, ``--pareto N``, ``--pareto-span LO,HI``
-and ``--pareto-cap C`` its Pareto stretches (tuning).
+and ``--pareto-cap C`` its Pareto stretches (``--pareto 0``: the archive
+before the Pareto stretches, v2).
 """
 
 from __future__ import annotations
