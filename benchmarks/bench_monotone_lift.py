@@ -23,7 +23,9 @@ population's front, as before the archive); ``archive`` runs ``solve(...,
 refine=True)`` (what ``gapath solve --paths monotone`` runs); ``refine=N``
 sets the re-routed paths per generation; ``--maps bundled`` runs the
 bundled map. ``--segment LO,HI`` and ``--weights LO,HI`` set the archive's
-``segment`` and ``weight_range`` (tuning).
+``segment`` and ``weight_range``, ``--pareto N``, ``--pareto-span LO,HI``
+and ``--pareto-cap C`` its Pareto stretches (``--pareto 0``: the archive
+before the Pareto stretches, v2).
 """
 
 from __future__ import annotations
@@ -107,9 +109,17 @@ def main(argv=None):
     ap.add_argument("--label", default="", help="set label written in every line")
     ap.add_argument("--segment", default=None, help="archive segment share LO,HI (tuning)")
     ap.add_argument("--weights", default=None, help="archive log10 weight range LO,HI (tuning)")
+    ap.add_argument("--pareto", default=None, help="archive Pareto stretches per generation (tuning)")
+    ap.add_argument("--pareto-span", default=None, help="Pareto stretch columns LO,HI (tuning)")
+    ap.add_argument("--pareto-cap", default=None, help="Pareto labels kept per exit row (tuning)")
     args = ap.parse_args(argv)
     tuned = {}
-    for key, attr in (("segment", "SEGMENT"), ("weights", "WEIGHT_RANGE")):
+    for key, attr, conv in (("pareto", "N_PARETO", int), ("pareto_cap", "PARETO_CAP", int)):
+        text = getattr(args, key)
+        if text:
+            setattr(monotone_archive, attr, conv(text))
+            tuned[key] = text
+    for key, attr in (("segment", "SEGMENT"), ("weights", "WEIGHT_RANGE"), ("pareto_span", "PARETO_SPAN")):
         text = getattr(args, key)
         if text:
             setattr(monotone_archive, attr, tuple(float(v) for v in text.split(",")))

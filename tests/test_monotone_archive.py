@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import itertools
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
@@ -15,7 +17,12 @@ from gapath.metrics import TOL, close, nondominated
 from gapath.monotone import Frame, profiles_of_paths
 from gapath.objectives import evaluate_paths, pad_paths
 from gapath.operators import PlannerSampling
-from gapath.operators._monotone_archive_kernels import entries_of, reroute_columns, reroute_sweep
+from gapath.operators._monotone_archive_kernels import (
+    entries_of,
+    pareto_stretches,
+    reroute_columns,
+    reroute_sweep,
+)
 from gapath.operators.archive import run_archive
 from gapath.operators.monotone_archive import MonotonePathArchive, default_refine
 from gapath.planners.exact import monotone_front
@@ -190,6 +197,12 @@ def test_bad_settings():
         MonotonePathArchive(p, segment=(0.5, 2.0))
     with pytest.raises(ConfigError, match="weight_range"):
         MonotonePathArchive(p, weight_range=(1.0, float("nan")))
+    with pytest.raises(ConfigError, match="n_pareto"):
+        MonotonePathArchive(p, n_pareto=-2)
+    with pytest.raises(ConfigError, match="pareto_cap"):
+        MonotonePathArchive(p, pareto_cap=0)
+    with pytest.raises(ConfigError, match="pareto_span"):
+        MonotonePathArchive(p, pareto_span=(1, 4))
     with pytest.raises(ConfigError, match="GridPathProblem"):
         MonotonePathArchive(FreePathProblem(ws))
     with pytest.raises(ConfigError, match="exit rows"):
@@ -234,3 +247,94 @@ def test_one_sweep_gives_every_end_column_of_the_single_reroutes(corner_cutting)
                     assert (out[src == b] == one).all(axis=1).any()
         assert len(out) == expected
         assert not (out == ex[pick[src]]).all(axis=1).any()  # only paths that changed
+
+
+def _pareto_of(problem, frame, exits):
+    """The distinct non-dominated (length, vulnerability) vectors of the
+    feasible paths among ``exits``, rounded."""
+    M = problem.metrics(np.empty((len(exits), 0)), profiles=(entries_of(exits, frame.start[0]), exits))
+    F = np.unique(np.round(M[M[:, 3] == 0][:, :2], 9), axis=0)
+    return F[nondominated(F)] if len(F) else F
+
+
+@pytest.mark.parametrize("corner_cutting", [True, False])
+def test_pareto_stretches_agree_with_brute_force_on_tiny_windows(corner_cutting):
+    """Every stretch of up to 2 replaced columns of a 6-row map: the kernel
+    gives exactly the Pareto set of all the splices of every exit row."""
+    checked = 0
+    for seed in range(1, 12):
+        ws = random_workspace((6, 7), 8, seed=seed)
+        ws = ws if corner_cutting else ws.replace(corner_cutting=False)
+        try:
+            monotone_front(ws, ("length",))
+        except NoPathError:
+            continue
+        f, problem = Frame.of(ws), GridPathProblem(ws)
+        _, ex = profiles_of_paths(f, [weighted_sum_path(ws, 1.0, 1e-7), weighted_sum_path(ws, 1e-7, 1.0)])
+        h, n = f.occ.shape[0], f.n_cols
+        args = (f.occ, f.potential, f.start[0], f.col0, ws.cell_size, ws.corner_cutting)
+        for src in (0, 1):
+            for a in range(-1, n - 1):
+                for z in range(max(a + 1, 1), min(n, a + 4)):
+                    cols = list(range(max(a + 1, 0), z))
+                    out, where = pareto_stretches(
+                        ex, np.array([src]), np.array([a]), np.array([z]), *args, 100, False
+                    )
+                    assert (where == 0).all()
+                    # outside the stretch nothing changes
+                    outside = [k for k in range(n) if k not in cols]
+                    assert (out[:, outside] == ex[src, outside]).all()
+                    cand = np.repeat(ex[src : src + 1], h ** len(cols), axis=0)
+                    if cols:
+                        cand[:, cols] = np.array(list(itertools.product(range(h), repeat=len(cols))))
+                    expected = _pareto_of(problem, f, cand)
+                    got = _pareto_of(problem, f, out)
+                    assert len(got) == len(out)  # every path it gives is feasible and non-dominated
+                    np.testing.assert_allclose(got, expected, rtol=1e-12)
+                    checked += 1
+    assert checked > 100
+
+
+def test_pareto_stretches_skip_unchanged_and_cap():
+    ws = feasible_map(3)
+    f = Frame.of(ws)
+    _, ex = profiles_of_paths(f, [weighted_sum_path(ws, 1.0, 1e-7), weighted_sum_path(ws, 1e-7, 1.0)])
+    args = (f.occ, f.potential, f.start[0], f.col0, ws.cell_size, ws.corner_cutting)
+    pick, k0, k1 = np.array([0, 1, 0]), np.array([-1, 2, 1]), np.array([f.n_cols - 1, 9, 8])
+    full, src_full = pareto_stretches(ex, pick, k0, k1, *args, 64, False)
+    new, src_new = pareto_stretches(ex, pick, k0, k1, *args, 64, True)
+    assert not (new == ex[pick[src_new]]).all(axis=1).any()
+    assert len(full) > len(new) > 0
+    capped, src_c = pareto_stretches(ex, pick, k0, k1, *args, 2, False)
+    assert np.bincount(src_c, minlength=3).max() <= 2
+    # the whole path re-routed (no label set reaches the cap here): the exact monotone front
+    problem = GridPathProblem(ws)
+    F = _pareto_of(problem, f, full[src_full == 0])
+    exact = monotone_front(ws, OBJ).F
+    np.testing.assert_allclose(F, exact[np.lexsort(exact.T[::-1])], rtol=1e-9)
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_archive_with_pareto_stretches_is_valid_deterministic_and_leaves_the_population(seed):
+    ws = feasible_map(seed * 17)
+    problem = GridPathProblem(ws)
+    exact = monotone_front(ws, OBJ).F
+
+    def run(n_pareto):
+        archive = MonotonePathArchive(problem, n_refine=10, seed=seed, n_pareto=n_pareto, pareto_span=(3, 8))
+        res = minimize(
+            problem, FastNSGA2(30, sampling=PlannerSampling()), ("n_gen", 10), seed=seed, callback=archive
+        )
+        return archive, res
+
+    a, ra = run(5)
+    b, rb = run(5)
+    plain, rp = run(0)
+    front = a.front()
+    check_front(ws, problem, front)
+    never_dominates(front.F, exact)
+    assert np.array_equal(front.F, b.front().F) and np.array_equal(front.X, b.front().X)
+    assert a.n_eval == b.n_eval and a.n_eval != plain.n_eval
+    # the population evolves bit for bit as without the Pareto stretches
+    assert np.array_equal(ra.pop.get("X"), rp.pop.get("X"))
+    assert np.array_equal(ra.pop.get("F"), rp.pop.get("F"))

@@ -204,3 +204,184 @@ def reroute_sweep(
             src_of[n_out] = b
             n_out += 1
     return out[:n_out], src_of[:n_out]
+
+
+@numba.njit(cache=True)
+def _pareto_filter(L, V, P, n, cap, oL, oV, oP):
+    """The non-dominated ones of the ``n`` labels ``(L, V, P)`` (first
+    ``n`` entries), written to ``oL, oV, oP`` in increasing length; at most
+    ``cap`` of them (evenly spread over the set, both ends kept). Returns
+    their count. Equal labels are kept once."""
+    if n == 0:
+        return 0
+    o1 = np.argsort(V[:n], kind="mergesort")
+    o2 = np.argsort(L[:n][o1], kind="mergesort")
+    order = o1[o2]  # by length, ties by vulnerability
+    keep = np.empty(n, np.int64)
+    m = 0
+    best = np.inf
+    for i in order:
+        v = V[i]
+        if m == 0 or v < best - 1e-9 * max(1.0, abs(best)):
+            if m > 0 and L[i] <= L[keep[m - 1]] + 1e-9 * max(1.0, abs(L[i])):
+                m -= 1  # the same length up to rounding, less vulnerable: replaces it
+            keep[m] = i
+            m += 1
+            best = v
+    if m > cap:
+        for j in range(cap):
+            q = keep[(j * (m - 1)) // (cap - 1)] if cap > 1 else keep[0]
+            oL[j], oV[j], oP[j] = L[q], V[q], P[q]
+        return cap
+    for j in range(m):
+        q = keep[j]
+        oL[j], oV[j], oP[j] = L[q], V[q], P[q]
+    return m
+
+
+@numba.njit(cache=True)
+def pareto_stretches(
+    exits, pick, k0, k1, occ, pot, start_row, col0, cell_size, corner_cutting, cap, skip_unchanged
+):
+    """Every Pareto-optimal (length, vulnerability) re-routing of a stretch
+    of columns of column-monotone paths, a whole batch per call.
+
+    Stretch ``b`` is that of :func:`reroute_columns`: the exit rows of
+    columns ``k0[b] + 1 .. k1[b] - 1`` of path ``pick[b]`` (a row of
+    ``exits``) are replaced, the exit rows at ``k0[b]`` (``-1``: the start
+    cell) and ``k1[b]`` and everything outside are kept. A bi-objective
+    label programme over the stretch's columns keeps, per exit row, the
+    non-dominated (length, vulnerability) partial stretches (at most
+    ``cap`` of them, evenly spread when more); every non-dominated stretch
+    reaching the end row is spliced into the path.
+
+    Returns
+    -------
+    out : (R, n_cols) int64 exit rows of the spliced paths (those equal to
+        their source path left out when ``skip_unchanged``).
+    src : (R,) int64, the index into ``pick`` each row came from.
+    """
+    n_b = len(pick)
+    h = occ.shape[0]
+    n_cols = exits.shape[1]
+    straight = cell_size
+    diagonal = SQRT2 * cell_size
+    out = np.empty((n_b * cap, n_cols), np.int64)
+    src_of = np.empty(n_b * cap, np.int64)
+    n_out = 0
+    max_layers = n_cols + 1
+    size = max_layers * h * cap
+    pL = np.empty(size)
+    pV = np.empty(size)
+    pP = np.empty(size, np.int64)  # parent label (global index), -1 at layer 0
+    cnt = np.zeros((max_layers, h), np.int64)
+    cand_n = np.zeros(h, np.int64)
+    cL = np.empty((h, 3 * cap))
+    cV = np.empty((h, 3 * cap))
+    cP = np.empty((h, 3 * cap), np.int64)
+    rL = np.empty(2 * cap)
+    rV = np.empty(2 * cap)
+    rP = np.empty(2 * cap, np.int64)
+    tL = np.empty(2 * cap)
+    tV = np.empty(2 * cap)
+    tP = np.empty(2 * cap, np.int64)
+    for b in range(n_b):
+        src = pick[b]
+        a, z = k0[b], k1[b]
+        cnt[:, :] = 0
+        # layer 0: the labels leaving column a (or the start column)
+        if a < 0:
+            first = 1
+            for s in (-1, 1):
+                e = start_row
+                lv, vv = 0.0, pot[start_row, col0]
+                while 0 <= e < h and not occ[e, col0]:
+                    if e != start_row or s < 0:
+                        q = e * cap
+                        pL[q], pV[q], pP[q] = lv, vv, -1
+                        cnt[0, e] = 1
+                    e += s
+                    if 0 <= e < h:
+                        lv += straight
+                        vv += pot[e, col0]
+        else:
+            first = a + 1
+            r0 = exits[src, a]
+            q = r0 * cap
+            pL[q], pV[q], pP[q] = 0.0, 0.0, -1
+            cnt[0, r0] = 1
+        if z < first:
+            continue
+        n_layers = z - first + 1
+        for j in range(1, n_layers + 1):
+            c = col0 + first + j - 1
+            base_prev = (j - 1) * h * cap
+            cand_n[:] = 0
+            for e in range(h):  # horizontal steps
+                if occ[e, c]:
+                    continue
+                for t in range(cnt[j - 1, e]):
+                    q = base_prev + e * cap + t
+                    m = cand_n[e]
+                    cL[e, m] = pL[q] + straight
+                    cV[e, m] = pV[q] + pot[e, c]
+                    cP[e, m] = q
+                    cand_n[e] = m + 1
+            for s in (-1, 1):  # vertical runs, started by a diagonal step
+                nr = 0
+                e = h - 1 if s < 0 else 0
+                while 0 <= e < h:
+                    if occ[e, c]:
+                        nr = 0
+                        e += s
+                        continue
+                    here = pot[e, c]
+                    nt = 0
+                    for t in range(nr):
+                        tL[nt], tV[nt], tP[nt] = rL[t] + straight, rV[t] + here, rP[t]
+                        nt += 1
+                    p = e - s
+                    if (
+                        0 <= p < h
+                        and cnt[j - 1, p] > 0
+                        and (corner_cutting or not cuts_corner(occ, p, c - 1, e, c))
+                    ):
+                        for t in range(cnt[j - 1, p]):
+                            q = base_prev + p * cap + t
+                            tL[nt], tV[nt], tP[nt] = pL[q] + diagonal, pV[q] + here, q
+                            nt += 1
+                    nr = _pareto_filter(tL, tV, tP, nt, cap, rL, rV, rP)
+                    m = cand_n[e]
+                    for t in range(nr):
+                        cL[e, m], cV[e, m], cP[e, m] = rL[t], rV[t], rP[t]
+                        m += 1
+                    cand_n[e] = m
+                    e += s
+            base = j * h * cap
+            for e in range(h):
+                o = base + e * cap
+                cnt[j, e] = _pareto_filter(
+                    cL[e], cV[e], cP[e], cand_n[e], cap, pL[o : o + cap], pV[o : o + cap], pP[o : o + cap]
+                )
+        target = exits[src, z]
+        base = n_layers * h * cap
+        for t in range(cnt[n_layers, target]):
+            q = base + target * cap + t
+            for kk in range(n_cols):
+                out[n_out, kk] = exits[src, kk]
+            # walk back: the label at layer j sits in row (q % (h * cap)) // cap
+            qq = q
+            changed = False
+            for j in range(n_layers, -1, -1):
+                row = (qq % (h * cap)) // cap
+                k = first + j - 1
+                if k >= 0:
+                    if out[n_out, k] != row:
+                        changed = True
+                    out[n_out, k] = row
+                qq = pP[qq]
+            if skip_unchanged and not changed:
+                continue
+            src_of[n_out] = b
+            n_out += 1
+    return out[:n_out], src_of[:n_out]

@@ -18,6 +18,15 @@ Pareto-optimal path is made of stretches that are Pareto optimal between
 their ends, splicing weighted-sum stretches into front paths reaches the
 non-supported points that no weighting of the whole path reaches.
 
+Some non-supported points are reachable that way only through a narrow
+window of weights. So each generation ``n_pareto`` more archived paths
+(default :data:`N_PARETO`) have a random stretch (up to the whole path)
+replaced by **every** Pareto-optimal (length, vulnerability) stretch
+between the same ends
+(:func:`~gapath.operators._monotone_archive_kernels.pareto_stretches`: a
+bi-objective label programme over the stretch's columns, at most
+:data:`PARETO_CAP` labels per exit row, one numba kernel for the batch).
+
 Every re-routed path is again a path of the encodings' path set (the
 relative moves of :mod:`gapath.encodings`), so it has a genome: the archive
 returns a full :class:`gapath.front.PathFront` (``X`` included). The
@@ -34,7 +43,7 @@ from gapath.errors import ConfigError
 from gapath.front import select_front
 from gapath.monotone import expand_profiles, split_paths
 from gapath.objectives import INTERFERING, LENGTH, VULNERABILITY
-from gapath.operators._monotone_archive_kernels import entries_of, reroute_sweep
+from gapath.operators._monotone_archive_kernels import entries_of, pareto_stretches, reroute_sweep
 from gapath.operators.archive import PathArchive
 
 #: Default range of ``log10`` of the re-routing weight of vulnerability
@@ -42,6 +51,16 @@ from gapath.operators.archive import PathArchive
 WEIGHT_RANGE = (-4.0, 8.0)
 #: Default range of the share of a path's columns a re-routed stretch spans.
 SEGMENT = (0.05, 1.0)
+#: Default range of the number of columns a Pareto stretch spans (its
+#: first and last columns kept, the start cell counting as one), see
+#: :meth:`MonotonePathArchive.pareto`; a larger ``hi`` than the path is
+#: the whole path.
+PARETO_SPAN = (3, 10**6)
+#: Default Pareto stretches per generation (``n_pareto=None`` with
+#: ``n_refine > 0``; docs/results/monotone_lift.md, "Pareto stretches").
+N_PARETO = 2
+#: Default cap on the non-dominated partial stretches kept per exit row.
+PARETO_CAP = 32
 
 
 def default_refine(pop_size: int) -> int:
@@ -93,6 +112,16 @@ class MonotonePathArchive(PathArchive):
         relative to the ratio of the archive's length and vulnerability
         spans (so 0 weighs both normalised objectives alike).
 
+    n_pareto : Pareto stretches per generation (0: none; default
+        :data:`N_PARETO`, 0 if ``n_refine`` is 0):
+        each replaces a stretch of an archived path by every
+        Pareto-optimal stretch between the same ends
+        (:meth:`pareto`).
+    pareto_span : ``(lo, hi)`` columns a Pareto stretch spans, default
+        :data:`PARETO_SPAN`.
+    pareto_cap : non-dominated partial stretches kept per exit row,
+        default :data:`PARETO_CAP`.
+
     Attributes
     ----------
     n_eval : paths evaluated by the archive (the re-routed ones that differ
@@ -120,7 +149,17 @@ class MonotonePathArchive(PathArchive):
     (True, True)
     """
 
-    def __init__(self, problem, n_refine: int = 100, seed: int = 1, segment=None, weight_range=None):
+    def __init__(
+        self,
+        problem,
+        n_refine: int = 100,
+        seed: int = 1,
+        segment=None,
+        weight_range=None,
+        n_pareto: int | None = None,
+        pareto_span=None,
+        pareto_cap: int | None = None,
+    ):
         super().__init__()
         frame = getattr(problem, "frame", None)
         if getattr(problem, "paths", "monotone") != "monotone" or frame is None:
@@ -131,6 +170,19 @@ class MonotonePathArchive(PathArchive):
             raise ConfigError(f"n_refine must be an integer >= 0, got {n_refine!r}") from None
         if n_refine < 0:
             raise ConfigError(f"n_refine must be an integer >= 0, got {n_refine!r}")
+        try:
+            n_pareto = (N_PARETO if n_refine else 0) if n_pareto is None else int(n_pareto)
+            pareto_cap = PARETO_CAP if pareto_cap is None else int(pareto_cap)
+        except (TypeError, ValueError):
+            raise ConfigError(
+                f"n_pareto and pareto_cap must be integers, got {n_pareto!r}, {pareto_cap!r}"
+            ) from None
+        if n_pareto < 0 or pareto_cap < 1:
+            raise ConfigError(f"need n_pareto >= 0 and pareto_cap >= 1, got {n_pareto!r}, {pareto_cap!r}")
+        span = _pair(PARETO_SPAN if pareto_span is None else pareto_span, "pareto_span", 2, np.inf)
+        self.n_pareto = n_pareto
+        self.pareto_span = (int(span[0]), int(min(span[1], frame.n_cols + 1)))
+        self.pareto_cap = pareto_cap
         self.problem = problem
         self.frame = frame
         self.n_refine = n_refine
@@ -143,9 +195,12 @@ class MonotonePathArchive(PathArchive):
 
     # -- the generation hook ---------------------------------------------------
     def improve(self) -> None:
-        """One generation's refinement: :meth:`refine` ``n_refine`` paths."""
+        """One generation's refinement: :meth:`refine` ``n_refine`` paths,
+        then :meth:`pareto` ``n_pareto`` stretches."""
         if self.n_refine:
             self.refine(self.n_refine)
+        if self.n_pareto and len(self):
+            self.pareto(self.n_pareto)
 
     def add(self, X) -> None:
         """Archive the decoded paths of genomes ``X`` (those feasible and
@@ -219,6 +274,42 @@ class MonotonePathArchive(PathArchive):
             self._merge(exits)
         return exits
 
+    def pareto(self, n: int) -> np.ndarray:
+        """Replace a random stretch of ``n`` randomly picked archived paths
+        by every Pareto-optimal (length, vulnerability) stretch between the
+        same ends (:func:`~gapath.operators._monotone_archive_kernels.pareto_stretches`,
+        one kernel call), archive the results and return their exit rows
+        ``(R, n_cols)``. A stretch spans ``pareto_span`` columns, its end
+        columns kept (``k0 = -1``: from the start cell)."""
+        rng, f = self.rng, self.frame
+        n_cols = f.n_cols
+        pick = rng.integers(0, len(self), n)
+        lo, hi = self.pareto_span
+        hi = min(hi, n_cols + 1)
+        lo = min(lo, hi)
+        width = rng.integers(lo, hi + 1, n) - 1  # k1 - k0
+        k0 = np.minimum(rng.integers(-1, n_cols - 1, n), n_cols - 1 - width)
+        k1 = k0 + width
+        ws = f.workspace
+        exits, _ = pareto_stretches(
+            self._exits,
+            pick,
+            k0,
+            k1,
+            f.occ,
+            f.potential,
+            f.start[0],
+            f.col0,
+            float(ws.cell_size),
+            bool(ws.corner_cutting),
+            self.pareto_cap,
+            True,
+        )
+        self.n_eval += len(exits)
+        if len(exits):
+            self._merge(exits)
+        return exits
+
     def _merge(self, exits) -> None:
         f = self.frame
         entries = entries_of(exits, f.start[0])
@@ -261,4 +352,12 @@ class MonotonePathArchive(PathArchive):
         return split_paths(*expand_profiles(self.frame, *self.profiles()))
 
 
-__all__ = ["SEGMENT", "WEIGHT_RANGE", "MonotonePathArchive", "default_refine"]
+__all__ = [
+    "N_PARETO",
+    "PARETO_CAP",
+    "PARETO_SPAN",
+    "SEGMENT",
+    "WEIGHT_RANGE",
+    "MonotonePathArchive",
+    "default_refine",
+]
