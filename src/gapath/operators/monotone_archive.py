@@ -253,7 +253,6 @@ class MonotonePathArchive(PathArchive):
         hi = max(lo, int(round(self.segment[1] * n_cols)))
         # stretches k0 .. k1 (k0 = -1: from the start cell), lo <= k1 - k0 <= hi
         k0 = rng.integers(-1, max(0, n_cols - lo), n)
-        ws = f.workspace
         exits, _ = reroute_sweep(
             self._exits,
             pick,
@@ -262,17 +261,9 @@ class MonotonePathArchive(PathArchive):
             np.full(n, hi),
             np.ones(n),
             self.weights(n),
-            f.occ,
-            f.potential,
-            f.start[0],
-            f.col0,
-            float(ws.cell_size),
-            bool(ws.corner_cutting),
+            *self._grid(),
         )
-        self.n_eval += len(exits)
-        if len(exits):
-            self._merge(exits)
-        return exits
+        return self._keep(exits)
 
     def pareto(self, n: int) -> np.ndarray:
         """Replace a random stretch of ``n`` randomly picked archived paths
@@ -290,21 +281,25 @@ class MonotonePathArchive(PathArchive):
         width = rng.integers(lo, hi + 1, n) - 1  # k1 - k0
         k0 = np.minimum(rng.integers(-1, n_cols - 1, n), n_cols - 1 - width)
         k1 = k0 + width
-        ws = f.workspace
         exits, _ = pareto_stretches(
             self._exits,
             pick,
             k0,
             k1,
-            f.occ,
-            f.potential,
-            f.start[0],
-            f.col0,
-            float(ws.cell_size),
-            bool(ws.corner_cutting),
+            *self._grid(),
             self.pareto_cap,
             True,
         )
+        return self._keep(exits)
+
+    def _grid(self) -> tuple:
+        """The frame's arrays and settings the re-routing kernels take last."""
+        f = self.frame
+        ws = f.workspace
+        return f.occ, f.potential, f.start[0], f.col0, float(ws.cell_size), bool(ws.corner_cutting)
+
+    def _keep(self, exits) -> np.ndarray:
+        """Count and archive re-routed paths (exit rows); return them."""
         self.n_eval += len(exits)
         if len(exits):
             self._merge(exits)
