@@ -9,6 +9,21 @@ import numpy as np
 from gapath.grid import SQRT2, cuts_corner
 
 
+@numba.njit(cache=True, inline="always")
+def _start_run(cost, occ, pot, start_row, col0, wl, wv, cell_size):
+    """Weighted costs of the start column's cells reached by a vertical run
+    from the start row (the other cells of ``cost`` are left as they are)."""
+    h = occ.shape[0]
+    cost[start_row] = wv * pot[start_row, col0]
+    for s in (-1, 1):
+        e = start_row + s
+        v = cost[start_row]
+        while 0 <= e < h and not occ[e, col0]:
+            v += wl * cell_size + wv * pot[e, col0]
+            cost[e] = v
+            e += s
+
+
 @numba.njit(cache=True)
 def _relax_column(cost, new, back, occ, pot, c, w_len, w_vul, cell_size, corner_cutting):
     """One column of the re-routing programme, in O(rows).
@@ -91,14 +106,7 @@ def reroute_columns(exits, pick, k0, k1, w_len, w_vul, occ, pot, start_row, col0
         cost[:] = inf
         if a < 0:  # the start column: a vertical run from the start row
             first = 1
-            cost[start_row] = wv * pot[start_row, col0]
-            for s in (-1, 1):
-                e = start_row + s
-                v = cost[start_row]
-                while 0 <= e < h and not occ[e, col0]:
-                    v += wl * cell_size + wv * pot[e, col0]
-                    cost[e] = v
-                    e += s
+            _start_run(cost, occ, pot, start_row, col0, wl, wv, cell_size)
             if z == 0:
                 continue
         else:
@@ -167,14 +175,7 @@ def reroute_sweep(
         cost[:] = inf
         if a < 0:  # the start column: a vertical run from the start row
             first = 1
-            cost[start_row] = wv * pot[start_row, col0]
-            for s in (-1, 1):
-                e = start_row + s
-                v = cost[start_row]
-                while 0 <= e < h and not occ[e, col0]:
-                    v += wl * cell_size + wv * pot[e, col0]
-                    cost[e] = v
-                    e += s
+            _start_run(cost, occ, pot, start_row, col0, wl, wv, cell_size)
         else:
             first = a + 1
             cost[exits[src, a]] = 0.0
