@@ -118,7 +118,7 @@ def test_archive_holds_the_population_front():
     the archive: it has seen every offspring."""
     ws = room(seed=4)
     p = FreePathProblem(ws, OBJ3)
-    archive = FreePathArchive(p, n_refine=0)
+    archive = FreePathArchive(p, n_refine=0, faces=0)
     res = minimize(p, FastNSGA2(16, sampling=FreeSampling("none")), ("n_gen", 10), seed=3, callback=archive)
     pop_front = path_front(p, res.pop.get("X"))
     A = archive.front()
@@ -399,3 +399,60 @@ def test_exact_stretches_splice_valid_paths_and_never_beat_exact(objectives):
         assert not any(dominates(f, r) for r in exact)
     with pytest.raises(ConfigError, match="exact_stretches"):
         FreePathArchive(p, exact_stretches=-2)
+
+
+PAIRS = [("length", "vulnerability"), ("length", "smoothness"), ("vulnerability", "smoothness")]
+
+
+def _covers(FA, idx, f) -> bool:
+    """Some row of ``FA`` is at least as good as ``f`` in the columns ``idx``."""
+    return bool(np.any(np.all(FA[:, idx] <= f + TOL * np.abs(f) + 1e-12, axis=1)))
+
+
+@pytest.mark.parametrize("seed", [1, 2])
+def test_faces_cover_every_pairwise_exact_front(seed):
+    """With three objectives the first refinement archives the exact front
+    of each pair of objectives: every point of each pair's front is matched
+    in that pair by an archived path (its own, or one that dominates it in
+    all three); without faces a random population of 10 does not get there."""
+    ws = room(h=14, w=16, seed=40 + seed)
+    p = FreePathProblem(ws, OBJ3)
+    runs = {}
+    for faces in (None, 0):
+        archive = FreePathArchive(p, n_refine=0, seed=seed, extremes=0, faces=faces)
+        minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=seed, callback=archive)
+        runs[faces] = archive
+    with_faces, without = runs[None], runs[0]
+    assert [pair for pair, _ in with_faces.face_sizes] == PAIRS
+    assert without.face_sizes == [] and without.faces == 0
+    missed = 0
+    for pair, n in with_faces.face_sizes:
+        face = free_front(ws, pair).F
+        assert n == len(face)
+        idx = [OBJ3.index(name) for name in pair]
+        assert all(_covers(with_faces.F, idx, f) for f in face)
+        missed += sum(not _covers(without.F, idx, f) for f in face)
+    assert missed > 0
+    front = with_faces.front()
+    for path in front.paths:
+        check_path(ws, path)
+    P, L = pad_paths(front.paths)
+    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    np.testing.assert_allclose(front.F, p.objective_values(M), rtol=0, atol=0)
+    assert len(nondominated(front.F, tol=TOL)) == len(front)
+    exact = free_front(ws, OBJ3).F
+    for f in front.F:
+        assert not any(dominates(f, r) for r in exact)
+
+
+def test_faces_over_budget_are_dropped_and_two_objectives_have_none():
+    ws = room(h=14, w=16, seed=43)
+    p = FreePathProblem(ws, OBJ3)
+    archive = FreePathArchive(p, n_refine=0, extremes=0, faces=1e-6)
+    minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=archive)
+    assert archive.face_sizes == [(pair, None) for pair in PAIRS]
+    assert archive.n_eval == 0
+    assert FreePathArchive(FreePathProblem(ws), n_refine=0).faces == 0
+    for bad in (-1, "x", float("nan")):
+        with pytest.raises(ConfigError, match="faces"):
+            FreePathArchive(p, faces=bad)

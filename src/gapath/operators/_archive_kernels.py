@@ -34,3 +34,23 @@ def splice(flat, offsets, pick, i0, i1, sub_flat, sub_off, n_cells):
         for q in range(m):
             pos[cur[q]] = -1
     return out[: off[n]], off, keys
+
+
+@numba.njit(cache=True)
+def keyed(sub_flat, sub_off, n_cells):
+    """The paths ``(sub_flat, sub_off)`` with loops cut, as ``(flat,
+    offsets, keys)`` of the free encodings' decoders (same identity keys)."""
+    n = len(sub_off) - 1
+    out = np.empty(max(1, len(sub_flat)), np.int64)
+    off = np.zeros(n + 1, np.int64)
+    keys = np.empty((n, 3), np.int64)
+    pos = np.full(n_cells, -1, np.int64)
+    cur = np.empty(n_cells, np.int64)
+    for r in range(n):
+        m = 0
+        for j in range(sub_off[r], sub_off[r + 1]):
+            m = _append(sub_flat[j], cur, pos, m)
+        out = _store(cur, m, r, out, off, keys)
+        for q in range(m):
+            pos[cur[q]] = -1
+    return out[: off[n]], off, keys

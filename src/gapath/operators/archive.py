@@ -22,6 +22,15 @@ weighting of the whole path reaches (the non-supported points).
 With smoothness as an objective, ``extremes`` whole paths per generation
 are re-routed under a heavy turn weight (the smooth end of the front).
 
+With three or more objectives the first refinement also archives the exact
+*faces* of the front: for each pair of the objectives among length,
+vulnerability and smoothness, every path of the exact two-objective front
+(:func:`gapath.planners.exact.free_front`, BOA*), when that search stays
+within a budget of expansions per reachable cell (``faces``). Each such
+path is best in its pair, so its objective vector lies on the boundary of
+the full front (or next to it: its third objective is not optimised); the
+refinement then works inwards from them.
+
 The archive is updated incrementally (each generation's ``k`` new paths
 against its ``n`` paths: ``O(k n)``) and capped (:data:`CAP` paths by
 default; the most crowded go first, never an extreme, and a path that a
@@ -61,6 +70,15 @@ EXACT_STRETCHES = 8
 EXACT_SPAN = (0.02, 0.1)
 #: Default cap on the archive's size (see :class:`FreePathArchive`).
 CAP = 5000
+#: With three or more objectives, the archive's first refinement adds the
+#: exact front of each pair of its objectives (among length, vulnerability,
+#: smoothness) whose search stays within this many expansions per reachable
+#: cell (``faces``'s default; 0 with two objectives).
+FACE_BUDGET = 50
+
+
+class _OverBudget(Exception):
+    pass
 
 
 def dominated_by(B, A, tol: float = TOL) -> np.ndarray:
@@ -185,7 +203,8 @@ class FreePathArchive(PathArchive):
     Parameters
     ----------
     problem : :class:`gapath.problems.FreePathProblem`.
-    n_refine : re-routed paths per generation (0: a plain archive).
+    n_refine : re-routed paths per generation (0, with ``faces=0``: a plain
+        archive).
     seed : seed of the archive's own random numbers (the GA's are untouched,
         so the population evolves as without the archive).
     segment : ``(lo, hi)``, the share of a path's cells a re-routed segment
@@ -217,6 +236,12 @@ class FreePathArchive(PathArchive):
         (:func:`gapath.planners.exact.free_front`): the non-supported
         sub-paths no weighted re-routing gives. Objectives with costmap
         layers: none. Counted in ``n_eval``.
+    faces : with three or more objectives, the budget of each exact
+        two-objective face search (see the module docstring) in expansions
+        per reachable cell (default :data:`FACE_BUDGET`, 50; 0 with two
+        objectives, or to switch the faces off); a search past it is
+        dropped (deterministic: it depends on the map, not on the clock).
+        The face paths are counted in ``n_eval``.
     extremes : with smoothness as an objective, whole archived paths
         re-routed per generation under a heavy turn weight
         (``log10(c / a)`` in :data:`EXTREME_TURNS`) and a light cell cost
@@ -234,7 +259,7 @@ class FreePathArchive(PathArchive):
     ConfigError
         On a problem that is not a free-path problem, a negative
         ``n_refine``, a bad ``segment``, ``lam_range``, ``shortcut``,
-        ``sparse``, ``extremes``, ``exact_stretches`` or ``cap``.
+        ``sparse``, ``extremes``, ``exact_stretches``, ``faces`` or ``cap``.
 
     Examples
     --------
@@ -262,6 +287,7 @@ class FreePathArchive(PathArchive):
         cap=CAP,
         extremes=4,
         exact_stretches=None,
+        faces=None,
     ):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
@@ -328,6 +354,18 @@ class FreePathArchive(PathArchive):
         # only over the objectives the exact search has (no costmap layers)
         additive = set(problem.objectives) <= {"length", "vulnerability", "smoothness"}
         self.exact_stretches = int(exact_stretches) if additive else 0
+        if faces is None:
+            faces = FACE_BUDGET if problem.n_obj >= 3 else 0
+        try:
+            ok = bool(float(faces) >= 0)  # NaN fails too
+        except (TypeError, ValueError, OverflowError):
+            ok = False
+        if not ok:
+            raise ConfigError(f"faces must be a number >= 0 (expansions per reachable cell), got {faces!r}")
+        self.faces = float(faces)
+        self._faces_done = False
+        #: the face searches run: ``(objectives, points or None when over budget)``
+        self.face_sizes: list[tuple[tuple[str, str], int | None]] = []
         if cap is not None:
             try:
                 ok = float(cap) == int(cap) and int(cap) >= 2
@@ -352,7 +390,12 @@ class FreePathArchive(PathArchive):
     # -- the generation hook ---------------------------------------------------
     def improve(self) -> None:
         """One generation's refinement: :meth:`refine` ``n_refine`` paths,
-        then :meth:`exact_refine` ``exact_stretches`` stretches."""
+        then :meth:`exact_refine` ``exact_stretches`` stretches (the first
+        one starts with :meth:`add_faces`)."""
+        if not self._faces_done:
+            self._faces_done = True
+            if self.faces > 0:
+                self.add_faces()
         if self.n_refine:
             self.refine(self.n_refine)
         if self.exact_stretches and len(self):
@@ -393,6 +436,43 @@ class FreePathArchive(PathArchive):
             self._flat, self._offsets, pick[idx], i0[idx], i1[idx], np.concatenate(subs), sub_off, ws.occ.size
         )
         k = len(idx)
+        self.n_eval += k
+        self._merge(flat, offsets, keys, np.full((k, self._X.shape[1]), np.nan), np.zeros(k, bool))
+
+    def add_faces(self) -> None:
+        """Archive the paths of the exact two-objective front of each pair
+        of the objectives among length, vulnerability and smoothness whose
+        search stays within ``faces`` expansions per reachable cell."""
+        from itertools import combinations
+
+        from gapath.errors import NoPathError
+        from gapath.operators._archive_kernels import keyed
+        from gapath.planners.exact import free_front
+
+        enc = self.problem.encoding
+        ws = self.problem.workspace
+        names = [n for n in self.problem.objectives if n in ("length", "vulnerability", "smoothness")]
+        budget = self.faces * enc.n_reachable
+
+        def check(info):
+            if info["expansions"] > budget:
+                raise _OverBudget
+
+        w = ws.shape[1]
+        subs = []
+        for pair in combinations(names, 2):
+            try:
+                paths = free_front(ws, pair, progress=check).paths
+            except (_OverBudget, NoPathError):
+                self.face_sizes.append((pair, None))
+                continue
+            self.face_sizes.append((pair, len(paths)))
+            subs += [p[:, 0].astype(np.int64) * w + p[:, 1] for p in paths]
+        if not subs:
+            return
+        sub_off = np.concatenate([[0], np.cumsum([len(x) for x in subs])]).astype(np.int64)
+        flat, offsets, keys = keyed(np.concatenate(subs), sub_off, ws.occ.size)
+        k = len(subs)
         self.n_eval += k
         self._merge(flat, offsets, keys, np.full((k, self._X.shape[1]), np.nan), np.zeros(k, bool))
 
@@ -659,6 +739,7 @@ __all__ = [
     "EXACT_STRETCHES",
     "EXTREME_LAM",
     "EXTREME_TURNS",
+    "FACE_BUDGET",
     "LAM_RANGE",
     "FreePathArchive",
     "PathArchive",
