@@ -446,6 +446,28 @@ def throughput(ws, pop, seed, gens):
     )
 
 
+def archive_variant(text):
+    """``K=V,...`` (numbers) as FreePathArchive keyword arguments, installed
+    as the defaults of the archive :func:`gapath.solver.solve` builds; ``{}``
+    for None."""
+    if not text:
+        return {}
+    import gapath.operators.archive as archive
+
+    opts = {}
+    for item in text.split(","):
+        k, _, v = item.partition("=")
+        opts[k.strip()] = float(v) if any(c in v for c in ".e") else int(v)
+    base = archive.FreePathArchive
+
+    class Variant(base):  # type: ignore[misc, valid-type]
+        def __init__(self, problem, **kw):
+            super().__init__(problem, **{**kw, **opts})
+
+    archive.FreePathArchive = Variant  # solve() imports it at call time
+    return opts
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--instances", default="gen128-s1,berlin,gen256-s1")
@@ -481,6 +503,12 @@ def main(argv=None):
     ap.add_argument(
         "--best-known", default=None, help="an .npz (F) used as the reference front: best known, not exact"
     )
+    ap.add_argument(
+        "--archive",
+        default=None,
+        metavar="K=V,...",
+        help="FreePathArchive keyword arguments for the GA runs (e.g. exact_stretches=8): a variant, recorded",
+    )
     ap.add_argument("--save", default=None, help="save each run's fronts to SAVE.<instance>.s<seed>.npz")
     ap.add_argument("--keep", type=int, default=5, help="with --save: keep the front every KEEP generations")
     ap.add_argument(
@@ -491,6 +519,7 @@ def main(argv=None):
     )
     a = ap.parse_args(argv)
     data = data_dir(a.data)
+    variant = archive_variant(a.archive)
     out = open(a.out, "a") if a.out else None
 
     def emit(rec):
@@ -530,6 +559,8 @@ def main(argv=None):
                 F, reference = np.load(a.best_known)["F"], "best known front (merged GA runs), not exact"
             if a.label:
                 rec["label"] = a.label
+            if variant:
+                rec["archive"] = variant
             if not a.exact_only:
                 progress = f"{a.progress}.{name}" if a.progress else None
                 save = f"{a.save}.{name}.s{a.seed}.npz" if a.save else None
