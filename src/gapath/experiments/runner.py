@@ -178,7 +178,7 @@ def front_from_dict(d: dict):
     return PathFront(
         tuple(d["objectives"]),
         np.asarray(d["F"], float).reshape(k, m),
-        np.asarray(d["metrics"], float).reshape(k, 4),
+        np.asarray(d["metrics"], float).reshape(k, -1) if k else np.zeros((0, 4)),  # 4 + a costmap's layers
         X.reshape(k, -1) if X.size else np.zeros((k, 0)),
         [np.asarray(p, np.int64).reshape(-1, 2) for p in d["paths"]],
     )
