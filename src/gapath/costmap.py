@@ -56,8 +56,11 @@ Errors
 
 from __future__ import annotations
 
+import hashlib
 import math
+import re
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -83,6 +86,14 @@ __all__ = [
     "risk_layer",
     "solar_step_cost",
     "evaluate_layer_profiles",
+    "COSTMAP_DEFAULTS",
+    "CostmapSettings",
+    "SettingNames",
+    "check_layer_name",
+    "costmap_from_settings",
+    "costmap_layers",
+    "costmap_record",
+    "layer_objectives",
 ]
 
 #: The paper's layer names (section III-A), in its order.
@@ -1071,3 +1082,577 @@ def build_costmap(
         h, w = workspace.shape
         cm.set_risk((h // 2, w // 2) if risk is None else risk)
     return cm
+
+
+# ---------------------------------------------------------------------------
+# the costmap settings: gapath solve / exact / plan and experiment specs
+# ---------------------------------------------------------------------------
+
+#: Objectives that need no costmap.
+BASE_OBJECTIVES = ("length", "vulnerability", "smoothness")
+#: The built-in cell layers of the costmap settings (a DEM or fractal
+#: terrain, a risk cell); ``solar`` is the step layer.
+CELL_LAYERS = ("elevation", "risk")
+#: Suffix of the summed objectives of the exact search (``risk_sum``).
+SUM_SUFFIX = "_sum"
+#: The values of the costmap settings when not given (``None``).
+COSTMAP_DEFAULTS: dict[str, str | int | float] = {
+    "dem_method": "bilinear",
+    "terrain_seed": 1,
+    "solar_rate": 0.01,
+}
+#: How a DEM is resampled to the grid (:meth:`Costmap.set_elevation`).
+DEM_METHODS = ("bilinear", "reflect")
+#: What each kind of search takes as objective names (:func:`layer_objectives`):
+#: the GA (``gapath solve``, experiments), the exact search, the planners.
+KINDS = ("ga", "exact", "plan")
+#: The layer each built-in costmap setting builds (``layers`` builds user layers).
+SETTING_LAYERS = {
+    "dem": "elevation",
+    "dem_method": "elevation",
+    "terrain_seed": "elevation",
+    "risk": "risk",
+    "solar_rate": "solar",
+}
+#: How each form of layer objective sums up along a path (``settings.costmap``).
+AGGREGATIONS = {
+    "mean": "mean of the layer over the path's cells, start and goal included",
+    "max": "largest value of the layer over the path's cells, start and goal included",
+    "sum": "the layer summed over the path's cells, start and goal included",
+    "solar": "solar deviation summed over the path's steps",
+    "plan": "the planner's search minimises the layer summed along the path; the reported value is the mean over the path's cells",
+}
+
+_LAYER_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_-]*$")
+
+
+@dataclass(frozen=True)
+class CostmapSettings:
+    """How a costmap's layers are built: the ``gapath solve`` / ``exact`` /
+    ``plan`` flags ``--dem``, ``--dem-method``, ``--terrain-seed``,
+    ``--risk``, ``--solar-rate``, ``--layer NAME=FILE`` and the ``costmap:``
+    key of an experiment spec. ``None`` means not given (the value of
+    :data:`COSTMAP_DEFAULTS`, and no layer that needs it).
+
+    Parameters
+    ----------
+    dem : path, optional
+        The ``elevation`` layer's raster (``.npy``/``.npz``); default: seeded
+        fractal terrain.
+    dem_method : {"bilinear", "reflect"}, optional
+    terrain_seed : int, optional
+        The fractal terrain's seed (without ``dem``).
+    risk : (row, col), optional
+        The ``risk`` layer's maximum-risk cell (default: the grid's centre).
+    solar_rate : float, optional
+        The ``solar`` layer's rotation of the solar vector per step.
+    layers : tuple of (name, path)
+        User layers, in order.
+
+    Examples
+    --------
+    >>> CostmapSettings(risk=(1, 2), solar_rate=0.5).for_layers(["risk"])
+    CostmapSettings(dem=None, dem_method=None, terrain_seed=None, risk=(1, 2), solar_rate=None, layers=())
+    """
+
+    dem: Path | None = None
+    dem_method: str | None = None
+    terrain_seed: int | None = None
+    risk: tuple[int, int] | None = None
+    solar_rate: float | None = None
+    layers: tuple[tuple[str, Path], ...] = ()
+
+    def for_layers(self, layers: Sequence[str]) -> CostmapSettings:
+        """These settings without those of the layers not in ``layers``."""
+        keep = {k: getattr(self, k) if v in layers else None for k, v in SETTING_LAYERS.items()}
+        return CostmapSettings(**keep, layers=tuple((n, p) for n, p in self.layers if n in layers))
+
+
+class SettingNames:
+    """How the messages of :func:`costmap_from_settings` name the costmap
+    settings: as the CLI's flags (this class), or as other keys (a subclass
+    overrides :meth:`key`, :meth:`usage` and :meth:`error`).
+
+    Parameters
+    ----------
+    objectives : str
+        What sets the objective names, in hints (``--objectives``,
+        ``--layers``).
+
+    Examples
+    --------
+    >>> names = SettingNames()
+    >>> str(names.error("risk", "risk cell (99, 3) is outside the 32x32 grid", "99,3"))
+    '--risk 99,3: risk cell (99, 3) is outside the 32x32 grid'
+    """
+
+    #: The flag of each setting.
+    FLAGS = {
+        "dem": "--dem",
+        "dem_method": "--dem-method",
+        "terrain_seed": "--terrain-seed",
+        "risk": "--risk",
+        "solar_rate": "--solar-rate",
+        "layers": "--layer",
+    }
+    #: How a setting is given, with its value (``--dem FILE``).
+    USAGE = {"dem": "--dem FILE", "risk": "--risk ROW,COL", "layers": "--layer NAME=FILE"}
+
+    def __init__(self, objectives: str = "--objectives"):
+        self.objectives = objectives
+
+    def key(self, setting: str) -> str:
+        """The name of ``setting`` (a key of :data:`SETTING_LAYERS` or ``layers``)."""
+        return self.FLAGS[setting]
+
+    def usage(self, setting: str) -> str:
+        """How ``setting`` is given, in hints."""
+        return self.USAGE.get(setting, self.key(setting))
+
+    def error(
+        self,
+        setting: str,
+        reason: str,
+        value: object = None,
+        *,
+        layer: str | None = None,
+        sentence: bool = False,
+    ) -> ConfigError:
+        """The error of ``setting`` (a user layer: ``layers`` and ``layer``).
+
+        Parameters
+        ----------
+        setting : str
+        reason : str
+            What is wrong and what is expected.
+        value : object, optional
+            The value as given, shown after the flag.
+        layer : str, optional
+            The user layer's name.
+        sentence : bool
+            ``reason`` goes on from the flag (``--dem sets ...``) rather
+            than after a colon.
+
+        Returns
+        -------
+        ConfigError
+        """
+        head = self.key(setting) + ("" if value is None else f" {value}")
+        return ConfigError(f"{head} {reason}" if sentence else f"{head}: {reason}")
+
+
+def check_layer_name(name: str, names: SettingNames | None = None) -> str:
+    """``name`` if it may name a user layer, else a :class:`ConfigError`
+    saying why.
+
+    The name starts with a letter (then letters, digits, ``_``, ``-``), is
+    not a built-in name (the SPEC objectives, ``distance``, ``heuristic``,
+    ``solar``, ``elevation``, ``risk``, ``interfering``) and does not end
+    in ``_max`` or ``_sum`` (those suffixes name a layer's worst-cell and
+    summed objectives).
+
+    Parameters
+    ----------
+    name : str
+    names : SettingNames, optional
+        How the built-in layers' settings are named (the CLI's flags).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ConfigError
+        The reason alone (the caller names the flag or key).
+
+    Examples
+    --------
+    >>> check_layer_name("slope")
+    'slope'
+    >>> check_layer_name("risk")
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: layer name 'risk' is built in (--risk ROW,COL sets it); choose another name for a user layer
+    """
+    names = SettingNames() if names is None else names
+    if name in CELL_LAYERS:
+        how = f"{names.usage('dem')} or the fractal terrain" if name == "elevation" else names.usage("risk")
+        raise ConfigError(
+            f"layer name {name!r} is built in ({how} sets it); choose another name for a user layer"
+        )
+    if name in BASE_OBJECTIVES + ("interfering", "distance", "heuristic", "solar"):
+        raise ConfigError(f"layer name {name!r} is reserved (computed by gapath); choose another name")
+    if not _LAYER_NAME.match(name):
+        raise ConfigError(
+            f"layer name {name!r} must start with a letter and hold only letters, digits, '_' and '-'"
+        )
+    if name.endswith((MAX_SUFFIX, SUM_SUFFIX)):
+        raise ConfigError(
+            f"layer name {name!r} must not end in {MAX_SUFFIX} or {SUM_SUFFIX} (those suffixes name a "
+            f"layer's worst-cell and summed objectives)"
+        )
+    return name
+
+
+def _base(name: str, cell_layers) -> tuple[str | None, str]:
+    """The cell layer an objective name reads and its form: ``("risk",
+    "mean")`` for ``risk``, ``("risk", "max")``, ``("risk", "sum")``;
+    ``(None, "")`` for other names."""
+    if name in cell_layers:
+        return name, "mean"
+    for suffix, form in ((MAX_SUFFIX, "max"), (SUM_SUFFIX, "sum")):
+        if name.endswith(suffix) and name[: -len(suffix)] in cell_layers:
+            return name[: -len(suffix)], form
+    return None, ""
+
+
+def layer_objectives(
+    objectives: Sequence[str],
+    user_layers: Sequence[str] = (),
+    *,
+    kind: str = "ga",
+    flag: str = "--objectives",
+    layer_usage: str = "--layer NAME=FILE",
+) -> tuple[str, ...]:
+    """The costmap layers that objective names need, checked for the
+    kind of search.
+
+    Parameters
+    ----------
+    objectives : sequence of str
+        The objective names (``gapath plan``: the ``--layers`` names).
+    user_layers : sequence of str
+        The user layers' names.
+    kind : {"ga", "exact", "plan"}
+        ``"ga"`` (``gapath solve``, experiments): ``solar``, the means
+        ``elevation``, ``risk``, a user layer's name, and the worst cells
+        ``<layer>_max``; ``"exact"``: ``solar`` and the sums ``<layer>_sum``
+        (a mean or a worst cell is no sum along the path: refused with the
+        reason); ``"plan"``: the layers themselves (the planners minimise
+        sums).
+    flag : str
+        What messages start with (the flag or key of the names).
+    layer_usage : str
+        How a user layer is given, in the hint of an unknown name.
+
+    Returns
+    -------
+    tuple of str
+        The layers needed, in the order elevation, solar, risk, user layers.
+
+    Raises
+    ------
+    ConfigError
+        On an unknown or repeated name, or one the kind of search cannot
+        minimise, naming ``flag``, the value and what is expected.
+
+    Examples
+    --------
+    >>> layer_objectives(["length", "risk_max", "solar"])
+    ('solar', 'risk')
+    >>> layer_objectives(["length", "slope_sum"], ["slope"], kind="exact")
+    ('slope',)
+    >>> layer_objectives(["length", "risk"], kind="exact")
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: --objectives: 'risk' is the MEAN of layer 'risk' over the path's cells (the GA's objective); a mean is not additive along a path, so no exact label-setting front exists for it: use risk_sum (the layer summed over the path's cells)
+    """
+    if kind not in KINDS:
+        raise ConfigError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
+    names = list(objectives)
+    user = tuple(user_layers)
+    cells = CELL_LAYERS + user
+    if kind == "ga":
+        allowed = list(BASE_OBJECTIVES) + ["elevation", "solar", "risk", *user]
+        allowed += [n + MAX_SUFFIX for n in cells]
+    elif kind == "exact":
+        allowed = list(BASE_OBJECTIVES) + ["solar"] + [n + SUM_SUFFIX for n in cells]
+    else:
+        allowed = ["elevation", "solar", "risk", *user]
+    need = set()
+    for n in names:
+        if names.count(n) > 1:
+            what = "layer" if kind == "plan" else "objective"
+            raise ConfigError(f"{flag}: {what} {n!r} is given twice")
+        layer, form = _base(n, cells)
+        if n == "solar":
+            need.add("solar")
+            continue
+        if n in BASE_OBJECTIVES and kind != "plan":
+            continue
+        if kind == "exact" and n == "interfering":
+            continue  # the exact search's own message (a constraint, not an objective)
+        if layer is not None and (form, kind) in (
+            ("mean", "ga"),
+            ("max", "ga"),
+            ("sum", "exact"),
+            ("mean", "plan"),
+        ):
+            need.add(layer)
+            continue
+        if layer is not None and form == "max":
+            if kind == "exact":
+                why = "the exact search minimises sums, so it has no front for it"
+            else:
+                why = "the graph-search planners minimise sums"
+            raise ConfigError(
+                f"{flag}: {n!r} is the worst cell of the path, not a sum along it; {why} "
+                f"(the GA takes it: gapath solve --objectives length,{n})"
+            )
+        if layer is not None and form == "mean" and kind == "exact":
+            raise ConfigError(
+                f"{flag}: {n!r} is the MEAN of layer {layer!r} over the path's cells (the GA's "
+                f"objective); a mean is not additive along a path, so no exact label-setting front "
+                f"exists for it: use {layer + SUM_SUFFIX} (the layer summed over the path's cells)"
+            )
+        if layer is not None and form == "sum":
+            where = (
+                "the planners minimise layer sums already: name the layer"
+                if kind == "plan"
+                else (f"the GA takes the mean {layer!r} or the worst cell {layer + MAX_SUFFIX!r}")
+            )
+            raise ConfigError(
+                f"{flag}: {n!r} (layer {layer!r} summed over the path's cells) is an objective of "
+                f"gapath exact --mode free; {where}"
+            )
+        if kind == "plan":
+            raise ConfigError(f"{flag}: unknown layer {n!r}; expected some of {', '.join(allowed)}")
+        hint = "" if user else f"; a user layer is given with {layer_usage}"
+        raise ConfigError(f"{flag}: unknown objective {n!r}; expected some of {', '.join(allowed)}{hint}")
+    order = ("elevation", "solar", "risk") + user
+    return tuple(n for n in order if n in need)
+
+
+def _add_hint(kind: str, objectives: Sequence[str], layer: str, flag: str) -> str:
+    """What to add so that ``layer`` is used: the ``--layers`` or
+    ``--objectives`` value (``flag``)."""
+    if kind == "plan":
+        return f"add {flag} {','.join([*objectives, layer])}"
+    if layer == "solar":
+        return f"add solar to {flag}"
+    if kind == "exact":
+        return f"add {layer + SUM_SUFFIX} to {flag}"
+    return f"add {layer} (or {layer + MAX_SUFFIX}) to {flag}"
+
+
+def costmap_layers(
+    settings: CostmapSettings,
+    objectives: Sequence[str],
+    *,
+    kind: str = "ga",
+    names: SettingNames | None = None,
+) -> tuple[str, ...]:
+    """The layers ``objectives`` need, with ``settings`` checked against
+    them (no file is read, no grid is needed).
+
+    Parameters
+    ----------
+    settings : CostmapSettings
+    objectives : sequence of str
+        The objective names (see :func:`layer_objectives` for ``kind``).
+    kind : {"ga", "exact", "plan"}
+    names : SettingNames, optional
+        How messages name the settings (default: the CLI's flags, the
+        objective names ``--objectives``).
+
+    Returns
+    -------
+    tuple of str
+        As :func:`layer_objectives`.
+
+    Raises
+    ------
+    ConfigError
+        An objective the search cannot take, a user layer given twice, a
+        setting whose layer no objective uses, ``terrain_seed`` with
+        ``dem``, ``dem_method`` without ``dem``.
+
+    Examples
+    --------
+    >>> costmap_layers(CostmapSettings(risk=(1, 2)), ["length", "solar"])
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: --risk sets the risk layer, which no objective uses: add risk (or risk_max) to --objectives
+    """
+    names = SettingNames() if names is None else names
+    user = [n for n, _ in settings.layers]
+    for n in user:
+        if user.count(n) > 1:
+            raise names.error("layers", f"layer {n!r} is given twice", layer=n)
+    need = layer_objectives(
+        objectives, user, kind=kind, flag=names.objectives, layer_usage=names.usage("layers")
+    )
+    unused = "is not planned on" if kind == "plan" else "no objective uses"
+    for setting in ("dem", "terrain_seed", "risk", "solar_rate"):
+        layer = SETTING_LAYERS[setting]
+        if getattr(settings, setting) is not None and layer not in need:
+            hint = _add_hint(kind, objectives, layer, names.objectives)
+            raise names.error(setting, f"sets the {layer} layer, which {unused}: {hint}", sentence=True)
+    for n, path in settings.layers:
+        if n not in need:
+            hint = _add_hint(kind, objectives, n, names.objectives)
+            raise names.error(
+                "layers",
+                f"sets the user layer {n!r}, which {unused}: {hint}",
+                f"{n}={path}",
+                layer=n,
+                sentence=True,
+            )
+    if settings.terrain_seed is not None and settings.dem is not None:
+        raise names.error(
+            "terrain_seed",
+            f"seeds the fractal terrain, which {names.key('dem')} {settings.dem} replaces; keep one of them",
+            settings.terrain_seed,
+            sentence=True,
+        )
+    if settings.dem_method is not None and settings.dem is None:
+        raise names.error(
+            "dem_method",
+            f"applies to a {names.usage('dem')} (the fractal terrain has the grid's shape)",
+            settings.dem_method,
+            sentence=True,
+        )
+    return need
+
+
+def costmap_from_settings(
+    settings: CostmapSettings,
+    workspace: Workspace,
+    objectives: Sequence[str],
+    *,
+    kind: str = "ga",
+    names: SettingNames | None = None,
+) -> Costmap | None:
+    """The costmap ``settings`` build for ``objectives`` on ``workspace``, or
+    None when no objective is a layer: the one builder of ``gapath solve``,
+    ``exact``, ``plan`` and the experiment specs' ``costmap:`` key.
+
+    Parameters
+    ----------
+    settings : CostmapSettings
+    workspace : Workspace
+    objectives : sequence of str
+        The objective names (see :func:`layer_objectives` for ``kind``).
+    kind : {"ga", "exact", "plan"}
+    names : SettingNames, optional
+        How messages name the settings (default: the CLI's flags).
+
+    Returns
+    -------
+    Costmap or None
+        Holding every layer the objectives need, and only those.
+
+    Raises
+    ------
+    ConfigError
+        One message naming the setting and value: what
+        :func:`costmap_layers` refuses, a DEM or layer file that is missing,
+        unreadable, not numeric, holds NaN or inf (a user layer: also
+        negative values or another shape than the grid's), a risk cell
+        outside the grid, a non-finite solar rate.
+
+    Examples
+    --------
+    >>> from gapath import Workspace
+    >>> ws = Workspace(np.zeros((5, 6), bool))
+    >>> cm = costmap_from_settings(CostmapSettings(risk=(1, 2)), ws, ["length", "risk_max"])
+    >>> cm.risk_cells, cm.names
+    ([(1, 2)], ('distance', 'heuristic', 'solar', 'risk'))
+    """
+    names = SettingNames() if names is None else names
+    need = costmap_layers(settings, objectives, kind=kind, names=names)
+    if not need:
+        return None
+    rate = COSTMAP_DEFAULTS["solar_rate"] if settings.solar_rate is None else settings.solar_rate
+    try:
+        cm = Costmap(workspace, solar_rate=float(rate))
+    except ConfigError as exc:
+        raise names.error("solar_rate", str(exc), repr(rate)) from None
+    if "elevation" in need:
+        if settings.dem is not None:
+            method = settings.dem_method or str(COSTMAP_DEFAULTS["dem_method"])
+            try:
+                cm.set_elevation(Path(settings.dem), method=method)
+            except ConfigError as exc:
+                raise names.error("dem", str(exc)) from None
+        else:
+            seed = (
+                COSTMAP_DEFAULTS["terrain_seed"] if settings.terrain_seed is None else settings.terrain_seed
+            )
+            cm.set_elevation(fractal_terrain(workspace.shape, seed=int(seed)))
+    if "risk" in need:
+        h, w = workspace.shape
+        cell = (h // 2, w // 2) if settings.risk is None else settings.risk
+        try:
+            cm.set_risk(cell)
+        except ConfigError as exc:
+            raise names.error("risk", str(exc), f"{cell[0]},{cell[1]}") from None
+    for n, path in settings.layers:
+        try:
+            cm.add_layer(n, load_dem(path, what="layer file", member=n))
+        except ConfigError as exc:
+            raise names.error("layers", str(exc), f"{n}={path}", layer=n) from None
+    return cm
+
+
+def _sha256(path) -> str | None:
+    try:
+        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
+    except OSError:
+        return None
+
+
+def costmap_record(
+    settings: CostmapSettings, costmap: Costmap | None, objectives: Sequence[str], *, kind: str = "ga"
+) -> dict | None:
+    """``settings.costmap`` of a result: every setting needed to build the
+    same costmap again (layers, their sources, DEM and layer files with
+    their SHA-256, risk cells, solar rate) and what each layer objective
+    measures; None without a costmap.
+
+    Examples
+    --------
+    >>> from gapath import Workspace
+    >>> ws = Workspace(np.zeros((5, 6), bool))
+    >>> s = CostmapSettings(terrain_seed=3)
+    >>> rec = costmap_record(s, costmap_from_settings(s, ws, ["length", "elevation"]), ["length", "elevation"])
+    >>> rec["layers"], rec["elevation"]
+    (['elevation'], {'source': 'fractal terrain', 'terrain_seed': 3, 'hurst': 0.8})
+    """
+    if costmap is None:
+        return None
+    user = dict(settings.layers)
+    layers = [n for n in costmap.names if n not in ("distance", "heuristic", "solar") or n in objectives]
+    out: dict = {"layers": layers}
+    if "elevation" in layers:
+        if settings.dem is not None:
+            out["elevation"] = {
+                "source": "dem",
+                "file": str(settings.dem),
+                "sha256": _sha256(settings.dem),
+                "method": settings.dem_method or COSTMAP_DEFAULTS["dem_method"],
+                "normalised": "min-max to [0, 1]",
+            }
+        else:
+            seed = settings.terrain_seed
+            out["elevation"] = {
+                "source": "fractal terrain",
+                "terrain_seed": COSTMAP_DEFAULTS["terrain_seed"] if seed is None else seed,
+                "hurst": 0.8,
+            }
+    if "risk" in layers:
+        out["risk"] = {"cells": [list(c) for c in costmap.risk_cells], "cap": costmap.risk_cap}
+    if "solar" in layers:
+        out["solar"] = {"rate": costmap.solar_rate, "angle0": costmap.solar_angle0}
+    if user:
+        out["user_layers"] = {n: {"file": str(p), "sha256": _sha256(p)} for n, p in user.items()}
+    agg = {}
+    for n in objectives:
+        layer, form = _base(n, CELL_LAYERS + tuple(user))
+        if n == "solar":
+            agg[n] = AGGREGATIONS["solar"]
+        elif layer is not None:
+            agg[n] = AGGREGATIONS["plan" if kind == "plan" else form]
+    out["objectives"] = agg
+    return out

@@ -419,29 +419,28 @@ def update_summary(out_dir, entries: dict, settings: dict | None = None) -> None
 # the costmap flags
 # ---------------------------------------------------------------------------
 
-#: Objectives that need no costmap.
-BASE_OBJECTIVES = ("length", "vulnerability", "smoothness")
-#: The built-in cell layers of the costmap flags (``--dem`` or fractal
-#: terrain, ``--risk``); ``solar`` is the step layer.
-CELL_LAYERS = ("elevation", "risk")
-#: Suffixes of the worst-cell (GA) and summed (exact search) objectives.
-MAX_SUFFIX, SUM_SUFFIX = "_max", "_sum"
-#: The values of the costmap flags when not given (``None`` in ``args``).
-COSTMAP_DEFAULTS = {"dem_method": "bilinear", "terrain_seed": 1, "solar_rate": 0.01}
-#: What each command's objective names mean (:func:`layer_objectives`).
-KINDS = ("ga", "exact", "plan")
 
-_LAYER_NAME = re.compile(r"^[A-Za-z][A-Za-z0-9_-]*$")
+def layer_objectives(objectives, user_layers=(), *, kind: str = "ga", flag: str = "--objectives") -> tuple:
+    """The costmap layers that objective names need
+    (:func:`gapath.costmap.layer_objectives`, with messages naming ``flag``
+    and ``--layer NAME=FILE``).
+
+    Examples
+    --------
+    >>> layer_objectives(["length", "risk_max", "solar"])
+    ('solar', 'risk')
+    """
+    from gapath.costmap import layer_objectives as check
+
+    return check(objectives, user_layers, kind=kind, flag=flag)
 
 
 def layer_file(text: str) -> tuple[str, Path]:
     """``"NAME=FILE"`` as a user layer's (name, path) (an argparse ``type``).
 
-    The name starts with a letter (then letters, digits, ``_``, ``-``), is
-    not a built-in name (the SPEC objectives, ``distance``, ``heuristic``,
-    ``solar``, ``elevation``, ``risk``, ``interfering``) and does not end
-    in ``_max`` or ``_sum`` (those suffixes name a layer's worst-cell and
-    summed objectives).
+    The name is checked by :func:`gapath.costmap.check_layer_name`: it
+    starts with a letter (then letters, digits, ``_``, ``-``), is not a
+    built-in name and does not end in ``_max`` or ``_sum``.
 
     Examples
     --------
@@ -458,24 +457,12 @@ def layer_file(text: str) -> tuple[str, Path]:
         raise argparse.ArgumentTypeError(
             f"expected NAME=FILE (a layer name and a .npy/.npz file), got {text!r}"
         )
-    if name in CELL_LAYERS:
-        how = "--dem FILE or the fractal terrain" if name == "elevation" else "--risk ROW,COL"
-        raise argparse.ArgumentTypeError(
-            f"layer name {name!r} is built in ({how} sets it); choose another name for a user layer"
-        )
-    if name in BASE_OBJECTIVES + ("interfering", "distance", "heuristic", "solar"):
-        raise argparse.ArgumentTypeError(
-            f"layer name {name!r} is reserved (computed by gapath); choose another name"
-        )
-    if not _LAYER_NAME.match(name):
-        raise argparse.ArgumentTypeError(
-            f"layer name {name!r} must start with a letter and hold only letters, digits, '_' and '-'"
-        )
-    if name.endswith((MAX_SUFFIX, SUM_SUFFIX)):
-        raise argparse.ArgumentTypeError(
-            f"layer name {name!r} must not end in {MAX_SUFFIX} or {SUM_SUFFIX} (those suffixes name a "
-            f"layer's worst-cell and summed objectives)"
-        )
+    from gapath.costmap import check_layer_name
+
+    try:
+        check_layer_name(name)
+    except ConfigError as exc:
+        raise argparse.ArgumentTypeError(str(exc)) from None
     return name, Path(file)
 
 
@@ -543,141 +530,37 @@ def add_costmap_arguments(parser) -> None:
     )
 
 
-def _base(name: str, cell_layers) -> tuple[str | None, str]:
-    """The cell layer an objective name reads and its form: ``("risk",
-    "mean")`` for ``risk``, ``("risk", "max")``, ``("risk", "sum")``;
-    ``(None, "")`` for other names."""
-    if name in cell_layers:
-        return name, "mean"
-    for suffix, form in ((MAX_SUFFIX, "max"), (SUM_SUFFIX, "sum")):
-        if name.endswith(suffix) and name[: -len(suffix)] in cell_layers:
-            return name[: -len(suffix)], form
-    return None, ""
-
-
-def layer_objectives(objectives, user_layers=(), *, kind: str = "ga", flag: str = "--objectives") -> tuple:
-    """The costmap layers that objective names need, checked for the
-    command's kind of search.
-
-    Parameters
-    ----------
-    objectives : sequence of str
-        The objective names (``gapath plan``: the ``--layers`` names).
-    user_layers : sequence of str
-        The ``--layer`` names.
-    kind : {"ga", "exact", "plan"}
-        ``"ga"`` (``gapath solve``): ``solar``, the means ``elevation``,
-        ``risk``, a user layer's name, and the worst cells ``<layer>_max``;
-        ``"exact"``: ``solar`` and the sums ``<layer>_sum`` (a mean or a
-        worst cell is no sum along the path: refused with the reason);
-        ``"plan"``: the layers themselves (the planners minimise sums).
-    flag : str
-        The flag named in messages.
+def settings_from_args(args):
+    """The :class:`gapath.costmap.CostmapSettings` of the parsed costmap
+    flags (missing ones count as not given).
 
     Returns
     -------
-    tuple of str
-        The layers needed, in the order elevation, solar, risk, user layers.
-
-    Raises
-    ------
-    ConfigError
-        On an unknown or repeated name, or one the kind of search cannot
-        minimise, naming ``flag``, the value and what is expected.
+    CostmapSettings
 
     Examples
     --------
-    >>> layer_objectives(["length", "risk_max", "solar"])
-    ('solar', 'risk')
-    >>> layer_objectives(["length", "slope_sum"], ["slope"], kind="exact")
-    ('slope',)
-    >>> layer_objectives(["length", "risk"], kind="exact")
-    Traceback (most recent call last):
-    ...
-    gapath.errors.ConfigError: --objectives: 'risk' is the MEAN of layer 'risk' over the path's cells (the GA's objective); a mean is not additive along a path, so no exact label-setting front exists for it: use risk_sum (the layer summed over the path's cells)
+    >>> settings_from_args(argparse.Namespace(risk=(1, 2))).risk
+    (1, 2)
     """
-    if kind not in KINDS:
-        raise ConfigError(f"kind must be one of {', '.join(KINDS)}, got {kind!r}")
-    names = list(objectives)
-    user = tuple(user_layers)
-    cells = CELL_LAYERS + user
-    if kind == "ga":
-        allowed = list(BASE_OBJECTIVES) + ["elevation", "solar", "risk", *user]
-        allowed += [n + MAX_SUFFIX for n in cells]
-    elif kind == "exact":
-        allowed = list(BASE_OBJECTIVES) + ["solar"] + [n + SUM_SUFFIX for n in cells]
-    else:
-        allowed = ["elevation", "solar", "risk", *user]
-    need = set()
-    for n in names:
-        if names.count(n) > 1:
-            what = "layer" if kind == "plan" else "objective"
-            raise ConfigError(f"{flag}: {what} {n!r} is given twice")
-        layer, form = _base(n, cells)
-        if n == "solar":
-            need.add("solar")
-            continue
-        if n in BASE_OBJECTIVES and kind != "plan":
-            continue
-        if kind == "exact" and n == "interfering":
-            continue  # the exact search's own message (a constraint, not an objective)
-        if layer is not None and (form, kind) in (
-            ("mean", "ga"),
-            ("max", "ga"),
-            ("sum", "exact"),
-            ("mean", "plan"),
-        ):
-            need.add(layer)
-            continue
-        if layer is not None and form == "max":
-            if kind == "exact":
-                why = "the exact search minimises sums, so it has no front for it"
-            else:
-                why = "the graph-search planners minimise sums"
-            raise ConfigError(
-                f"{flag}: {n!r} is the worst cell of the path, not a sum along it; {why} "
-                f"(the GA takes it: gapath solve --objectives length,{n})"
-            )
-        if layer is not None and form == "mean" and kind == "exact":
-            raise ConfigError(
-                f"{flag}: {n!r} is the MEAN of layer {layer!r} over the path's cells (the GA's "
-                f"objective); a mean is not additive along a path, so no exact label-setting front "
-                f"exists for it: use {layer + SUM_SUFFIX} (the layer summed over the path's cells)"
-            )
-        if layer is not None and form == "sum":
-            where = (
-                "the planners minimise layer sums already: name the layer"
-                if kind == "plan"
-                else (f"the GA takes the mean {layer!r} or the worst cell {layer + MAX_SUFFIX!r}")
-            )
-            raise ConfigError(
-                f"{flag}: {n!r} (layer {layer!r} summed over the path's cells) is an objective of "
-                f"gapath exact --mode free; {where}"
-            )
-        if kind == "plan":
-            raise ConfigError(f"{flag}: unknown layer {n!r}; expected some of {', '.join(allowed)}")
-        hint = "" if user else "; a user layer is given with --layer NAME=FILE"
-        raise ConfigError(f"{flag}: unknown objective {n!r}; expected some of {', '.join(allowed)}{hint}")
-    order = ("elevation", "solar", "risk") + user
-    return tuple(n for n in order if n in need)
+    from gapath.costmap import CostmapSettings
 
-
-def _add_hint(kind: str, objectives, layer: str) -> str:
-    """What to add so that ``layer`` is used: the ``--layers`` or
-    ``--objectives`` value."""
-    if kind == "plan":
-        return f"add --layers {','.join([*objectives, layer])}"
-    if layer == "solar":
-        return "add solar to --objectives"
-    if kind == "exact":
-        return f"add {layer + SUM_SUFFIX} to --objectives"
-    return f"add {layer} (or {layer + MAX_SUFFIX}) to --objectives"
+    dem = getattr(args, "dem", None)
+    return CostmapSettings(
+        dem=None if dem is None else Path(dem),
+        dem_method=getattr(args, "dem_method", None),
+        terrain_seed=getattr(args, "terrain_seed", None),
+        risk=getattr(args, "risk", None),
+        solar_rate=getattr(args, "solar_rate", None),
+        layers=tuple(getattr(args, "layer", None) or ()),
+    )
 
 
 def costmap_from_args(args, workspace, objectives, *, kind: str = "ga", flag: str = "--objectives"):
     """The costmap the parsed costmap flags (:func:`add_costmap_arguments`)
     build for ``objectives`` on ``workspace``, or None when no objective is
-    a layer.
+    a layer: :func:`gapath.costmap.costmap_from_settings` of
+    :func:`settings_from_args`, with messages naming the flags.
 
     Parameters
     ----------
@@ -698,13 +581,8 @@ def costmap_from_args(args, workspace, objectives, *, kind: str = "ga", flag: st
     Raises
     ------
     ConfigError
-        One message naming the flag and value: an objective the search
-        cannot take (:func:`layer_objectives`), a layer flag without an
-        objective that uses it (``--dem`` without ``elevation``,
-        ``--terrain-seed`` with ``--dem``, ...), a DEM or layer file that is
-        missing, unreadable, not numeric, holds NaN or inf (a user layer:
-        also negative values or another shape than the grid's), a risk cell
-        outside the grid, a non-finite solar rate.
+        One message naming the flag and value (see
+        :func:`gapath.costmap.costmap_from_settings`).
 
     Examples
     --------
@@ -722,98 +600,17 @@ def costmap_from_args(args, workspace, objectives, *, kind: str = "ga", flag: st
     ...
     gapath.errors.ConfigError: --risk sets the risk layer, which no objective uses: add risk (or risk_max) to --objectives
     """
-    from gapath.costmap import Costmap, fractal_terrain, load_dem
+    from gapath.costmap import SettingNames, costmap_from_settings
 
-    user = list(getattr(args, "layer", None) or [])
-    names = [n for n, _ in user]
-    for n in names:
-        if names.count(n) > 1:
-            raise ConfigError(f"--layer: layer {n!r} is given twice")
-    need = layer_objectives(objectives, names, kind=kind, flag=flag)
-    dem = getattr(args, "dem", None)
-    dem_method = getattr(args, "dem_method", None)
-    seed = getattr(args, "terrain_seed", None)
-    risk = getattr(args, "risk", None)
-    rate = getattr(args, "solar_rate", None)
-    unused = "is not planned on" if kind == "plan" else "no objective uses"
-    for given, opt, layer in (
-        (dem is not None, "--dem", "elevation"),
-        (seed is not None, "--terrain-seed", "elevation"),
-        (risk is not None, "--risk", "risk"),
-        (rate is not None, "--solar-rate", "solar"),
-    ):
-        if given and layer not in need:
-            raise ConfigError(
-                f"{opt} sets the {layer} layer, which {unused}: {_add_hint(kind, objectives, layer)}"
-            )
-    for n, path in user:
-        if n not in need:
-            raise ConfigError(
-                f"--layer {n}={path} sets the user layer {n!r}, which {unused}: {_add_hint(kind, objectives, n)}"
-            )
-    if seed is not None and dem is not None:
-        raise ConfigError(
-            f"--terrain-seed {seed} seeds the fractal terrain, which --dem {dem} replaces; keep one of them"
-        )
-    if dem_method is not None and dem is None:
-        raise ConfigError(
-            f"--dem-method {dem_method} applies to a --dem FILE (the fractal terrain has the grid's shape)"
-        )
-    if not need:
-        return None
-    rate = COSTMAP_DEFAULTS["solar_rate"] if rate is None else rate
-    try:
-        cm = Costmap(workspace, solar_rate=rate)
-    except ConfigError as exc:
-        raise ConfigError(f"--solar-rate {rate!r}: {exc}") from None
-    if "elevation" in need:
-        if dem is not None:
-            try:
-                cm.set_elevation(Path(dem), method=dem_method or COSTMAP_DEFAULTS["dem_method"])
-            except ConfigError as exc:
-                raise ConfigError(f"--dem: {exc}") from None
-        else:
-            seed = COSTMAP_DEFAULTS["terrain_seed"] if seed is None else seed
-            cm.set_elevation(fractal_terrain(workspace.shape, seed=seed))
-    if "risk" in need:
-        h, w = workspace.shape
-        cell_value = (h // 2, w // 2) if risk is None else risk
-        try:
-            cm.set_risk(cell_value)
-        except ConfigError as exc:
-            raise ConfigError(f"--risk {cell_value[0]},{cell_value[1]}: {exc}") from None
-    for n, path in user:
-        try:
-            cm.add_layer(n, load_dem(path, what="layer file", member=n))
-        except ConfigError as exc:
-            raise ConfigError(f"--layer {n}={path}: {exc}") from None
-    return cm
-
-
-def _sha256(path) -> str | None:
-    import hashlib
-
-    try:
-        return hashlib.sha256(Path(path).read_bytes()).hexdigest()
-    except OSError:
-        return None
-
-
-#: How each form of layer objective sums up along a path (``summary.json``).
-AGGREGATIONS = {
-    "mean": "mean of the layer over the path's cells, start and goal included",
-    "max": "largest value of the layer over the path's cells, start and goal included",
-    "sum": "the layer summed over the path's cells, start and goal included",
-    "solar": "solar deviation summed over the path's steps",
-    "plan": "the planner's search minimises the layer summed along the path; the reported value is the mean over the path's cells",
-}
+    return costmap_from_settings(
+        settings_from_args(args), workspace, objectives, kind=kind, names=SettingNames(flag)
+    )
 
 
 def costmap_settings(args, costmap, objectives, *, kind: str = "ga") -> dict | None:
-    """``summary.json``'s ``settings.costmap``: every setting a run needs to
-    build the same costmap again (layers, their sources, DEM and layer files
-    with their SHA-256, risk cells, solar rate) and what each layer
-    objective measures; None without a costmap.
+    """``summary.json``'s ``settings.costmap``
+    (:func:`gapath.costmap.costmap_record` of the flags); None without a
+    costmap.
 
     Examples
     --------
@@ -826,40 +623,6 @@ def costmap_settings(args, costmap, objectives, *, kind: str = "ga") -> dict | N
     >>> s["layers"], s["elevation"]
     (['elevation'], {'source': 'fractal terrain', 'terrain_seed': 3, 'hurst': 0.8})
     """
-    if costmap is None:
-        return None
-    user = dict(getattr(args, "layer", None) or [])
-    layers = [n for n in costmap.names if n not in ("distance", "heuristic", "solar") or n in objectives]
-    out: dict = {"layers": layers}
-    if "elevation" in layers:
-        dem = getattr(args, "dem", None)
-        if dem is not None:
-            out["elevation"] = {
-                "source": "dem",
-                "file": str(dem),
-                "sha256": _sha256(dem),
-                "method": getattr(args, "dem_method", None) or COSTMAP_DEFAULTS["dem_method"],
-                "normalised": "min-max to [0, 1]",
-            }
-        else:
-            seed = getattr(args, "terrain_seed", None)
-            out["elevation"] = {
-                "source": "fractal terrain",
-                "terrain_seed": COSTMAP_DEFAULTS["terrain_seed"] if seed is None else seed,
-                "hurst": 0.8,
-            }
-    if "risk" in layers:
-        out["risk"] = {"cells": [list(c) for c in costmap.risk_cells], "cap": costmap.risk_cap}
-    if "solar" in layers:
-        out["solar"] = {"rate": costmap.solar_rate, "angle0": costmap.solar_angle0}
-    if user:
-        out["user_layers"] = {n: {"file": str(p), "sha256": _sha256(p)} for n, p in user.items()}
-    agg = {}
-    for n in objectives:
-        layer, form = _base(n, CELL_LAYERS + tuple(user))
-        if n == "solar":
-            agg[n] = AGGREGATIONS["solar"]
-        elif layer is not None:
-            agg[n] = AGGREGATIONS["plan" if kind == "plan" else form]
-    out["objectives"] = agg
-    return out
+    from gapath.costmap import costmap_record
+
+    return costmap_record(settings_from_args(args), costmap, objectives, kind=kind)

@@ -71,11 +71,13 @@ from pymoo.core.callback import Callback
 
 from gapath import solver  # solver.solve at call time (tests replace it)
 from gapath.callbacks import population_arrays
+from gapath.costmap import costmap_from_settings, costmap_record
 from gapath.errors import ConfigError
 from gapath.experiments.dask_config import LOCAL_SCHEDULER  # "local": see make_executor
 from gapath.experiments.spec import (
     ENGINES,
     ExperimentSpec,
+    build_costmap_settings,
     build_workspace,
     config_key,
     load_spec,
@@ -178,7 +180,7 @@ def front_from_dict(d: dict):
     return PathFront(
         tuple(d["objectives"]),
         np.asarray(d["F"], float).reshape(k, m),
-        np.asarray(d["metrics"], float).reshape(k, 4),
+        np.asarray(d["metrics"], float).reshape(k, -1) if k else np.zeros((0, 4)),  # 4 + a costmap's layers
         X.reshape(k, -1) if X.size else np.zeros((k, 0)),
         [np.asarray(p, np.int64).reshape(-1, 2) for p in d["paths"]],
     )
@@ -246,6 +248,14 @@ def run_one(run: dict) -> dict:
     runtime = {"started": started, "host": platform.node(), "pid": os.getpid()}
     try:
         ws = build_workspace(run["map"], run["seed"])
+        kwargs = _solve_kwargs(run)
+        cm_spec = run["settings"].get("costmap")
+        costmap = cm_settings = None
+        if cm_spec is not None:  # the layers of the layer objectives, as gapath solve builds them
+            cm_settings = build_costmap_settings(cm_spec)
+            costmap = costmap_from_settings(cm_settings, ws, kwargs["objectives"])
+            if costmap is not None:
+                kwargs["costmap"] = costmap
         options = run.get("options") or {}
         watch = None
         if options.get("stop_at_first_feasible") or options.get("record_first_feasible"):
@@ -256,10 +266,12 @@ def run_one(run: dict) -> dict:
             seed=int(run["seed"]),
             progress=False,
             callback=watch,
-            **_solve_kwargs(run),
+            **kwargs,
         )
         if res.interrupted:  # Ctrl-C inside solve: not a result
             raise KeyboardInterrupt
+        if cm_settings is not None:
+            res.settings["costmap"] = costmap_record(cm_settings, costmap, kwargs["objectives"])
         front = res.front
         indicators = {
             "feasible": len(front) > 0,

@@ -27,6 +27,12 @@ or in a YAML / TOML file (:func:`load_spec`)::
     grid:                             # axes of the grid: setting -> list of values
       pop_size: [100, 200]
     seeds: {start: 1, count: 100}     # or a list [1, 2, 3], or a count (seeds 1..count)
+    costmap:                          # the layers of layer objectives (gapath solve's flags)
+      dem: terrain/dem.npy            #   elevation: a DEM (relative to the spec file); default
+      dem_method: bilinear            #   fractal terrain (terrain_seed: 1); bilinear | reflect
+      risk: [16, 16]                  #   risk: the maximum-risk cell (default: the centre)
+      solar_rate: 0.01                #   solar: rotation of the solar vector per step
+      layers: {slope: slope.npy}      #   user layers NAME: FILE (objectives slope, slope_max)
     options:
       stop_at_first_feasible: true    # stop a run at its first feasible path
       record_first_feasible: false    # record that generation without stopping
@@ -56,7 +62,30 @@ Missing ones take solve's defaults (``paths`` is recorded only when given,
 and ``repair`` only when it is not ``edge``, so the keys of runs stored
 before they existed stay the same), and the
 objective mode's defaults (``constraints``, ``sbx_eta``) are resolved, so
-every run records every value it ran with. Map generators accept ``start``,
+every run records every value it ran with.
+
+Costmap layers
+    The objectives may be the costmap layer objectives of ``gapath solve``
+    (:func:`gapath.costmap.layer_objectives`, kind ``ga``): the means
+    ``elevation``, ``risk``, a user layer's name, the worst cells
+    ``<layer>_max`` and ``solar``. The ``costmap`` key sets how their layers
+    are built, with the settings of ``gapath solve``'s costmap flags
+    (``--dem``, ``--dem-method``, ``--terrain-seed``, ``--risk``,
+    ``--solar-rate``, ``--layer NAME=FILE``; without the key, their
+    defaults), and the runs build them with the same code
+    (:func:`gapath.costmap.costmap_from_settings`). A run whose objectives
+    name a layer holds the settings of its layers in ``settings.costmap``
+    (DEM and layer files, like map files, by name and sha256), so runs
+    without layer objectives keep their keys; its result's settings hold
+    ``costmap`` as ``summary.json`` does (:func:`gapath.costmap.costmap_record`).
+    What ``gapath solve`` refuses is refused when the spec is read: a
+    setting whose layer no objective of the spec uses, ``terrain_seed`` with
+    ``dem``, ``dem_method`` without ``dem``, a DEM or layer file that is
+    missing or bad (the costmap is built on every map), a risk cell off a
+    map, ``seed_from: exact`` on monotone paths; and ``options.reference``
+    (the exact reference fronts have no layers).
+
+Map generators accept ``start``,
 ``goal`` and ``corner_cutting`` too. Engines are :func:`gapath.solver.solve`'s
 (:data:`ENGINES`): ``fast``, the vectorised :class:`gapath.algorithms.FastNSGA2`,
 and ``pymoo``, :func:`gapath.algorithms.paper_nsga2` on stock pymoo. The
@@ -93,11 +122,21 @@ import os
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from gapath.costmap import (
+    DEM_METHODS,
+    SETTING_LAYERS,
+    CostmapSettings,
+    SettingNames,
+    check_layer_name,
+    costmap_from_settings,
+    costmap_layers,
+    layer_objectives,
+)
 from gapath.encodings.free import FREE_ENCODINGS
 from gapath.errors import ConfigError, GapathError
 from gapath.generators import default_workspace, dense_workspace, random_workspace
 from gapath.loaders import load_map
-from gapath.objectives import check_objective_names
+from gapath.objectives import OBJECTIVE_NAMES
 from gapath.operators.repair.feasible import REPAIRS
 from gapath.solver import objective_mode
 
@@ -107,6 +146,7 @@ __all__ = [
     "KEY_ENGINE_NAMES",
     "SETTINGS",
     "ExperimentSpec",
+    "build_costmap_settings",
     "build_workspace",
     "canonical_json",
     "config_key",
@@ -160,7 +200,10 @@ _TOP_KEYS = (
     "grid",
     "seeds",
     "options",
+    "costmap",
 )
+#: The keys of a spec's ``costmap`` (the costmap flags of ``gapath solve``).
+_COSTMAP_KEYS = ("dem", "dem_method", "terrain_seed", "risk", "solar_rate", "layers")
 _MAP_KINDS = ("default", "file", "dense", "random")
 _MAP_COMMON = ("start", "goal", "corner_cutting")
 
@@ -211,6 +254,10 @@ def _identity(run: dict) -> dict:
     spec = run.get("map", {})
     if "file" in spec:  # a map file is its name and content, not where it lies
         spec["file"].pop("path", None)
+    costmap = (run.get("settings") or {}).get("costmap") or {}
+    for entry in [costmap.get("dem"), *(costmap.get("layers") or {}).values()]:
+        if isinstance(entry, dict):  # so are the costmap's DEM and layer files
+            entry.pop("path", None)
     return run
 
 
@@ -484,12 +531,180 @@ def build_workspace(spec: dict, seed: int | None = None):
 
 
 # ---------------------------------------------------------------------------
+# the costmap
+# ---------------------------------------------------------------------------
+
+
+class _CostmapNames(SettingNames):
+    """The messages of :func:`gapath.costmap.costmap_from_settings` naming
+    the spec's keys: ``source: costmap.dem: reason``."""
+
+    def __init__(self, where: _Where, objectives: str = "settings.objectives"):
+        super().__init__(objectives)
+        self.where = where
+
+    def key(self, setting: str) -> str:
+        return f"costmap.{setting}"
+
+    def usage(self, setting: str) -> str:
+        return self.key(setting)
+
+    def error(self, setting, reason, value=None, *, layer=None, sentence=False) -> ConfigError:
+        return self.where.error(f"costmap.layers.{layer}" if layer else f"costmap.{setting}", reason)
+
+
+def _costmap_file(value, where: _Where, key: str, base_dir: Path) -> dict:
+    """A DEM or layer file: a path, or (a saved spec) ``{path, name, sha256}``."""
+    out = {}
+    if isinstance(value, dict):
+        _unknown(value, ("path", "name", "sha256"), where, key, "key")
+        if value.get("sha256") is not None:
+            out["sha256"] = str(value["sha256"])
+        value = value.get("path")
+    if not isinstance(value, str) or not value:
+        raise where.error(key, f"expected a file path, got {value!r}")
+    path = Path(os.path.expanduser(value))
+    path = (path if path.is_absolute() else base_dir / path).resolve()
+    return {"path": str(path), "name": path.name, **out}
+
+
+def _costmap_files(costmap: dict) -> list[tuple[str, dict]]:
+    """``(key, entry)`` of the DEM and layer files of a canonical ``costmap``."""
+    files = [("costmap.dem", costmap["dem"])] if "dem" in costmap else []
+    return files + [(f"costmap.layers.{n}", e) for n, e in (costmap.get("layers") or {}).items()]
+
+
+def _normalise_costmap(value, where: _Where, base_dir: Path) -> dict:
+    """The spec's ``costmap`` in canonical form: types checked, file paths
+    absolute (relative to the spec file), keys not given left out."""
+    cm = _mapping(value, where, "costmap")
+    _unknown(cm, _COSTMAP_KEYS, where, "costmap", "key")
+    out: dict = {}
+    if cm.get("dem") is not None:
+        out["dem"] = _costmap_file(cm["dem"], where, "costmap.dem", base_dir)
+    if cm.get("dem_method") is not None:
+        if cm["dem_method"] not in DEM_METHODS:
+            raise where.error(
+                "costmap.dem_method", f"expected one of {', '.join(DEM_METHODS)}, got {cm['dem_method']!r}"
+            )
+        out["dem_method"] = cm["dem_method"]
+    if cm.get("terrain_seed") is not None:
+        out["terrain_seed"] = _int(cm["terrain_seed"], where, "costmap.terrain_seed", minimum=0)
+    if cm.get("risk") is not None:
+        out["risk"] = _cell(cm["risk"], where, "costmap.risk")
+    if cm.get("solar_rate") is not None:
+        out["solar_rate"] = _float(cm["solar_rate"], where, "costmap.solar_rate")
+    layers = _mapping(cm.get("layers"), where, "costmap.layers")
+    if layers:
+        out["layers"] = {}
+        for name, file in layers.items():
+            key = f"costmap.layers.{name}"
+            try:
+                check_layer_name(str(name), _CostmapNames(where))
+            except ConfigError as exc:
+                raise where.error(key, str(exc)) from None
+            out["layers"][str(name)] = _costmap_file(file, where, key, base_dir)
+    return out
+
+
+def build_costmap_settings(costmap: dict) -> CostmapSettings:
+    """The :class:`gapath.costmap.CostmapSettings` of a canonical ``costmap``
+    (a run's ``settings.costmap``).
+
+    Raises
+    ------
+    ConfigError
+        If a DEM or layer file changed since the spec was expanded (its
+        sha256 differs).
+
+    Examples
+    --------
+    >>> build_costmap_settings({"risk": [1, 2], "solar_rate": 0.5})
+    CostmapSettings(dem=None, dem_method=None, terrain_seed=None, risk=(1, 2), solar_rate=0.5, layers=())
+    """
+
+    def path(entry: dict, what: str) -> Path:
+        p = Path(entry["path"])
+        try:
+            digest = hashlib.sha256(p.read_bytes()).hexdigest()
+        except OSError:
+            return p  # costmap_from_settings says what is wrong with it
+        if entry.get("sha256") not in (None, digest):
+            raise ConfigError(
+                f"{what} file {p} changed since the experiment was set up "
+                f"(sha256 {digest[:12]}..., expected {entry['sha256'][:12]}...)"
+            )
+        return p
+
+    risk = costmap.get("risk")
+    return CostmapSettings(
+        dem=None if costmap.get("dem") is None else path(costmap["dem"], "DEM"),
+        dem_method=costmap.get("dem_method"),
+        terrain_seed=costmap.get("terrain_seed"),
+        risk=None if risk is None else (int(risk[0]), int(risk[1])),
+        solar_rate=costmap.get("solar_rate"),
+        layers=tuple((n, path(e, f"layer {n!r}")) for n, e in (costmap.get("layers") or {}).items()),
+    )
+
+
+def _costmap_for(costmap: dict, layers) -> dict:
+    """The entries of a canonical ``costmap`` that build ``layers``."""
+    out = {k: v for k, v in costmap.items() if k != "layers" and SETTING_LAYERS[k] in layers}
+    user = {n: e for n, e in (costmap.get("layers") or {}).items() if n in layers}
+    if user:
+        out["layers"] = user
+    return out
+
+
+def _check_costmap(costmap: dict, maps, settings, axes, options, where: _Where) -> None:
+    """What ``gapath solve`` refuses of its costmap flags, for every
+    objectives value of the spec: a ``costmap`` key whose layer no
+    objective uses (:func:`gapath.costmap.costmap_layers` over all of
+    them), a DEM or layer file that is missing or bad, a risk cell off a map
+    (the costmap built on every map); and layer objectives with
+    ``seed_from: exact`` on monotone paths or with ``options.reference``
+    (the exact fronts have no costmap layers)."""
+
+    names = _CostmapNames(where)
+    costmap = copy.deepcopy(costmap)
+    for _, entry in _costmap_files(costmap):
+        entry.pop("sha256", None)  # checked once the files are known to load
+    given = build_costmap_settings(costmap)
+    values = axes.get("objectives", [settings.get("objectives", list(SETTINGS["objectives"]))])
+    costmap_layers(given, list(dict.fromkeys(n for v in values for n in v)), names=names)
+    user = tuple(costmap.get("layers") or {})
+    seed_from = axes.get("seed_from", [settings.get("seed_from", SETTINGS["seed_from"])])
+    paths = axes.get("paths", [settings.get("paths", OPTIONAL_SETTINGS["paths"])])
+    for objectives in values:
+        need = layer_objectives(objectives, user)
+        if not need:
+            continue
+        layered = ", ".join(n for n in objectives if n not in OBJECTIVE_NAMES)
+        if "exact" in seed_from and "monotone" in paths:
+            raise where.error(
+                "grid.seed_from" if "seed_from" in axes else "settings.seed_from",
+                f"exact seeds from the exact monotone front, which has no costmap layers "
+                f"({layered}); expected weighted (the default) or none, or paths: free",
+            )
+        if options.get("reference"):
+            raise where.error(
+                "options.reference",
+                f"the exact {options['reference']} reference front has no costmap layers "
+                f"({layered}); expected no reference with layer objectives",
+            )
+        for m in maps:
+            ws = build_workspace(m, seed=0)
+            costmap_from_settings(given.for_layers(need), ws, objectives, names=names)
+
+
+# ---------------------------------------------------------------------------
 # settings and engines
 # ---------------------------------------------------------------------------
 
 
-def _setting(name: str, value, where: _Where, key: str):
-    """One solve setting, validated and in canonical form."""
+def _setting(name: str, value, where: _Where, key: str, layers=()):
+    """One solve setting, validated and in canonical form (``layers``: the
+    user layers of the spec's ``costmap``, objective names too)."""
 
     if name == "objectives":
         names = value.split(",") if isinstance(value, str) else value
@@ -498,10 +713,8 @@ def _setting(name: str, value, where: _Where, key: str):
         names = [n.strip() for n in names if n.strip()]
         if not names:
             raise where.error(key, "expected at least one objective")
-        try:
-            return check_objective_names(names)
-        except ConfigError as exc:
-            raise where.error(key, str(exc)) from None
+        layer_objectives(names, layers, flag=f"{where.source}: {key}", layer_usage="costmap.layers")
+        return names
     if name in ("pop_size", "n_gen"):
         return _int(value, where, key, minimum=2 if name == "pop_size" else 1)
     if name == "penalty":
@@ -609,6 +822,9 @@ class ExperimentSpec:
         ``reference`` (``None``, ``"monotone"`` or ``"free"``).
     description : free text.
     source : the file the spec came from (for messages and relative paths).
+    costmap : the costmap layers of the layer objectives: ``dem``,
+        ``dem_method``, ``terrain_seed``, ``risk``, ``solar_rate``,
+        ``layers`` (``{name: file}``), as ``gapath solve``'s flags.
 
     Raises
     ------
@@ -632,6 +848,7 @@ class ExperimentSpec:
     options: dict = field(default_factory=dict)
     description: str = ""
     source: str | None = None
+    costmap: dict = field(default_factory=dict)
 
     def __post_init__(self):
         self._normalised = self._normalise()
@@ -697,9 +914,11 @@ class ExperimentSpec:
                 )
             if e not in engines:
                 engines.append(e)
+        costmap = _normalise_costmap(self.costmap, where, base_dir)
+        user = tuple(costmap.get("layers") or {})
         settings = _mapping(self.settings, where, "settings")
         _unknown(settings, tuple(SETTINGS) + tuple(OPTIONAL_SETTINGS), where, "settings", "setting")
-        settings = {k: _setting(k, v, where, f"settings.{k}") for k, v in settings.items()}
+        settings = {k: _setting(k, v, where, f"settings.{k}", user) for k, v in settings.items()}
         if settings.get("repair") == OPTIONAL_SETTINGS["repair"]:  # the default: not recorded
             del settings["repair"]
         grid = _mapping(self.grid, where, "grid")
@@ -708,7 +927,7 @@ class ExperimentSpec:
         for k, values in grid.items():
             if not isinstance(values, (list, tuple)) or not values:
                 raise where.error(f"grid.{k}", f"expected a non-empty list of values, got {values!r}")
-            axes[k] = [_setting(k, v, where, f"grid.{k}[{i}]") for i, v in enumerate(values)]
+            axes[k] = [_setting(k, v, where, f"grid.{k}[{i}]", user) for i, v in enumerate(values)]
         _check_paths(encodings, settings, axes, where)
         _check_repair(engines, settings, axes, where)
         options = _mapping(self.options, where, "options")
@@ -722,7 +941,17 @@ class ExperimentSpec:
         if options.get("reference") not in (None, "monotone", "free"):
             raise where.error("options.reference", f"expected monotone or free, got {options['reference']!r}")
         opts["reference"] = options.get("reference")
-        return dict(
+        _check_costmap(costmap, maps, settings, axes, opts, where)
+        for key, entry in _costmap_files(costmap):  # a file is its name and content (run_key)
+            digest = _file_sha256(Path(entry["path"]), where, key)
+            if entry.get("sha256") not in (None, digest):
+                raise where.error(
+                    f"{key}.sha256",
+                    f"file {entry['path']!r} changed: its sha256 is {digest[:12]}..., "
+                    f"the spec says {entry['sha256'][:12]}...",
+                )
+            entry["sha256"] = digest
+        out = dict(
             name=self.name,
             description=str(self.description or ""),
             maps=maps,
@@ -733,6 +962,9 @@ class ExperimentSpec:
             seeds=self._seeds(where),
             options=opts,
         )
+        if costmap:  # left out without one: the saved specs of before stay the same
+            out["costmap"] = costmap
+        return out
 
     def _seeds(self, where: _Where) -> list[int]:
         s = self.seeds
@@ -760,12 +992,17 @@ class ExperimentSpec:
             for combo in itertools.product(*[v for _, v in axes]):
                 settings = dict(n["settings"])
                 settings.update({k: v for (k, _), v in zip(axes, combo)})
+                settings = _complete_settings(settings)
+                costmap = n.get("costmap") or {}
+                need = layer_objectives(settings["objectives"], tuple(costmap.get("layers") or {}))
+                if need:  # only runs with layer objectives have a costmap
+                    settings["costmap"] = copy.deepcopy(_costmap_for(costmap, need))
                 out.append(
                     dict(
                         map=copy.deepcopy(m),
                         encoding=enc,
                         engine=eng,
-                        settings=_complete_settings(settings),
+                        settings=settings,
                         options=dict(n["options"]),
                     )
                 )
