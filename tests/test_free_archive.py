@@ -401,7 +401,7 @@ def test_exact_stretches_splice_valid_paths_and_never_beat_exact(objectives):
         FreePathArchive(p, exact_stretches=-2)
 
 
-PAIRS = [("length", "vulnerability"), ("length", "smoothness"), ("vulnerability", "smoothness")]
+PAIRS = [("length", "smoothness"), ("length", "vulnerability"), ("vulnerability", "smoothness")]
 
 
 def _covers(FA, idx, f) -> bool:
@@ -452,6 +452,14 @@ def test_faces_over_budget_are_dropped_and_two_objectives_have_none():
     minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=archive)
     assert archive.face_sizes == [(pair, None) for pair in PAIRS]
     assert archive.n_eval == 0
+    # a budget that the first search fits, with one expansion left for the rest
+    used = {}
+    first = free_front(ws, PAIRS[0], progress=lambda info: used.update(info))
+    shared = FreePathArchive(
+        p, n_refine=0, extremes=0, faces=(used["expansions"] + 1) / p.encoding.n_reachable
+    )
+    minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=shared)
+    assert shared.face_sizes == [(PAIRS[0], len(first)), (PAIRS[1], None), (PAIRS[2], None)]
     assert FreePathArchive(FreePathProblem(ws), n_refine=0).faces == 0
     for bad in (-1, "x", float("nan")):
         with pytest.raises(ConfigError, match="faces"):

@@ -25,8 +25,9 @@ are re-routed under a heavy turn weight (the smooth end of the front).
 With three or more objectives the first refinement also archives the exact
 *faces* of the front: for each pair of the objectives among length,
 vulnerability and smoothness, every path of the exact two-objective front
-(:func:`gapath.planners.exact.free_front`, BOA*), when that search stays
-within a budget of expansions per reachable cell (``faces``). Each such
+(:func:`gapath.planners.exact.free_front`), while the searches stay within
+a budget of expansions per reachable cell that they share (``faces``; the
+(length, smoothness) search first, the cheapest on every map measured). Each such
 path is best in its pair, so its objective vector lies on the boundary of
 the full front (or next to it: its third objective is not optimised); the
 refinement then works inwards from them.
@@ -72,9 +73,9 @@ EXACT_SPAN = (0.02, 0.1)
 CAP = 5000
 #: With three or more objectives, the archive's first refinement adds the
 #: exact front of each pair of its objectives (among length, vulnerability,
-#: smoothness) whose search stays within this many expansions per reachable
-#: cell (``faces``'s default; 0 with two objectives).
-FACE_BUDGET = 50
+#: smoothness); the searches share a budget of this many expansions per
+#: reachable cell (``faces``'s default; 0 with two objectives).
+FACE_BUDGET = 100
 
 
 class _OverBudget(Exception):
@@ -236,11 +237,13 @@ class FreePathArchive(PathArchive):
         (:func:`gapath.planners.exact.free_front`): the non-supported
         sub-paths no weighted re-routing gives. Objectives with costmap
         layers: none. Counted in ``n_eval``.
-    faces : with three or more objectives, the budget of each exact
-        two-objective face search (see the module docstring) in expansions
-        per reachable cell (default :data:`FACE_BUDGET`, 50; 0 with two
-        objectives, or to switch the faces off); a search past it is
-        dropped (deterministic: it depends on the map, not on the clock).
+    faces : with three or more objectives, the budget of the exact
+        two-objective face searches (see the module docstring), shared in
+        their order, in expansions per reachable cell (default
+        :data:`FACE_BUDGET`, 100; 0 with two objectives, or to switch the
+        faces off); the search that runs past what is left is dropped, and
+        so are the ones after it (deterministic: it depends on the map, not
+        on the clock).
         The face paths are counted in ``n_eval``.
     extremes : with smoothness as an objective, whole archived paths
         re-routed per generation under a heavy turn weight
@@ -441,8 +444,9 @@ class FreePathArchive(PathArchive):
 
     def add_faces(self) -> None:
         """Archive the paths of the exact two-objective front of each pair
-        of the objectives among length, vulnerability and smoothness whose
-        search stays within ``faces`` expansions per reachable cell."""
+        of the objectives among length, vulnerability and smoothness, the
+        (length, smoothness) pair first, while the searches stay within the
+        ``faces`` expansions per reachable cell they share."""
         from itertools import combinations
 
         from gapath.errors import NoPathError
@@ -452,20 +456,30 @@ class FreePathArchive(PathArchive):
         enc = self.problem.encoding
         ws = self.problem.workspace
         names = [n for n in self.problem.objectives if n in ("length", "vulnerability", "smoothness")]
-        budget = self.faces * enc.n_reachable
+        pairs = list(combinations(names, 2))
+        pairs.sort(key=lambda pair: set(pair) != {"length", "smoothness"})  # stable: the rest in order
+        left = self.faces * enc.n_reachable
+        spent = 0
 
         def check(info):
-            if info["expansions"] > budget:
+            nonlocal spent
+            spent = info["expansions"]
+            if spent > left:
                 raise _OverBudget
 
         w = ws.shape[1]
         subs = []
-        for pair in combinations(names, 2):
+        for pair in pairs:
+            if left <= 0:
+                self.face_sizes.append((pair, None))
+                continue
             try:
                 paths = free_front(ws, pair, progress=check).paths
             except (_OverBudget, NoPathError):
                 self.face_sizes.append((pair, None))
+                left = 0
                 continue
+            left -= spent
             self.face_sizes.append((pair, len(paths)))
             subs += [p[:, 0].astype(np.int64) * w + p[:, 1] for p in paths]
         if not subs:
