@@ -35,6 +35,10 @@ genomes, cache cold) and the seconds per
 generation of a short GA run (``--throughput-gens`` generations after the
 first population; median), one line per instance. ``--expansions N``
 analyses the field decoder's search on N genomes (see :func:`expansions`).
+``--faces`` prints the cost of the archive's exact face searches (see
+:func:`faces`), ``--density`` the HV ratio of subsets of the cached exact
+front (see :func:`density`), ``--gap RUN.npz`` where a saved run's front
+falls short of it (see :func:`gap`).
 
 Where exact search does not finish, the best known front is the merge of
 long GA runs: run them with ``--skip-exact --save PREFIX`` (the fronts are
@@ -446,6 +450,87 @@ def throughput(ws, pop, seed, gens):
     )
 
 
+def faces(ws, budget=None):
+    """Cost of the archive's exact face searches on ``ws``: for each pair of
+    :data:`OBJECTIVES` (the archive's order), CPU seconds, points and
+    expansions per reachable cell, searched to the end (``budget``: stop a
+    search past this many expansions per reachable cell)."""
+    from itertools import combinations
+
+    from gapath.problems import FreePathProblem
+
+    n = FreePathProblem(ws, OBJECTIVES).encoding.n_reachable
+    pairs = sorted(combinations(OBJECTIVES, 2), key=lambda pair: set(pair) != {"length", "smoothness"})
+    out = []
+    seen: dict = {}
+
+    def hook(info):
+        seen.update(info)
+        if budget is not None and info["expansions"] > budget * n:
+            raise _Stop
+
+    for pair in pairs:
+        seen.clear()
+        c0 = time.process_time()
+        try:
+            size = len(free_front(ws, pair, progress=hook))
+        except _Stop:
+            size = None
+        out.append(
+            dict(
+                pair=list(pair),
+                cpu_seconds=round(time.process_time() - c0, 3),
+                points=size,
+                expansions_per_cell=round(seen.get("expansions", 0) / n, 2),
+            )
+        )
+    return dict(reachable=n, faces=out)
+
+
+def density(F, sizes=(250, 500, 1000, 2000, 5000), seed=0):
+    """HV ratio of subsets of the exact front ``F``: random ones (3 draws)
+    and the crowding truncation the archive's cap uses; how many exact
+    points a front needs for a given ratio."""
+    from gapath.operators.archive import crowding
+
+    rng = np.random.default_rng(seed)
+    rows = []
+    for n in sizes:
+        if n >= len(F):
+            continue
+        rand = [round(hv_ratio(F[rng.choice(len(F), n, replace=False)], F), 5) for _ in range(3)]
+        keep = np.arange(len(F))
+        while len(keep) > n:
+            cd = crowding(F[keep])
+            mv = np.flatnonzero(np.isfinite(cd))
+            r = min(len(keep) - n, max(1, len(keep) // 10))
+            keep = np.delete(keep, mv[np.argsort(cd[mv], kind="stable")[:r]])
+        rows.append(dict(points=n, random=rand, crowding=round(hv_ratio(F[keep], F), 5)))
+    return dict(exact_size=len(F), subsets=rows)
+
+
+def gap(E, G, parts=5):
+    """Where the front ``G`` falls short of the exact front ``E``: for each
+    exact point the smallest additive epsilon (objectives normalised by
+    ``E``'s ranges) by which some point of ``G`` covers it; its quantiles,
+    and its median in each ``1/parts`` quantile band of each objective
+    (best band first)."""
+    lo, span = E.min(0), np.ptp(E, axis=0)
+    span = np.where(span > 0, span, 1.0)
+    En, Gn = (E - lo) / span, (G - lo) / span
+    eps = np.empty(len(En))
+    for s in range(0, len(En), 500):
+        eps[s : s + 500] = (Gn[None, :, :] - En[s : s + 500, None, :]).max(axis=2).min(axis=1)
+    bands = {}
+    for j, name in enumerate(OBJECTIVES):
+        q = np.quantile(En[:, j], np.linspace(0, 1, parts + 1))
+        band = np.clip(np.searchsorted(q, En[:, j], side="right") - 1, 0, parts - 1)
+        bands[name] = [round(float(np.median(eps[band == b])), 4) for b in range(parts)]
+    levels = (0.1, 0.5, 0.9, 0.99)
+    quant = {str(k): round(float(v), 4) for k, v in zip(levels, np.quantile(eps, levels))}
+    return dict(exact_size=len(E), size=len(G), epsilon_quantiles=quant, median_epsilon_by_band=bands)
+
+
 def archive_variant(text):
     """``K=V,...`` (numbers) as FreePathArchive keyword arguments, installed
     as the defaults of the archive :func:`gapath.solver.solve` builds; ``{}``
@@ -484,6 +569,16 @@ def main(argv=None):
     )
     ap.add_argument("--max-labels", type=int, default=80_000_000)
     ap.add_argument("--exact-only", action="store_true")
+    ap.add_argument("--faces", action="store_true", help="the cost of the archive's exact face searches")
+    ap.add_argument(
+        "--face-cap",
+        type=float,
+        default=100.0,
+        help="with --faces: stop a search past this many expansions per cell",
+    )
+    ap.add_argument("--gap", default=None, help="where a saved run (--save) falls short of the exact front")
+    ap.add_argument("--gap-front", default="F", help="with --gap: which saved front (F: the last, front_K)")
+    ap.add_argument("--density", action="store_true", help="HV ratio of subsets of the (cached) exact front")
     ap.add_argument("--throughput", action="store_true")
     ap.add_argument("--throughput-gens", type=int, default=3)
     ap.add_argument(
@@ -543,7 +638,17 @@ def main(argv=None):
         return 0
     for name in a.instances.split(","):
         ws = workspace(name, data)
-        if a.expansions:
+        if a.faces:
+            rec = dict(instance=name, shape=list(ws.shape), label=a.label)
+            rec.update(faces(ws, a.face_cap))
+        elif a.gap:
+            F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels, a.exact_cpu_cap)
+            z = np.load(a.gap)
+            rec = dict(instance=name, label=a.label, run=a.gap, **gap(F, z[a.gap_front]))
+        elif a.density:
+            F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels, a.exact_cpu_cap)
+            rec = dict(instance=name, label=a.label, **(density(F) if F is not None else {}))
+        elif a.expansions:
             rec = dict(instance=name, shape=list(ws.shape), label=a.label)
             rec.update(expansions(ws, a.expansions, a.seed, a.expansions_gens))
         elif a.throughput:
