@@ -92,7 +92,9 @@ def search_threads(n: int) -> int:
     Serial is the default because the parallel batches wait for their
     slowest thread: on a machine whose cores are all busy (several runs at
     once, ``gapath multirun`` workers) they lost wall time in
-    docs/results/free_paths.md ("Large maps").
+    docs/results/free_paths.md ("Large maps"); on two idle cores two
+    threads gave 1.5-1.7x the paths per second and 1.5x per generation
+    (same file, "Parallel batches on idle cores").
     """
     want = os.environ.get(THREADS_ENV, "1").strip().lower()
     nt = numba.get_num_threads()
