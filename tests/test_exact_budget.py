@@ -37,6 +37,19 @@ def tiny_slices(monkeypatch):
     monkeypatch.setattr(exact, "_Slices", _TinySlices)
 
 
+@pytest.fixture
+def interactive_sigint():
+    """SIGINT raising KeyboardInterrupt, as in a Python started from a
+    terminal: a suite started in the background by a shell without job
+    control (``(cmd &)``) inherits SIGINT ignored, and then no Ctrl-C can
+    reach the code under test."""
+    import signal
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    yield
+    signal.signal(signal.SIGINT, previous)
+
+
 def _same(a, b):
     assert a.objectives == b.objectives
     assert np.array_equal(a.F, b.F)
@@ -265,7 +278,7 @@ def test_progress_line_is_throttled_and_names_the_counts():
 
 
 @pytest.mark.parametrize("kind", ["free", "monotone"])
-def test_sigint_during_a_search_is_a_keyboard_interrupt(kind, tiny_slices):
+def test_sigint_during_a_search_is_a_keyboard_interrupt(kind, tiny_slices, interactive_sigint):
     """A SIGINT held while a kernel runs is raised as KeyboardInterrupt after
     it (never a SystemError from inside numba), before the next progress call."""
     import os
@@ -285,7 +298,9 @@ def test_sigint_during_a_search_is_a_keyboard_interrupt(kind, tiny_slices):
 
 
 @pytest.mark.parametrize("objectives, kernel", [(LV, "_boa_prepare"), (LVS, "_free_prepare")])
-def test_sigint_inside_the_first_kernel_is_a_keyboard_interrupt(monkeypatch, objectives, kernel):
+def test_sigint_inside_the_first_kernel_is_a_keyboard_interrupt(
+    monkeypatch, objectives, kernel, interactive_sigint
+):
     """Before the holding handler is installed (a search done in one kernel
     call never installs it), a SIGINT raised while a kernel runs surfaces in
     numba's boxing of its result as a SystemError; free_front raises the
