@@ -455,12 +455,10 @@ def faces(ws, budget=None):
     :data:`OBJECTIVES` (the archive's order), CPU seconds, points and
     expansions per reachable cell, searched to the end (``budget``: stop a
     search past this many expansions per reachable cell)."""
-    from itertools import combinations
-
+    from gapath.operators.archive import face_pairs
     from gapath.problems import FreePathProblem
 
     n = FreePathProblem(ws, OBJECTIVES).encoding.n_reachable
-    pairs = sorted(combinations(OBJECTIVES, 2), key=lambda pair: set(pair) != {"length", "smoothness"})
     out = []
     seen: dict = {}
 
@@ -469,7 +467,7 @@ def faces(ws, budget=None):
         if budget is not None and info["expansions"] > budget * n:
             raise _Stop
 
-    for pair in pairs:
+    for pair in face_pairs(OBJECTIVES):
         seen.clear()
         c0 = time.process_time()
         try:
@@ -491,7 +489,7 @@ def density(F, sizes=(250, 500, 1000, 2000, 5000), seed=0):
     """HV ratio of subsets of the exact front ``F``: random ones (3 draws)
     and the crowding truncation the archive's cap uses; how many exact
     points a front needs for a given ratio."""
-    from gapath.operators.archive import crowding
+    from gapath.operators.archive import crowding_truncation
 
     rng = np.random.default_rng(seed)
     rows = []
@@ -499,12 +497,7 @@ def density(F, sizes=(250, 500, 1000, 2000, 5000), seed=0):
         if n >= len(F):
             continue
         rand = [round(hv_ratio(F[rng.choice(len(F), n, replace=False)], F), 5) for _ in range(3)]
-        keep = np.arange(len(F))
-        while len(keep) > n:
-            cd = crowding(F[keep])
-            mv = np.flatnonzero(np.isfinite(cd))
-            r = min(len(keep) - n, max(1, len(keep) // 10))
-            keep = np.delete(keep, mv[np.argsort(cd[mv], kind="stable")[:r]])
+        keep = crowding_truncation(F, n)
         rows.append(dict(points=n, random=rand, crowding=round(hv_ratio(F[keep], F), 5)))
     return dict(exact_size=len(F), subsets=rows)
 

@@ -7,6 +7,7 @@ the key, with exit status 2."""
 import numpy as np
 import pytest
 from experiment_cases import stored
+from test_cli_costmap import SMALL
 
 from gapath.cli import main
 from gapath.costmap import CostmapSettings, costmap_from_settings
@@ -16,16 +17,6 @@ from gapath.experiments.spec import ExperimentSpec, load_spec, run_key
 from gapath.loaders import load_text
 from gapath.solver import solve
 
-SMALL = [
-    "..........",
-    "...#......",
-    "......#...",
-    "..#.......",
-    ".....#..#.",
-    ".#........",
-    "....#.....",
-    "..........",
-]
 OBJECTIVES = ["length", "vulnerability", "elevation_max"]
 SPEC = """\
 name: layers

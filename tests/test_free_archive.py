@@ -27,6 +27,23 @@ from gapath.solver import solve
 OBJ3 = ("length", "vulnerability", "smoothness")
 
 
+def _check_front(ws, p, front, exact_objectives=None):
+    """Every path valid, ``F`` recomputed from the paths, mutually
+    non-dominated and (with ``exact_objectives``) never better than the
+    exact front; returns the recomputed metrics."""
+    for path in front.paths:
+        check_path(ws, path)
+    P, L = pad_paths(front.paths)
+    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    np.testing.assert_allclose(front.F, p.objective_values(M), rtol=0, atol=0)
+    assert len(nondominated(front.F, tol=TOL)) == len(front)
+    if exact_objectives is not None:
+        exact = free_front(ws, exact_objectives).F
+        for f in front.F:
+            assert not any(dominates(f, r) for r in exact)
+    return M
+
+
 @settings(max_examples=50, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
 @given(data=st.data())
 def test_rerouted_paths_are_simple_feasible_paths(data):
@@ -101,16 +118,8 @@ def test_archive_front_is_valid_non_dominated_and_never_beats_exact(objectives, 
     minimize(p, FastNSGA2(20, sampling=FreeSampling("none")), ("n_gen", 8), seed=seed, callback=archive)
     front = archive.front()
     assert len(front) > 0
-    for path in front.paths:
-        check_path(ws, path)
-    # objectives recomputed from the paths
-    P, L = pad_paths(front.paths)
-    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    M = _check_front(ws, p, front, objectives)  # objectives recomputed from the paths
     np.testing.assert_allclose(front.metrics, M, rtol=0, atol=0)
-    np.testing.assert_allclose(front.F, p.objective_values(M), rtol=0, atol=0)
-    assert len(nondominated(front.F, tol=TOL)) == len(front)
-    for f in front.F:
-        assert not any(dominates(f, r) for r in free_front(ws, objectives).F)
 
 
 def test_archive_holds_the_population_front():
@@ -296,12 +305,7 @@ def test_cap_holds_and_keeps_the_extremes(cap):
     A = archive.front()
     assert 0 < len(A) <= cap
     assert archive.n_dropped > 0
-    for path in A.paths:
-        check_path(ws, path)
-    P, L = pad_paths(A.paths)
-    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
-    np.testing.assert_allclose(A.F, p.objective_values(M), rtol=0, atol=0)
-    assert len(nondominated(A.F, tol=TOL)) == len(A)
+    _check_front(ws, p, A)
     # no kept path is dominated by a dropped one, nor by a path the uncapped archive holds
     from gapath.operators.archive import dominated_by
 
@@ -433,16 +437,7 @@ def test_faces_cover_every_pairwise_exact_front(seed):
         assert all(_covers(with_faces.F, idx, f) for f in face)
         missed += sum(not _covers(without.F, idx, f) for f in face)
     assert missed > 0
-    front = with_faces.front()
-    for path in front.paths:
-        check_path(ws, path)
-    P, L = pad_paths(front.paths)
-    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
-    np.testing.assert_allclose(front.F, p.objective_values(M), rtol=0, atol=0)
-    assert len(nondominated(front.F, tol=TOL)) == len(front)
-    exact = free_front(ws, OBJ3).F
-    for f in front.F:
-        assert not any(dominates(f, r) for r in exact)
+    _check_front(ws, p, with_faces.front(), OBJ3)
 
 
 def test_faces_over_budget_are_dropped_and_two_objectives_have_none():

@@ -132,6 +132,48 @@ def crowding(F) -> np.ndarray:
     return cd
 
 
+def crowding_truncation(F, cap: int) -> np.ndarray:
+    """Indices (increasing) of the rows of the non-dominated set ``F`` kept
+    when it is cut to ``cap`` rows: in rounds, the rows of smallest
+    :func:`crowding` distance go, at most a tenth per round; a row best or
+    worst in some objective never goes (so more than ``cap`` may stay).
+
+    Examples
+    --------
+    >>> crowding_truncation([[0.0, 4.0], [1.0, 2.9], [1.1, 2.8], [4.0, 0.0]], 3).tolist()
+    [0, 2, 3]
+    """
+    F = np.asarray(F, float)
+    keep = np.arange(len(F))
+    while len(keep) > cap:
+        cd = crowding(F[keep])
+        movable = np.flatnonzero(np.isfinite(cd))
+        if len(movable) == 0:
+            break
+        r = min(len(keep) - cap, max(1, len(keep) // 10), len(movable))
+        keep = np.delete(keep, movable[np.argsort(cd[movable], kind="stable")[:r]])
+    return keep
+
+
+def face_pairs(objectives) -> list[tuple[str, str]]:
+    """The pairs of ``objectives`` among length, vulnerability and smoothness
+    whose exact fronts :meth:`FreePathArchive.add_faces` archives, in the
+    order it searches them: (length, smoothness) first, the cheapest on
+    every map measured, then the others in the objectives' order.
+
+    Examples
+    --------
+    >>> face_pairs(["length", "vulnerability", "smoothness"])
+    [('length', 'smoothness'), ('length', 'vulnerability'), ('vulnerability', 'smoothness')]
+    """
+    from itertools import combinations
+
+    names = [n for n in objectives if n in ("length", "vulnerability", "smoothness")]
+    pairs = list(combinations(names, 2))
+    pairs.sort(key=lambda pair: set(pair) != {"length", "smoothness"})  # stable: the rest in order
+    return pairs
+
+
 class PathArchive(Callback):
     """What the run archives share (:class:`FreePathArchive`,
     :class:`gapath.operators.monotone_archive.MonotonePathArchive`): a pymoo
@@ -447,17 +489,12 @@ class FreePathArchive(PathArchive):
         of the objectives among length, vulnerability and smoothness, the
         (length, smoothness) pair first, while the searches stay within the
         ``faces`` expansions per reachable cell they share."""
-        from itertools import combinations
-
         from gapath.errors import NoPathError
         from gapath.operators._archive_kernels import keyed
         from gapath.planners.exact import free_front
 
         enc = self.problem.encoding
         ws = self.problem.workspace
-        names = [n for n in self.problem.objectives if n in ("length", "vulnerability", "smoothness")]
-        pairs = list(combinations(names, 2))
-        pairs.sort(key=lambda pair: set(pair) != {"length", "smoothness"})  # stable: the rest in order
         left = self.faces * enc.n_reachable
         spent = 0
 
@@ -469,7 +506,7 @@ class FreePathArchive(PathArchive):
 
         w = ws.shape[1]
         subs = []
-        for pair in pairs:
+        for pair in face_pairs(self.problem.objectives):
             if left <= 0:
                 self.face_sizes.append((pair, None))
                 continue
@@ -672,16 +709,8 @@ class FreePathArchive(PathArchive):
         one of them dominates is not archived, so the archive never holds a
         path a path it dropped dominates (up to SPEC's tolerance)."""
         enc = self.problem.encoding
-        keep = np.arange(len(self))
         F = self.F
-        while len(keep) > self.cap:
-            cd = crowding(F[keep])
-            movable = np.flatnonzero(np.isfinite(cd))
-            if len(movable) == 0:
-                break
-            r = min(len(keep) - self.cap, max(1, len(keep) // 10), len(movable))
-            drop = movable[np.argsort(cd[movable], kind="stable")[:r]]
-            keep = np.delete(keep, drop)
+        keep = crowding_truncation(F, self.cap)
         gone = np.setdiff1d(np.arange(len(self)), keep)
         self._shadow = np.concatenate([self._shadow, F[gone]])
         self.n_dropped += len(gone)
@@ -758,7 +787,9 @@ __all__ = [
     "FreePathArchive",
     "PathArchive",
     "crowding",
+    "crowding_truncation",
     "dominated_by",
+    "face_pairs",
     "offspring_genomes",
     "run_archive",
 ]
