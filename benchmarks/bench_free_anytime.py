@@ -36,7 +36,9 @@ generation of a short GA run (``--throughput-gens`` generations after the
 first population; median), one line per instance. ``--expansions N``
 analyses the field decoder's search on N genomes (see :func:`expansions`).
 ``--faces`` prints the cost of the archive's exact face searches (see
-:func:`faces`), ``--density`` the HV ratio of subsets of the cached exact
+:func:`faces`), ``--approx EPS,...`` that of its approximate
+three-objective search and the HV ratio it reaches with and without the
+faces (see :func:`approx`), ``--density`` the HV ratio of subsets of the cached exact
 front (see :func:`density`), ``--gap RUN.npz`` where a saved run's front
 falls short of it (see :func:`gap`).
 
@@ -485,6 +487,46 @@ def faces(ws, budget=None):
     return dict(reachable=n, faces=out)
 
 
+def approx(ws, E, epsilons):
+    """The approximate three-objective search (``free_front(...,
+    epsilon=eps)``) beside the exact faces, as the archive runs them: for
+    each ``eps`` its CPU seconds, points, expansions and HV ratio against
+    the exact front ``E``, alone and merged with the faces (each face path
+    scored on all three objectives); the faces' own cost and ratio first."""
+    from gapath.objectives import evaluate_paths, pad_paths
+    from gapath.operators.archive import face_pairs
+
+    def scored(paths):  # evaluate_paths' columns: length, vulnerability, smoothness, interfering
+        P, L = pad_paths(paths)
+        return evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)[:, :3]
+
+    c0 = time.process_time()
+    face_paths = [p for pair in face_pairs(OBJECTIVES) for p in free_front(ws, pair).paths]
+    face_cpu = time.process_time() - c0
+    FF = scored(face_paths)
+    rows = []
+    for eps in epsilons:
+        c0 = time.process_time()
+        front = free_front(ws, OBJECTIVES, epsilon=eps)
+        cpu = time.process_time() - c0
+        rows.append(
+            dict(
+                epsilon=eps,
+                cpu_seconds=round(cpu, 3),
+                points=len(front),
+                expansions=int(front.stats["expansions"]),
+                hv_ratio=round(float(hv_ratio(front.F, E)), 6),
+                with_faces=round(float(hv_ratio(np.vstack([FF, front.F]), E)), 6),
+                with_faces_cpu_seconds=round(cpu + face_cpu, 3),
+            )
+        )
+    return dict(
+        exact_size=len(E),
+        faces=dict(cpu_seconds=round(face_cpu, 3), paths=len(FF), hv_ratio=round(float(hv_ratio(FF, E)), 6)),
+        approx=rows,
+    )
+
+
 def density(F, sizes=(250, 500, 1000, 2000, 5000), seed=0):
     """HV ratio of subsets of the exact front ``F``: random ones (3 draws)
     and the crowding truncation the archive's cap uses; how many exact
@@ -569,6 +611,11 @@ def main(argv=None):
         default=100.0,
         help="with --faces: stop a search past this many expansions per cell",
     )
+    ap.add_argument(
+        "--approx",
+        default=None,
+        help="EPS,...: the approximate three-objective search at these epsilons, alone and with the faces",
+    )
     ap.add_argument("--gap", default=None, help="where a saved run (--save) falls short of the exact front")
     ap.add_argument("--gap-front", default="F", help="with --gap: which saved front (F: the last, front_K)")
     ap.add_argument("--density", action="store_true", help="HV ratio of subsets of the (cached) exact front")
@@ -638,6 +685,12 @@ def main(argv=None):
             F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels, a.exact_cpu_cap)
             z = np.load(a.gap)
             rec = dict(instance=name, label=a.label, run=a.gap, **gap(F, z[a.gap_front]))
+        elif a.approx:
+            F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels, a.exact_cpu_cap)
+            rec = {k: rec[k] for k in ("instance", "exact_finished", "exact_cpu_seconds") if k in rec}
+            rec["label"] = a.label
+            if F is not None:
+                rec.update(approx(ws, F, [float(e) for e in a.approx.split(",")]))
         elif a.density:
             F, rec = exact(name, ws, Path(a.cache), a.exact_cap, a.max_labels, a.exact_cpu_cap)
             rec = dict(instance=name, label=a.label, **(density(F) if F is not None else {}))

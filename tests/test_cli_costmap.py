@@ -430,3 +430,37 @@ def test_bad_layer_flag_is_a_usage_error(value, message, tmp_path, capsys):
     assert exc.value.code == EXIT_BAD_INPUT
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err
+
+
+def test_exact_epsilon_writes_the_approximate_front(small_map, tmp_path, capsys):
+    out = tmp_path / "a"
+    argv = ["exact", small_map, "--mode", "free", "--objectives", "length,vulnerability,smoothness"]
+    code, stdout, _ = run(capsys, argv + ["--epsilon", "0.1", "--no-plots", "--out", out])
+    assert code == 0
+    assert "approximate (epsilon 0.1) free front" in stdout
+    header, F = front_csv(out)
+    ef = free_front(load_text(small_map), header, epsilon=0.1)
+    np.testing.assert_array_equal(F, ef.F)
+    assert settings(out)["epsilon"] == 0.1
+    exact = tmp_path / "e"
+    code, stdout, _ = run(capsys, argv + ["--no-plots", "--out", exact])
+    assert code == 0 and "exact free front" in stdout and "epsilon" not in settings(exact)
+
+
+@pytest.mark.parametrize(
+    "extra, message",
+    [
+        (["--epsilon", "-1"], "expected a finite number >= 0, got '-1'"),
+        (["--epsilon", "nan"], "expected a finite number >= 0, got 'nan'"),
+        (["--epsilon", "x"], "expected a finite number >= 0, got 'x'"),
+        (["--epsilon", "0.1"], "add --mode free"),
+        (["--epsilon", "0.1", "--mode", "free"], "needs --objectives length,vulnerability,smoothness"),
+    ],
+)
+def test_exact_bad_epsilon_exits_2(small_map, tmp_path, capsys, extra, message):
+    try:
+        code, _, err = run(capsys, ["exact", small_map, *extra, "--quiet", "--out", tmp_path / "o"])
+    except SystemExit as exc:  # argparse's own errors
+        code, err = exc.code, capsys.readouterr().err
+    assert code == EXIT_BAD_INPUT
+    assert message in err and err.count("error") == 1  # one message (after argparse's usage), no traceback

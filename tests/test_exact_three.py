@@ -109,3 +109,57 @@ def test_front_does_not_depend_on_slicing(ws):
     # every front point is among the sliced search's solutions
     for f in one.F:
         assert np.isclose(F, f, rtol=1e-9, atol=1e-9).all(axis=1).any()
+
+
+@pytest.mark.parametrize("ws", _maps()[:4] + _maps()[-2:], ids=lambda ws: ws.name)
+@pytest.mark.parametrize("eps", [0.02, 0.3])
+def test_approximate_front_is_valid_and_never_beats_exact(ws, eps):
+    """``epsilon > 0``: every path is feasible and simple, ``F`` is its own
+    objectives, the front is mutually non-dominated and no point of it
+    dominates a point of the exact front; ``epsilon=0`` is the exact search."""
+    from test_free_paths import TOL, check_path, dominates
+
+    from gapath.metrics import nondominated
+    from gapath.objectives import evaluate_path
+
+    exact = free_front(ws, LVS)
+    np.testing.assert_array_equal(free_front(ws, LVS, epsilon=0.0).F, exact.F)
+    approx = free_front(ws, LVS, epsilon=eps)
+    assert len(approx) > 0
+    for path, f in zip(approx.paths, approx.F):
+        check_path(ws, path)
+        assert len({tuple(c) for c in path.tolist()}) == len(path)  # simple
+        m = evaluate_path(ws, path)
+        np.testing.assert_array_equal(f, [m[name] for name in LVS])
+    assert len(nondominated(approx.F, tol=TOL)) == len(approx)
+    for f in approx.F:
+        assert not any(dominates(f, r) for r in exact.F)
+
+
+def test_approximate_search_prunes_more_on_a_larger_map():
+    """On a 40x40 random map a 5 % slack expands fewer labels than the exact
+    search and keeps fewer points (the point of it)."""
+    ws = random_workspace((40, 40), 320, seed=3)
+    exact = free_front(ws, LVS)
+    approx = free_front(ws, LVS, epsilon=0.05)
+    assert approx.stats["expansions"] < exact.stats["expansions"]
+    assert len(approx) < len(exact)
+
+
+@pytest.mark.parametrize("bad", [-0.1, float("nan"), float("inf"), "x", None])
+def test_bad_epsilon(bad):
+    from gapath.errors import ConfigError
+
+    ws = random_workspace((8, 8), 6, seed=1)
+    with pytest.raises(ConfigError, match="epsilon must be a finite number >= 0"):
+        free_front(ws, LVS, epsilon=bad)
+
+
+@pytest.mark.parametrize("objectives", [("length", "vulnerability"), ("length", "smoothness"), ("length",)])
+def test_epsilon_needs_the_three_objectives(objectives):
+    from gapath.errors import ConfigError
+
+    ws = random_workspace((8, 8), 6, seed=1)
+    with pytest.raises(ConfigError, match="needs the objectives length, vulnerability and smoothness"):
+        free_front(ws, objectives, epsilon=0.1)
+    assert len(free_front(ws, objectives, epsilon=0)) > 0

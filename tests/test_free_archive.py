@@ -18,7 +18,7 @@ from gapath.errors import ConfigError
 from gapath.front import path_front
 from gapath.metrics import nondominated
 from gapath.objectives import evaluate_paths, pad_paths
-from gapath.operators.archive import FreePathArchive, run_archive
+from gapath.operators.archive import APPROX_EPSILON, FreePathArchive, run_archive
 from gapath.operators.sampling.free_sampling import FreeSampling
 from gapath.planners.exact import free_front
 from gapath.problems import FreePathProblem, GridPathProblem
@@ -127,7 +127,7 @@ def test_archive_holds_the_population_front():
     the archive: it has seen every offspring."""
     ws = room(seed=4)
     p = FreePathProblem(ws, OBJ3)
-    archive = FreePathArchive(p, n_refine=0, faces=0)
+    archive = FreePathArchive(p, n_refine=0, faces=0, approx=0)
     res = minimize(p, FastNSGA2(16, sampling=FreeSampling("none")), ("n_gen", 10), seed=3, callback=archive)
     pop_front = path_front(p, res.pop.get("X"))
     A = archive.front()
@@ -423,7 +423,7 @@ def test_faces_cover_every_pairwise_exact_front(seed):
     p = FreePathProblem(ws, OBJ3)
     runs = {}
     for faces in (None, 0):
-        archive = FreePathArchive(p, n_refine=0, seed=seed, extremes=0, faces=faces)
+        archive = FreePathArchive(p, n_refine=0, seed=seed, extremes=0, faces=faces, approx=0)
         minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=seed, callback=archive)
         runs[faces] = archive
     with_faces, without = runs[None], runs[0]
@@ -443,7 +443,7 @@ def test_faces_cover_every_pairwise_exact_front(seed):
 def test_faces_over_budget_are_dropped_and_two_objectives_have_none():
     ws = room(h=14, w=16, seed=43)
     p = FreePathProblem(ws, OBJ3)
-    archive = FreePathArchive(p, n_refine=0, extremes=0, faces=1e-6)
+    archive = FreePathArchive(p, n_refine=0, extremes=0, faces=1e-6, approx=0)
     minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=archive)
     assert archive.face_sizes == [(pair, None) for pair in PAIRS]
     assert archive.n_eval == 0
@@ -451,7 +451,7 @@ def test_faces_over_budget_are_dropped_and_two_objectives_have_none():
     used = {}
     first = free_front(ws, PAIRS[0], progress=lambda info: used.update(info))
     shared = FreePathArchive(
-        p, n_refine=0, extremes=0, faces=(used["expansions"] + 1) / p.encoding.n_reachable
+        p, n_refine=0, extremes=0, faces=(used["expansions"] + 1) / p.encoding.n_reachable, approx=0
     )
     minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=shared)
     assert shared.face_sizes == [(PAIRS[0], len(first)), (PAIRS[1], None), (PAIRS[2], None)]
@@ -459,3 +459,55 @@ def test_faces_over_budget_are_dropped_and_two_objectives_have_none():
     for bad in (-1, "x", float("nan")):
         with pytest.raises(ConfigError, match="faces"):
             FreePathArchive(p, faces=bad)
+
+
+def test_approximate_search_follows_the_faces_within_its_own_budget():
+    """With length, vulnerability and smoothness the faces are followed by
+    the approximate three-objective search (its own budget): its points are
+    archived (each matched by an archived path at least as good), the front
+    stays valid and never beats the exact one; a budget it runs past drops
+    it and nothing else; other objective sets have none."""
+    ws = room(h=14, w=16, seed=44)
+    p = FreePathProblem(ws, OBJ3)
+    archive = FreePathArchive(p, n_refine=0, extremes=0)
+    minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=archive)
+    assert archive.approx == APPROX_EPSILON
+    assert [objs for objs, _ in archive.face_sizes] == PAIRS + [OBJ3]
+    approx = free_front(ws, OBJ3, epsilon=APPROX_EPSILON)
+    assert archive.face_sizes[-1] == (OBJ3, len(approx))
+    assert all(_covers(archive.F, [0, 1, 2], f) for f in approx.F)
+    _check_front(ws, p, archive.front(), OBJ3)
+    # the approximate search alone, and one over its budget (the faces untouched)
+    alone = FreePathArchive(p, n_refine=0, extremes=0, faces=0)
+    over = FreePathArchive(p, n_refine=0, extremes=0, approx_budget=1e-6)
+    for a in (alone, over):
+        minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=a)
+    assert alone.face_sizes == [(OBJ3, len(approx))]
+    assert over.face_sizes == archive.face_sizes[:3] + [(OBJ3, None)]
+    # not run when a face did not fit its budget
+    dropped = FreePathArchive(p, n_refine=0, extremes=0, faces=1e-6)
+    minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=dropped)
+    assert dropped.face_sizes == [(pair, None) for pair in PAIRS] + [(OBJ3, None)]
+    assert dropped.n_eval == 0
+    assert FreePathArchive(FreePathProblem(ws), n_refine=0).approx == 0
+    assert (
+        FreePathArchive(FreePathProblem(ws, ("length", "smoothness", "vulnerability")), n_refine=0).approx > 0
+    )
+
+
+@pytest.mark.parametrize(
+    "kwargs, match",
+    [
+        ({"approx": -0.1}, "approx must be"),
+        ({"approx": float("nan")}, "approx must be"),
+        ({"approx": "x"}, "approx must be"),
+        ({"approx_budget": -1}, "approx_budget"),
+        ({"approx_budget": "x"}, "approx_budget"),
+    ],
+)
+def test_bad_approx_settings(kwargs, match):
+    p = FreePathProblem(room(seed=1), OBJ3)
+    with pytest.raises(ConfigError, match=match):
+        FreePathArchive(p, **kwargs)
+    with pytest.raises(ConfigError, match="needs the objectives length, vulnerability and smoothness"):
+        FreePathArchive(FreePathProblem(room(seed=1)), approx=0.1)

@@ -118,7 +118,9 @@ def solve(
         ``2 * pop_size`` with three or more (docs/results/free_paths.md;
         with three or more objectives the archive's first refinement also
         adds the exact front of each pair of objectives, where that search
-        is cheap: ``FreePathArchive``'s ``faces``); 0 keeps the archive
+        is cheap, then, for length, vulnerability and smoothness, an
+        approximate three-objective front: ``FreePathArchive``'s ``faces``
+        and ``approx``); 0 keeps the archive
         without re-routing; ``False``: no archive (the last population's
         front). Monotone paths: default None, no archive (Ahmed & Deb's
         runs, as the reproductions use them); an integer or ``True`` (the

@@ -9,6 +9,11 @@ user layer's ``NAME_sum``), any number of them (the k-objective search of
 reason: neither is a sum along the path, so no label-setting search gives
 their exact front. The layer flags are those of ``gapath solve``
 (:func:`gapath.cli._args.add_costmap_arguments`).
+
+``--epsilon E`` (``--mode free`` with length, vulnerability and smoothness)
+runs the approximate search instead (``free_front(..., epsilon=E)``): a
+close inner approximation of the front, much sooner on large maps, recorded
+as ``"epsilon"`` in ``summary.json`` and said in the report line.
 """
 
 from __future__ import annotations
@@ -43,6 +48,15 @@ def register(subparsers) -> None:
         help="label budget: stop with a message (no front) when the search would hold "
         "more than N labels (44 bytes each), instead of exhausting memory",
     )
+    p.add_argument(
+        "--epsilon",
+        type=_epsilon,
+        default=0.0,
+        metavar="E",
+        help="with --mode free and the objectives length,vulnerability,smoothness: the "
+        "approximate search, which also drops a label when one at least as short and smooth "
+        "has at most 1+E times its vulnerability (not the exact front; e.g. 0.03) (default: 0, exact)",
+    )
     p.add_argument("--out", default="gapath-exact", help="output directory (default: %(default)s)")
     p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
     p.add_argument("--quiet", action="store_true", help="no report")
@@ -59,6 +73,19 @@ def _positive_int(text):
         return positive_int(text, "N")
     except ConfigError:
         raise argparse.ArgumentTypeError(f"expected a positive integer, got {text!r}") from None
+
+
+def _epsilon(text):
+    import argparse
+    import math
+
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not (math.isfinite(value) and value >= 0):
+        raise argparse.ArgumentTypeError(f"expected a finite number >= 0, got {text!r}")
+    return value
 
 
 class _ProgressLine:
@@ -118,6 +145,18 @@ def run(args) -> int:
             f"({', '.join(layered)}); add --mode free (the exact front of all 8-connected paths)"
         )
     options = {} if costmap is None else {"costmap": costmap}
+    if args.epsilon:
+        if args.mode != "free":
+            raise ConfigError(
+                f"--epsilon {args.epsilon:g}: the approximate search is over free paths; "
+                "add --mode free (with --objectives length,vulnerability,smoothness)"
+            )
+        if set(objectives) != {"length", "vulnerability", "smoothness"} or len(objectives) != 3:
+            raise ConfigError(
+                f"--epsilon {args.epsilon:g} needs --objectives length,vulnerability,smoothness "
+                f"(any order), got {','.join(objectives)}"
+            )
+        options["epsilon"] = args.epsilon
     t0 = time.perf_counter()
     bar = None if args.quiet else _ProgressLine(args.mode)
     try:
@@ -161,6 +200,8 @@ def run(args) -> int:
         "search": {k: (round(v, 4) if isinstance(v, float) else v) for k, v in ef.stats.items()},
     }
     summary["settings"].update(choice.settings())
+    if args.epsilon:  # not the exact front: say so where the front is read back
+        summary["settings"]["epsilon"] = args.epsilon
     if costmap is not None:
         summary["settings"]["costmap"] = costmap_settings(args, costmap, objectives, kind="exact")
     shortest = (
@@ -172,8 +213,9 @@ def run(args) -> int:
         summary["scenario"] = choice.scenario_record(shortest)
     write_front(Path(args.out), ws, front, summary, plots=not args.no_plots)
     if not args.quiet:
+        kind = f"approximate (epsilon {args.epsilon:g})" if args.epsilon else "exact"
         print(
-            f"{ws!r}\n{choice.corner_line()}\nexact {args.mode} front: {len(front)} paths in "
+            f"{ws!r}\n{choice.corner_line()}\n{kind} {args.mode} front: {len(front)} paths in "
             f"{seconds:.3f} s; wrote {args.out}/front.csv, paths.json, summary.json"
         )
         if choice.scenario is not None:

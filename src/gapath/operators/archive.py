@@ -32,6 +32,13 @@ path is best in its pair, so its objective vector lies on the boundary of
 the full front (or next to it: its third objective is not optimised); the
 refinement then works inwards from them.
 
+When the objectives are length, vulnerability and smoothness, the faces
+are followed by an *approximate* three-objective search
+(:func:`gapath.planners.exact.free_front` with ``epsilon=approx``, within a
+budget of its own, ``approx_budget`` expansions per reachable cell): its
+points lie across the inside of the front, which the faces bound but do
+not fill, and it misses the edges, which the faces hold.
+
 The archive is updated incrementally (each generation's ``k`` new paths
 against its ``n`` paths: ``O(k n)``) and capped (:data:`CAP` paths by
 default; the most crowded go first, never an extreme, and a path that a
@@ -76,6 +83,13 @@ CAP = 5000
 #: smoothness); the searches share a budget of this many expansions per
 #: reachable cell (``faces``'s default; 0 with two objectives).
 FACE_BUDGET = 100
+#: The ``epsilon`` of the approximate three-objective search after the faces
+#: (``approx``'s default with the objectives length, vulnerability and
+#: smoothness; see ``docs/results/free_paths.md``, "Approximate
+#: three-objective search").
+APPROX_EPSILON = 0.04
+#: Its budget in expansions per reachable cell (``approx_budget``'s default).
+APPROX_BUDGET = 100
 
 
 class _OverBudget(Exception):
@@ -246,7 +260,7 @@ class FreePathArchive(PathArchive):
     Parameters
     ----------
     problem : :class:`gapath.problems.FreePathProblem`.
-    n_refine : re-routed paths per generation (0, with ``faces=0``: a plain
+    n_refine : re-routed paths per generation (0, with ``faces=0`` and ``approx=0``: a plain
         archive).
     seed : seed of the archive's own random numbers (the GA's are untouched,
         so the population evolves as without the archive).
@@ -287,6 +301,14 @@ class FreePathArchive(PathArchive):
         so are the ones after it (deterministic: it depends on the map, not
         on the clock).
         The face paths are counted in ``n_eval``.
+    approx : the ``epsilon`` of the approximate three-objective search run
+        after the faces (default :data:`APPROX_EPSILON` when the objectives
+        are length, vulnerability and smoothness; 0 switches it off; must
+        be 0 with other objectives). Its paths are counted in ``n_eval``.
+    approx_budget : that search's budget in expansions per reachable cell
+        (default :data:`APPROX_BUDGET`); past it the search is dropped
+        (deterministic, as the faces). It is not run when a face search
+        was dropped: on such a map it costs more than the faces.
     extremes : with smoothness as an objective, whole archived paths
         re-routed per generation under a heavy turn weight
         (``log10(c / a)`` in :data:`EXTREME_TURNS`) and a light cell cost
@@ -304,7 +326,8 @@ class FreePathArchive(PathArchive):
     ConfigError
         On a problem that is not a free-path problem, a negative
         ``n_refine``, a bad ``segment``, ``lam_range``, ``shortcut``,
-        ``sparse``, ``extremes``, ``exact_stretches``, ``faces`` or ``cap``.
+        ``sparse``, ``extremes``, ``exact_stretches``, ``faces``, ``approx``,
+        ``approx_budget`` or ``cap``.
 
     Examples
     --------
@@ -333,6 +356,8 @@ class FreePathArchive(PathArchive):
         extremes=4,
         exact_stretches=None,
         faces=None,
+        approx=None,
+        approx_budget=APPROX_BUDGET,
     ):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
@@ -408,9 +433,34 @@ class FreePathArchive(PathArchive):
         if not ok:
             raise ConfigError(f"faces must be a number >= 0 (expansions per reachable cell), got {faces!r}")
         self.faces = float(faces)
+        three = problem.n_obj == 3 and additive and problem.n_obj == len(set(problem.objectives))
+        if approx is None:
+            approx = APPROX_EPSILON if three else 0.0
+        try:
+            ok = bool(np.isfinite(float(approx)) and float(approx) >= 0)
+        except (TypeError, ValueError, OverflowError):
+            ok = False
+        if not ok:
+            raise ConfigError(f"approx must be a finite number >= 0 (an epsilon), got {approx!r}")
+        if float(approx) and not three:
+            raise ConfigError(
+                f"approx={approx!r} needs the objectives length, vulnerability and smoothness, "
+                f"got {', '.join(problem.objectives)}; use approx=0"
+            )
+        self.approx = float(approx)
+        try:
+            ok = bool(float(approx_budget) >= 0)
+        except (TypeError, ValueError, OverflowError):
+            ok = False
+        if not ok:
+            raise ConfigError(
+                f"approx_budget must be a number >= 0 (expansions per reachable cell), got {approx_budget!r}"
+            )
+        self.approx_budget = float(approx_budget)
         self._faces_done = False
-        #: the face searches run: ``(objectives, points or None when over budget)``
-        self.face_sizes: list[tuple[tuple[str, str], int | None]] = []
+        #: the face searches run, then the approximate one: ``(objectives, points or
+        #: None when over budget)``
+        self.face_sizes: list[tuple[tuple[str, ...], int | None]] = []
         if cap is not None:
             try:
                 ok = float(cap) == int(cap) and int(cap) >= 2
@@ -439,7 +489,7 @@ class FreePathArchive(PathArchive):
         one starts with :meth:`add_faces`)."""
         if not self._faces_done:
             self._faces_done = True
-            if self.faces > 0:
+            if self.faces > 0 or self.approx > 0:
                 self.add_faces()
         if self.n_refine:
             self.refine(self.n_refine)
@@ -488,7 +538,9 @@ class FreePathArchive(PathArchive):
         """Archive the paths of the exact two-objective front of each pair
         of the objectives among length, vulnerability and smoothness, the
         (length, smoothness) pair first, while the searches stay within the
-        ``faces`` expansions per reachable cell they share."""
+        ``faces`` expansions per reachable cell they share; then, with
+        ``approx > 0``, those of the approximate three-objective front
+        within its own ``approx_budget``."""
         from gapath.errors import NoPathError
         from gapath.operators._archive_kernels import keyed
         from gapath.planners.exact import free_front
@@ -506,18 +558,24 @@ class FreePathArchive(PathArchive):
 
         w = ws.shape[1]
         subs = []
-        for pair in face_pairs(self.problem.objectives):
+        searches = [(pair, 0.0) for pair in face_pairs(self.problem.objectives)] if self.faces > 0 else []
+        if self.approx > 0:
+            searches.append((tuple(self.problem.objectives), self.approx))
+        for objectives, eps in searches:
+            if eps:  # the approximate search: a budget of its own, unless a face did not fit
+                fit = all(n is not None for _, n in self.face_sizes)
+                left = self.approx_budget * enc.n_reachable if fit else 0
             if left <= 0:
-                self.face_sizes.append((pair, None))
+                self.face_sizes.append((objectives, None))
                 continue
             try:
-                paths = free_front(ws, pair, progress=check).paths
+                paths = free_front(ws, objectives, progress=check, epsilon=eps).paths
             except (_OverBudget, NoPathError):
-                self.face_sizes.append((pair, None))
+                self.face_sizes.append((objectives, None))
                 left = 0
                 continue
             left -= spent
-            self.face_sizes.append((pair, len(paths)))
+            self.face_sizes.append((objectives, len(paths)))
             subs += [p[:, 0].astype(np.int64) * w + p[:, 1] for p in paths]
         if not subs:
             return
@@ -782,6 +840,8 @@ __all__ = [
     "EXACT_STRETCHES",
     "EXTREME_LAM",
     "EXTREME_TURNS",
+    "APPROX_BUDGET",
+    "APPROX_EPSILON",
     "FACE_BUDGET",
     "LAM_RANGE",
     "FreePathArchive",
