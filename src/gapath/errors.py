@@ -12,6 +12,8 @@ nothing feasible), every other :class:`GapathError` to
 
 from __future__ import annotations
 
+import math
+
 #: A result was found (and written).
 EXIT_OK = 0
 #: The search ran but found nothing feasible (no path; a simulated robot that
@@ -116,4 +118,48 @@ def positive_int(value: object, name: str) -> int:
         raise ConfigError(f"{name} must be a positive integer, got {value!r}") from None
     if v <= 0:
         raise ConfigError(f"{name} must be a positive integer, got {value!r}")
+    return v
+
+
+def non_negative(value: object, name: str, *, finite: bool = True, what: str = "") -> float:
+    """``value`` as a ``float`` if it is a number >= 0 (finite unless
+    ``finite=False``; NaN never), else a :class:`ConfigError` naming
+    ``name``: the one non-negative-number check of gapath's settings.
+
+    Parameters
+    ----------
+    value : object
+        The setting as given.
+    name : str
+        The setting's name, or the flag that sets it, for the message.
+    finite : bool, optional
+        Refuse infinity too (default).
+    what : str, optional
+        Added to the message after "number >= 0", e.g. " (an epsilon)".
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ConfigError
+        ``"{name} must be a [finite ]number >= 0{what}, got {value!r}"``.
+
+    Examples
+    --------
+    >>> non_negative("0.5", "epsilon")
+    0.5
+    >>> non_negative(-1, "epsilon")
+    Traceback (most recent call last):
+    ...
+    gapath.errors.ConfigError: epsilon must be a finite number >= 0, got -1
+    """
+    try:
+        v = float(value)  # type: ignore[arg-type]
+    except (TypeError, ValueError, OverflowError):
+        v = math.nan
+    if not (v >= 0 and (not finite or math.isfinite(v))):
+        kind = "a finite number" if finite else "a number"
+        raise ConfigError(f"{name} must be {kind} >= 0{what}, got {value!r}")
     return v

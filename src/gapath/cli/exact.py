@@ -77,15 +77,13 @@ def _positive_int(text):
 
 def _epsilon(text):
     import argparse
-    import math
+
+    from gapath.errors import ConfigError, non_negative
 
     try:
-        value = float(text)
-    except ValueError:
-        value = math.nan
-    if not (math.isfinite(value) and value >= 0):
-        raise argparse.ArgumentTypeError(f"expected a finite number >= 0, got {text!r}")
-    return value
+        return non_negative(text, "E")
+    except ConfigError:
+        raise argparse.ArgumentTypeError(f"expected a finite number >= 0, got {text!r}") from None
 
 
 class _ProgressLine:

@@ -56,7 +56,7 @@ from typing import Any
 import numpy as np
 from pymoo.core.callback import Callback
 
-from gapath.errors import ConfigError
+from gapath.errors import ConfigError, non_negative
 from gapath.front import PathFront
 from gapath.metrics import TOL, close, dedupe
 from gapath.objectives import INTERFERING, SMOOTHNESS
@@ -426,37 +426,18 @@ class FreePathArchive(PathArchive):
         self.exact_stretches = int(exact_stretches) if additive else 0
         if faces is None:
             faces = FACE_BUDGET if problem.n_obj >= 3 else 0
-        try:
-            ok = bool(float(faces) >= 0)  # NaN fails too
-        except (TypeError, ValueError, OverflowError):
-            ok = False
-        if not ok:
-            raise ConfigError(f"faces must be a number >= 0 (expansions per reachable cell), got {faces!r}")
-        self.faces = float(faces)
-        three = problem.n_obj == 3 and additive and problem.n_obj == len(set(problem.objectives))
+        per_cell = " (expansions per reachable cell)"
+        self.faces = non_negative(faces, "faces", finite=False, what=per_cell)
+        three = problem.n_obj == 3 and additive  # length, vulnerability, smoothness
         if approx is None:
             approx = APPROX_EPSILON if three else 0.0
-        try:
-            ok = bool(np.isfinite(float(approx)) and float(approx) >= 0)
-        except (TypeError, ValueError, OverflowError):
-            ok = False
-        if not ok:
-            raise ConfigError(f"approx must be a finite number >= 0 (an epsilon), got {approx!r}")
-        if float(approx) and not three:
+        self.approx = non_negative(approx, "approx", what=" (an epsilon)")
+        if self.approx and not three:
             raise ConfigError(
                 f"approx={approx!r} needs the objectives length, vulnerability and smoothness, "
                 f"got {', '.join(problem.objectives)}; use approx=0"
             )
-        self.approx = float(approx)
-        try:
-            ok = bool(float(approx_budget) >= 0)
-        except (TypeError, ValueError, OverflowError):
-            ok = False
-        if not ok:
-            raise ConfigError(
-                f"approx_budget must be a number >= 0 (expansions per reachable cell), got {approx_budget!r}"
-            )
-        self.approx_budget = float(approx_budget)
+        self.approx_budget = non_negative(approx_budget, "approx_budget", finite=False, what=per_cell)
         self._faces_done = False
         #: the face searches run, then the approximate one: ``(objectives, points or
         #: None when over budget)``

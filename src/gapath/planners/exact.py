@@ -55,7 +55,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from gapath.errors import ConfigError, LabelBudgetError, NoPathError
+from gapath.errors import ConfigError, LabelBudgetError, NoPathError, non_negative
 from gapath.grid import SQRT2
 from gapath.monotone import Frame, expand_profiles, split_paths
 from gapath.objectives import OBJECTIVES, QUARTER_PI, objective_index
@@ -620,13 +620,7 @@ def _free_plan(objectives):
 def _epsilon(epsilon, mode) -> float:
     """The checked ``epsilon`` of :func:`free_front` (a float >= 0; non-zero
     only for MODE_THREE)."""
-    try:
-        eps = float(epsilon)
-        ok = bool(np.isfinite(eps) and eps >= 0)
-    except (TypeError, ValueError):
-        ok = False
-    if not ok:
-        raise ConfigError(f"epsilon must be a finite number >= 0, got {epsilon!r}")
+    eps = non_negative(epsilon, "epsilon")
     if eps and mode != MODE_THREE:
         raise ConfigError(
             f"epsilon={eps:g} (the approximate search) needs the objectives length, "
