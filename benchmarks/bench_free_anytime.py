@@ -496,14 +496,12 @@ def approx(ws, E, epsilons):
     from gapath.objectives import evaluate_paths, pad_paths
     from gapath.operators.archive import face_pairs
 
-    def scored(paths):  # evaluate_paths' columns: length, vulnerability, smoothness, interfering
-        P, L = pad_paths(paths)
-        return evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)[:, :3]
-
     c0 = time.process_time()
     face_paths = [p for pair in face_pairs(OBJECTIVES) for p in free_front(ws, pair).paths]
     face_cpu = time.process_time() - c0
-    FF = scored(face_paths)
+    P, L = pad_paths(face_paths)  # each face path on all three objectives, as the problem scores it
+    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    FF = FreePathProblem(ws, OBJECTIVES).objective_values(M)
     rows = []
     for eps in epsilons:
         c0 = time.process_time()
