@@ -514,6 +514,7 @@ def approx(ws, E, epsilons):
                 points=len(front),
                 expansions=int(front.stats["expansions"]),
                 hv_ratio=round(float(hv_ratio(front.F, E)), 6),
+                factor=round(cover_factor(front.F, E), 6),
                 with_faces=round(float(hv_ratio(np.vstack([FF, front.F]), E)), 6),
                 with_faces_cpu_seconds=round(cpu + face_cpu, 3),
             )
@@ -523,6 +524,22 @@ def approx(ws, E, epsilons):
         faces=dict(cpu_seconds=round(face_cpu, 3), paths=len(FF), hv_ratio=round(float(hv_ratio(FF, E)), 6)),
         approx=rows,
     )
+
+
+def cover_factor(A, E):
+    """The least ``f`` such that every point of ``E`` (length, vulnerability,
+    smoothness) is covered by a point of ``A`` with at most ``f`` times its
+    length and vulnerability and no more turns (inf if none is): the factor
+    that ``free_front(..., epsilon=e)`` guarantees to be at most ``1 + e``."""
+    worst = 1.0
+    for s in range(0, len(E), 500):
+        e = E[s : s + 500, None, :]
+        ok = A[None, :, 2] <= e[..., 2] + 1e-9
+        ratio = np.maximum(
+            A[None, :, 0] / np.maximum(e[..., 0], 1e-300), A[None, :, 1] / np.maximum(e[..., 1], 1e-300)
+        )
+        worst = max(worst, float(np.where(ok, ratio, np.inf).min(axis=1).max()))
+    return worst
 
 
 def density(F, sizes=(250, 500, 1000, 2000, 5000), seed=0):

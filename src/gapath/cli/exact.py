@@ -11,9 +11,11 @@ their exact front. The layer flags are those of ``gapath solve``
 (:func:`gapath.cli._args.add_costmap_arguments`).
 
 ``--epsilon E`` (``--mode free`` with length, vulnerability and smoothness)
-runs the approximate search instead (``free_front(..., epsilon=E)``): a
-close inner approximation of the front, much sooner on large maps, recorded
-as ``"epsilon"`` in ``summary.json`` and said in the report line.
+runs the approximate search instead (``free_front(..., epsilon=E)``): every
+point of the exact front is covered by a returned path with at most ``1 + E``
+times its length and vulnerability and no more turns; much sooner on large
+maps; recorded as ``"epsilon"`` in ``summary.json`` and said in the report
+line.
 """
 
 from __future__ import annotations
@@ -53,9 +55,9 @@ def register(subparsers) -> None:
         type=_epsilon,
         default=0.0,
         metavar="E",
-        help="with --mode free and the objectives length,vulnerability,smoothness: the "
-        "approximate search, which also drops a label when one at least as short and smooth "
-        "has at most 1+E times its vulnerability (not the exact front; e.g. 0.03) (default: 0, exact)",
+        help="with --mode free and the objectives length,vulnerability,smoothness: an "
+        "approximate front, sooner: every exact point is covered by a path with at most 1+E "
+        "times its length and vulnerability and no more turns (e.g. 0.1) (default: 0, exact)",
     )
     p.add_argument("--out", default="gapath-exact", help="output directory (default: %(default)s)")
     p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")

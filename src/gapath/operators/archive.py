@@ -87,9 +87,9 @@ FACE_BUDGET = 100
 #: (``approx``'s default with the objectives length, vulnerability and
 #: smoothness; see ``docs/results/free_paths.md``, "Approximate
 #: three-objective search").
-APPROX_EPSILON = 0.04
+APPROX_EPSILON = 0.1
 #: Its budget in expansions per reachable cell (``approx_budget``'s default).
-APPROX_BUDGET = 100
+APPROX_BUDGET = 200
 
 
 class _OverBudget(Exception):

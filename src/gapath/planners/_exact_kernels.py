@@ -306,8 +306,13 @@ def _goal_insert(li, lf, gmin, base, first, goal_state, x):
     first[goal_state]``, the largest turn count of a solution (-1: none
     yet). A solution's path is simple, so its turn count is below ``4 * H *
     W``, the room left after the cells' blocks (see THREE_BLOCK)."""
-    t = li[x, TURNS]
-    v = lf[x, F_VUL]
+    _goal_record(gmin, base, first, goal_state, li[x, TURNS], lf[x, F_VUL])
+
+
+@numba.njit(cache=True)
+def _goal_record(gmin, base, first, goal_state, t, v):
+    """Record a solution with ``t`` turns and vulnerability ``v`` in
+    MODE_THREE's goal front (see :func:`_goal_insert`)."""
     tmax = first[goal_state]
     if t > tmax:
         fill = gmin[base + tmax] if tmax >= 0 else np.inf
@@ -548,7 +553,6 @@ def _free_run(
     sp,
     n_steps,
     max_labels,
-    eps=0.0,
 ):
     """Advance the multi-objective label-setting search from start to goal
     by at most ``n_steps`` pops of the open list.
@@ -571,14 +575,6 @@ def _free_run(
     each label in its heap row (column 3, :func:`_heap4_push`): the
     3-column heap of :func:`_free_init` is widened at the first call (``hid``
     then only sets the heap's capacity).
-
-    ``eps`` (MODE_THREE only; 0: exact) makes the search approximate: a label
-    is also dropped when an expanded label of its cell (headings charged as
-    always), or a solution, covers it on length and turns and has at most
-    ``1 + eps`` times its vulnerability (its f-value's, at the goal). The
-    labels kept are real paths with their own values; the slack may add up
-    along a path, so the front found is close to the exact one but not
-    within a guaranteed factor of it.
 
     The search itself is :func:`_free_steps`, which never reallocates (an
     array reassigned inside a numba loop is reference-counted at every
@@ -619,7 +615,6 @@ def _free_run(
             sp,
             n_steps - (st[S_POPS] - pops0),
             max_labels,
-            eps,
         )
         if status != NEED_ROOM:
             return li, lf, sols, hk, hid, sp, status
@@ -662,7 +657,6 @@ def _free_steps(
     sp,
     n_steps,
     max_labels,
-    eps,
 ):
     """The search loop of :func:`_free_run`, in arrays it never reallocates:
     returns NEED_ROOM before a pop when the label tables, the heap or the
@@ -711,7 +705,7 @@ def _free_steps(
             # the staircases walked here, as at generation (see below); x's heading is
             # -1 only for the start label
             t = li[x, TURNS]
-            v = lf[x, F_VUL] * (1.0 + eps)  # eps > 0: the approximate search (see _free_run)
+            v = lf[x, F_VUL]
             hx = li[x, F_HEAD]
             covered = False
             base = c * THREE_BLOCK
@@ -735,7 +729,7 @@ def _free_steps(
             if not covered and tmax >= 0:
                 bound = t + (ht[c * N_SLOTS + (hx if hx >= 0 else 8)] if ht.shape[0] > 1 else 0)
                 m = gmin[goal_base + min(bound, tmax)]
-                covered = m < np.inf and _le(m, v + hv[c] * (1.0 + eps))
+                covered = m < np.inf and _le(m, v + hv[c])
         else:
             covered = (c != goal and _state_covered(li, lf, x, gmin, cell_size)) or _goal_covered(
                 li, lf, x, Q, goal_min, cell_size, hs, hd, hv, ht
@@ -802,11 +796,10 @@ def _free_steps(
                 # the (turns, vulnerability) staircases, searched here (see above)
                 covered = False
                 base = cell * THREE_BLOCK
-                ve = v * (1.0 + eps)  # eps > 0: the approximate search (see _free_run)
-                if cell != goal and gmin[base] < np.inf and _le(gmin[base], ve):
+                if cell != goal and gmin[base] < np.inf and _le(gmin[base], v):
                     for k in range(N_SLOTS):
                         b = base + 1 + 3 * k
-                        if gmin[b] == np.inf or not _le(gmin[b], ve):
+                        if gmin[b] == np.inf or not _le(gmin[b], v):
                             continue
                         bound = t - (0 if k == 8 else turn(k, d))  # _heading_gap
                         if gmin[b + 2] > bound:  # the tail: nothing within the bound
@@ -815,14 +808,14 @@ def _free_steps(
                             covered = True
                             break
                         n_searches += 1
-                        if _stair_covered(sp, first[cell * N_SLOTS + k], bound, ve):  # as at the pop
+                        if _stair_covered(sp, first[cell * N_SLOTS + k], bound, v):  # as at the pop
                             covered = True
                             break
                 tmax = first[goal_state]
                 if not covered and tmax >= 0:
                     bound = t + (ht[cell * N_SLOTS + d] if ht.shape[0] > 1 else 0)
                     m = gmin[goal_base + min(bound, tmax)]
-                    covered = m < np.inf and _le(m, f_vul * (1.0 + eps))
+                    covered = m < np.inf and _le(m, f_vul)
                 if covered:
                     continue
             else:

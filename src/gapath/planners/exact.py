@@ -59,6 +59,7 @@ from gapath.errors import ConfigError, LabelBudgetError, NoPathError, non_negati
 from gapath.grid import SQRT2
 from gapath.monotone import Frame, expand_profiles, split_paths
 from gapath.objectives import OBJECTIVES, QUARTER_PI, objective_index
+from gapath.planners._apex_kernels import _apex_run
 from gapath.planners._boa_kernels import (
     C_EDGES,
     C_EXPANDED,
@@ -696,10 +697,10 @@ def free_front(
     epsilon : float, optional
         0 (default): the exact front. With the three objectives length,
         vulnerability and smoothness (any column order), ``epsilon > 0``
-        makes the search approximate and faster: a label is also dropped
-        when a label already expanded at its cell, or a solution, is at most
-        as long, turns at most as much and has at most ``1 + epsilon`` times
-        its vulnerability (see Notes, "Approximate fronts").
+        makes the search approximate and faster, within a guaranteed
+        factor: every point of the exact front is covered by a returned path
+        with at most ``1 + epsilon`` times its length and its vulnerability
+        and no more turns (see Notes, "Approximate fronts").
 
     Returns
     -------
@@ -713,7 +714,7 @@ def free_front(
         ``tie_edges``, the ties recorded, with the default tie-break on
         length and vulnerability; with length, vulnerability and smoothness,
         ``stair_searches``, the staircase searches that the per-cell
-        summaries left open, and ``stair_floats``, the size of the
+        summaries left open (exact search only), and ``stair_floats``, the size of the
         staircase pool).
 
     Raises
@@ -826,19 +827,24 @@ def free_front(
         direction only, states are cells and paths are simple.
 
     Approximate fronts
-        ``epsilon > 0`` is epsilon-dominance pruning on the vulnerability
-        (the length is already ordered by the open list; turns are compared
-        exactly). Every returned path is feasible and simple, its objectives
-        are its own, and none dominates a point of the exact front. The
-        slack is relative to each label's own vulnerability and may add up
-        along a path, so no approximation factor is guaranteed. Measured on
-        a 256x256 random map with 20 % obstacles (exact front 11,393 points
-        in 200 CPU s): 0.02 keeps a hypervolume ratio of 0.958 in 18 s,
-        0.04 0.911 in 7 s; on Berlin_1_256 0.998 in 3 s against 11 s
-        (``docs/results/free_paths.md``, "Approximate three-objective search
-        after the faces"). It misses the edges of the front most: the
-        free-path archive (:class:`gapath.operators.archive.FreePathArchive`)
-        runs it beside its exact two-objective faces.
+        ``epsilon > 0`` runs an apex-path search in the manner of A*pex
+        (Zhang et al. 2022) on the exact search's states: each open label
+        also carries an apex, lower bounds on the length and vulnerability
+        of the labels it stands for; a new label is merged into an open
+        label of its cell (or replaces it) when one of the two turns at most
+        as much and is within ``1 + epsilon`` of both apexes' smaller length
+        and vulnerability, and the dominance checks compare apexes. The
+        factor therefore never adds up along a path: for every point ``p``
+        of the exact front some returned path has length ``<= (1 +
+        epsilon) p_length``, vulnerability ``<= (1 + epsilon) p_vul`` and
+        turns ``<= p_turns`` (tested against the exact front). Every
+        returned path is feasible and simple, its objectives are its own,
+        and none dominates a point of the exact front. The front is much
+        smaller than the exact one and holds the inside of the front
+        better than its edges; the free-path archive
+        (:class:`gapath.operators.archive.FreePathArchive`) runs it beside
+        its exact two-objective faces. Measured time and hypervolume ratios
+        are in ``docs/results/free_paths.md`` ("Apex search").
 
     Objective values are computed as in :mod:`gapath.objectives` (step
     counts, eighth turns, vulnerability summed from the start in path order),
@@ -1104,36 +1110,21 @@ def _search_pass(
     fixed = hs.nbytes + hd.nbytes + hv.nbytes + ht.nbytes + gmin.nbytes + first.nbytes
     slices = _Slices(1 << 14, 1 << 10, 1 << 26)
     sp = _stair_pool(1 << 16 if mode == MODE_THREE else 0)  # MODE_THREE's staircases
+    if eps > 0:  # the approximate search: the last open label of each state
+        open_at = np.full(first.shape[0] - 1, -1, np.int32)
+        fixed += open_at.nbytes
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
-        li, lf, sols, hk, hid, sp, status = _free_run(
-            occ,
-            pot,
-            gr,
-            gc,
-            cs,
-            mask,
-            mode,
-            P,
-            Q,
-            hs,
-            hd,
-            hv,
-            ht,
-            gmin,
-            first,
-            li,
-            lf,
-            sols,
-            hk,
-            hid,
-            st,
-            stf,
-            sp,
-            slices.n,
-            budget,
-            eps,
-        )
+        if eps > 0:
+            li, lf, sols, hk, hid, sp, status = _apex_run(
+                occ, pot, gr, gc, cs, mask, hs, hd, hv, ht, gmin, first,
+                li, lf, sols, hk, hid, st, stf, sp, open_at, slices.n, budget, eps,
+            )  # fmt: skip
+        else:
+            li, lf, sols, hk, hid, sp, status = _free_run(
+                occ, pot, gr, gc, cs, mask, mode, P, Q, hs, hd, hv, ht, gmin, first,
+                li, lf, sols, hk, hid, st, stf, sp, slices.n, budget,
+            )  # fmt: skip
         interrupt.check()
         if status == PAUSED:  # a longer search: hold Ctrl-C from now on
             interrupt.arm()
@@ -1156,7 +1147,8 @@ def _search_pass(
         int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + sp.nbytes),
     )
     if mode == MODE_THREE:
-        total["stair_searches"] = total.get("stair_searches", 0) + int(st[S_SEARCHES])
+        if eps == 0:  # (the approximate search does not count them)
+            total["stair_searches"] = total.get("stair_searches", 0) + int(st[S_SEARCHES])
         total["stair_floats"] = max(total.get("stair_floats", 0), int(sp[SP_USED]))
     return li, lf, sols[: st[S_SOLS]], st
 
