@@ -64,11 +64,11 @@ from gapath.planners._exact_kernels import (
     THREE_BLOCK,
     TURNS,
     _goal_record,
-    _grow,
-    _grow1,
     _heap4_pop,
     _heap4_push,
+    _heap_rows,
     _le,
+    _make_room,
     _slot,
     _stair_covered,
     _stair_room,
@@ -144,11 +144,7 @@ def _apex_run(
     call."""
     pops0 = st[S_POPS]
     if hk.shape[1] == 3:  # a new search: labels into the heap rows, apexes beside the values
-        hk4 = np.empty((hk.shape[0], 4))
-        for i in range(st[S_SIZE]):
-            hk4[i, :3] = hk[i]
-            hk4[i, 3] = hid[i]
-        hk = hk4
+        hk = _heap_rows(hk, hid, st[S_SIZE])
     if lf.shape[1] == 1:
         lf2 = np.empty((lf.shape[0], 3))
         for i in range(st[S_N]):
@@ -183,15 +179,7 @@ def _apex_run(
         )
         if status != NEED_ROOM:
             return li, lf, sols, hk, hid, sp, status
-        if st[S_N] + 8 > li.shape[0]:
-            li = _grow(li, st[S_N] + 8)
-            lf = _grow(lf, st[S_N] + 8)
-        if st[S_SIZE] + 8 > hk.shape[0]:
-            hk = _grow(hk, st[S_SIZE] + 8)
-        if st[S_SOLS] + 1 > sols.shape[0]:
-            sols = _grow1(sols, st[S_SOLS] + 1)
-        if sp[SP_USED] + _stair_room(sp) > sp.shape[0]:
-            sp = _grow1(sp, int(sp[SP_USED]) + _stair_room(sp))
+        li, lf, sols, hk, hid, sp = _make_room(li, lf, sols, hk, hid, sp, st, True)
 
 
 @numba.njit(cache=True)

@@ -583,11 +583,7 @@ def _free_run(
     """
     pops0 = st[S_POPS]
     if mode == MODE_THREE and hk.shape[1] == 3:  # a new search: labels into the heap rows
-        hk4 = np.empty((hk.shape[0], 4))
-        for i in range(st[S_SIZE]):
-            hk4[i, :3] = hk[i]
-            hk4[i, 3] = hid[i]
-        hk = hk4
+        hk = _heap_rows(hk, hid, st[S_SIZE])
     while True:
         status = _free_steps(
             occ,
@@ -618,16 +614,35 @@ def _free_run(
         )
         if status != NEED_ROOM:
             return li, lf, sols, hk, hid, sp, status
-        if st[S_N] + 8 > li.shape[0]:
-            li = _grow(li, st[S_N] + 8)
-            lf = _grow(lf, st[S_N] + 8)
-        if st[S_SIZE] + 8 > hid.shape[0]:
-            hk = _grow(hk, st[S_SIZE] + 8)
-            hid = _grow1(hid, st[S_SIZE] + 8)
-        if st[S_SOLS] + 1 > sols.shape[0]:
-            sols = _grow1(sols, st[S_SOLS] + 1)
-        if mode == MODE_THREE and sp[SP_USED] + _stair_room(sp) > sp.shape[0]:
-            sp = _grow1(sp, int(sp[SP_USED]) + _stair_room(sp))
+        li, lf, sols, hk, hid, sp = _make_room(li, lf, sols, hk, hid, sp, st, mode == MODE_THREE)
+
+
+@numba.njit(cache=True)
+def _heap_rows(hk, hid, size):
+    """MODE_THREE's open list of a new search: the 3-column heap of
+    :func:`_free_init` with each entry's label in a 4th column."""
+    hk4 = np.empty((hk.shape[0], 4))
+    for i in range(size):
+        hk4[i, :3] = hk[i]
+        hk4[i, 3] = hid[i]
+    return hk4
+
+
+@numba.njit(cache=True)
+def _make_room(li, lf, sols, hk, hid, sp, st, three):
+    """The tables of a search loop that returned NEED_ROOM, each doubled
+    if the next pop could overflow it (the staircase pool with ``three``)."""
+    if st[S_N] + 8 > li.shape[0]:
+        li = _grow(li, st[S_N] + 8)
+        lf = _grow(lf, st[S_N] + 8)
+    if st[S_SIZE] + 8 > hid.shape[0]:
+        hk = _grow(hk, st[S_SIZE] + 8)
+        hid = _grow1(hid, st[S_SIZE] + 8)
+    if st[S_SOLS] + 1 > sols.shape[0]:
+        sols = _grow1(sols, st[S_SOLS] + 1)
+    if three and sp[SP_USED] + _stair_room(sp) > sp.shape[0]:
+        sp = _grow1(sp, int(sp[SP_USED]) + _stair_room(sp))
+    return li, lf, sols, hk, hid, sp
 
 
 @numba.njit(cache=True)
