@@ -439,7 +439,7 @@ def _three_insert(sp, first, gmin, s, t, v):
 
 
 @numba.njit(cache=True, inline="always")
-def _state_covered(li, lf, x, gmin, cell_size):
+def _state_covered(li, x, gmin):
     """MODE_HEADING: True if a label already expanded at the cell of ``x``
     covers ``x``.
 
@@ -447,17 +447,23 @@ def _state_covered(li, lf, x, gmin, cell_size):
     open list before ``x`` (or before ``x``'s parent), so ``P(a) <= P(x)``;
     ``a`` covers ``x`` when its turns, charged with the most by which the
     next turn after ``a``'s heading may exceed the one after ``x``'s
-    (``_heading_gap``, 0 for ``x``'s own state), are not above ``x``'s. So
-    the g2_min of each heading of the cell decides.
+    (``_heading_gap``, 0 for ``x``'s own state), are not above ``x``'s.
+    :func:`_state_expand` keeps, for each heading of the cell, the least of
+    those charged turns over the expanded labels: one entry decides.
     """
-    c = li[x, CELL]
-    hx = li[x, F_HEAD]
-    t = li[x, TURNS]
+    return gmin[li[x, CELL] * N_SLOTS + _slot(li[x, F_HEAD])] <= li[x, TURNS]
+
+
+@numba.njit(cache=True, inline="always")
+def _state_expand(gmin, c, ha, t):
+    """MODE_HEADING: label with heading ``ha`` and ``t`` turns expanded at
+    cell ``c``: each heading's entry of the cell (see :func:`_state_covered`)
+    takes ``t`` charged with :func:`_heading_gap` from ``ha`` to it."""
+    base = c * N_SLOTS
     for k in range(N_SLOTS):
-        m = gmin[c * N_SLOTS + k]
-        if m < np.inf and m + _heading_gap(k if k < 8 else -1, hx) <= t:
-            return True
-    return False
+        e = t + _heading_gap(ha, k if k < 8 else NO_HEADING)
+        if e < gmin[base + k]:
+            gmin[base + k] = e
 
 
 @numba.njit(cache=True, inline="always")
@@ -746,7 +752,7 @@ def _free_steps(
                 m = gmin[goal_base + min(bound, tmax)]
                 covered = m < np.inf and _le(m, v + hv[c])
         else:
-            covered = (c != goal and _state_covered(li, lf, x, gmin, cell_size)) or _goal_covered(
+            covered = (c != goal and _state_covered(li, x, gmin)) or _goal_covered(
                 li, lf, x, Q, goal_min, cell_size, hs, hd, hv, ht
             )
         if covered:
@@ -771,7 +777,7 @@ def _free_steps(
         if mode == MODE_THREE:
             _three_insert(sp, first, gmin, s, li[x, TURNS], lf[x, F_VUL])
         else:
-            gmin[s] = min(gmin[s], _g(li, lf, x, Q, cell_size))  # MODE_HEADING: g2_min only
+            _state_expand(gmin, c, li[x, F_HEAD], li[x, TURNS])  # MODE_HEADING: charged g2_min
         r, col = c // w, c % w
         head = li[x, F_HEAD]
         x_ns, x_nd, x_t, x_v = li[x, NS], li[x, ND], li[x, TURNS], lf[x, F_VUL]
@@ -834,7 +840,7 @@ def _free_steps(
                 if covered:
                     continue
             else:
-                if cell != goal and _state_covered(li, lf, j, gmin, cell_size):
+                if cell != goal and _state_covered(li, j, gmin):
                     continue
                 if _goal_covered(li, lf, j, Q, goal_min, cell_size, hs, hd, hv, ht):
                     continue
