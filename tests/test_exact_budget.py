@@ -134,6 +134,95 @@ def test_bad_budget(bad):
         free_front(_ws(), LV, max_labels=bad)
 
 
+def _recomputed(ws, front):
+    """``front``'s paths checked (valid, simple) and their objectives
+    recomputed, in ``front.objectives``' order."""
+    from test_free_paths import check_path
+
+    from gapath.objectives import evaluate_paths, pad_paths
+    from gapath.problems import FreePathProblem
+
+    for path in front.paths:
+        check_path(ws, path)
+    P, L = pad_paths(front.paths)
+    M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
+    return FreePathProblem(ws, front.objectives).objective_values(M)
+
+
+def _matched(f, F, tol=1e-9) -> bool:
+    return bool(np.any(np.all(np.abs(F - f) <= tol * (1 + np.abs(f)), axis=1)))
+
+
+def _room():
+    from test_free_paths import room
+
+    return room(h=24, w=28, seed=3)  # a (length, smoothness) front of 6 points
+
+
+#: one case per free search: BOA*, BOA* on (cell, heading) states (twice),
+#: NAMOA*-dr, the k-objective search; with a map whose front has several points
+PARTIAL_CASES = [
+    (LV, "auto", _ws),
+    (("vulnerability", "smoothness"), "auto", _ws),
+    (("length", "smoothness"), "auto", _room),
+    (LVS, "auto", _ws),
+    (LVS, "k", _ws),
+]
+
+
+@pytest.mark.parametrize("objectives, search, make", PARTIAL_CASES)
+def test_expansion_budget_returns_a_part_of_the_exact_front(objectives, search, make, monkeypatch):
+    """``max_expansions`` ends the search at the first check past it (every
+    CHECK_POPS pops) with the solutions found so far: points of the exact
+    front, and every exact point with a smaller first key (length, else
+    vulnerability) among them; valid paths with ``F`` recomputed; the same
+    on every call. A budget the search does not reach changes nothing."""
+    monkeypatch.setattr(exact, "CHECK_POPS", 16)
+    ws = make(seed=7, size=24) if make is _ws else make()
+    checks = []
+    full = free_front(ws, objectives, search=search, max_expansions=1e12, progress=checks.append)
+    n = full.stats["expansions"]
+    assert full.stats["complete"] is True
+    # a budget half-way between the first solution and the end
+    found = [c["expansions"] for c in checks if 0 < c["solutions"] and c["expansions"] < n]
+    budget = found[len(found) // 2]
+    part = free_front(ws, objectives, search=search, max_expansions=budget)
+    assert part.stats["complete"] is False
+    assert budget < part.stats["expansions"] < n
+    assert 0 < len(part) < len(full)
+    np.testing.assert_allclose(part.F, _recomputed(ws, part), rtol=1e-12, atol=1e-12)
+    assert all(_matched(f, full.F) for f in part.F)
+    key = objectives.index("length" if "length" in objectives else "vulnerability")
+    top = part.F[:, key].max()
+    below = full.F[full.F[:, key] < top * (1 - 1e-9)]
+    assert len(below) > 0 and all(_matched(f, part.F) for f in below)
+    _same(part, free_front(ws, objectives, search=search, max_expansions=budget))
+    whole = free_front(ws, objectives, search=search, max_expansions=n)
+    assert whole.stats["complete"] is True
+    _same(full, whole)
+
+
+def test_expansion_budget_of_the_approximate_search(monkeypatch):
+    """With ``epsilon > 0`` the budget stops the apex search the same way:
+    valid paths, ``F`` recomputed, none better than the exact front."""
+    monkeypatch.setattr(exact, "CHECK_POPS", 16)
+    ws = _ws(seed=7, size=24)
+    approx = free_front(ws, LVS, epsilon=0.1)
+    part = free_front(ws, LVS, epsilon=0.1, max_expansions=approx.stats["expansions"] // 2)
+    assert approx.stats["complete"] is True and part.stats["complete"] is False
+    assert 0 < len(part) < len(approx)
+    np.testing.assert_allclose(part.F, _recomputed(ws, part), rtol=1e-12, atol=1e-12)
+    exact_F = free_front(ws, LVS).F
+    for f in part.F:
+        assert not np.any(np.all(f <= exact_F, axis=1) & np.any(f < exact_F - 1e-9, axis=1))
+
+
+@pytest.mark.parametrize("bad", [-1, "x", float("nan")])
+def test_bad_expansion_budget(bad):
+    with pytest.raises(ConfigError, match="max_expansions"):
+        free_front(_ws(), LV, max_expansions=bad)
+
+
 @pytest.mark.parametrize("kind", ["free", "monotone"])
 def test_keyboard_interrupt_propagates_and_leaves_no_state(kind, tiny_slices):
     ws = _ws(seed=4)

@@ -427,12 +427,12 @@ def test_faces_cover_every_pairwise_exact_front(seed):
         minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=seed, callback=archive)
         runs[faces] = archive
     with_faces, without = runs[None], runs[0]
-    assert [pair for pair, _ in with_faces.face_sizes] == PAIRS
+    assert [pair for pair, _, _ in with_faces.face_sizes] == PAIRS
     assert without.face_sizes == [] and without.faces == 0
     missed = 0
-    for pair, n in with_faces.face_sizes:
+    for pair, n, done in with_faces.face_sizes:
         face = free_front(ws, pair).F
-        assert n == len(face)
+        assert done and n == len(face)
         idx = [OBJ3.index(name) for name in pair]
         assert all(_covers(with_faces.F, idx, f) for f in face)
         missed += sum(not _covers(without.F, idx, f) for f in face)
@@ -440,41 +440,68 @@ def test_faces_cover_every_pairwise_exact_front(seed):
     _check_front(ws, p, with_faces.front(), OBJ3)
 
 
-def test_faces_over_budget_are_dropped_and_two_objectives_have_none():
+def _on_front(F, exact) -> bool:
+    """Every row of ``F`` is a point of ``exact`` (up to the tolerance)."""
+    return all(np.any(np.all(np.abs(exact - f) <= TOL * np.abs(f) + 1e-12, axis=1)) for f in F)
+
+
+def test_faces_over_budget_keep_what_they_found_and_two_objectives_have_none(monkeypatch):
+    """A face search that reaches what is left of the budget stops there
+    (checked every CHECK_POPS pops, 8 here) and keeps the points it found,
+    each on its exact face; the searches after it do not run."""
+    from gapath.planners import exact
+
+    monkeypatch.setattr(exact, "CHECK_POPS", 8)
     ws = room(h=14, w=16, seed=43)
     p = FreePathProblem(ws, OBJ3)
     archive = FreePathArchive(p, n_refine=0, extremes=0, faces=1e-6, approx=0)
     minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=archive)
-    assert archive.face_sizes == [(pair, None) for pair in PAIRS]
-    assert archive.n_eval == 0
-    # a budget that the first search fits, with one expansion left for the rest
-    used = {}
-    first = free_front(ws, PAIRS[0], progress=lambda info: used.update(info))
-    shared = FreePathArchive(
-        p, n_refine=0, extremes=0, faces=(used["expansions"] + 1) / p.encoding.n_reachable, approx=0
-    )
+    (first, k, done), *rest = archive.face_sizes
+    assert first == PAIRS[0] and not done
+    assert rest == [(pair, None, False) for pair in PAIRS[1:]]
+    assert archive.n_eval == k
+    # a budget that the first search fits, with what the second needs to find half
+    # of its solutions left for the rest: the second stops there and keeps them
+    full = [free_front(ws, pair) for pair in PAIRS]
+    checks = []
+    free_front(ws, PAIRS[1], max_expansions=1e12, progress=checks.append)
+    found = [c["expansions"] for c in checks if 0 < c["solutions"] < len(full[1])]
+    m = found[len(found) // 2] + 0.5
+    budget = full[0].stats["expansions"] + m
+    shared = FreePathArchive(p, n_refine=0, extremes=0, faces=budget / p.encoding.n_reachable, approx=0)
     minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=shared)
-    assert shared.face_sizes == [(PAIRS[0], len(first)), (PAIRS[1], None), (PAIRS[2], None)]
+    assert shared.face_sizes[0] == (PAIRS[0], len(full[0]), True)
+    (second, k2, done2), third = shared.face_sizes[1:]
+    assert second == PAIRS[1] and not done2 and 0 < k2 < len(full[1])
+    assert third == (PAIRS[2], None, False)
+    part = free_front(ws, PAIRS[1], max_expansions=m)
+    assert len(part) == k2 and _on_front(part.F, full[1].F)
+    idx = [OBJ3.index(name) for name in PAIRS[1]]
+    assert all(_covers(shared.F, idx, f) for f in part.F)
     assert FreePathArchive(FreePathProblem(ws), n_refine=0).faces == 0
     for bad in (-1, "x", float("nan")):
         with pytest.raises(ConfigError, match="faces"):
             FreePathArchive(p, faces=bad)
 
 
-def test_approximate_search_follows_the_faces_within_its_own_budget():
+def test_approximate_search_follows_the_faces_within_its_own_budget(monkeypatch):
     """With length, vulnerability and smoothness the faces are followed by
     the approximate three-objective search (its own budget): its points are
     archived (each matched by an archived path at least as good), the front
-    stays valid and never beats the exact one; a budget it runs past drops
-    it and nothing else; other objective sets have none."""
+    stays valid and never beats the exact one; a budget it reaches stops
+    it (keeping what it found) and nothing else; other objective sets have
+    none."""
+    from gapath.planners import exact
+
+    monkeypatch.setattr(exact, "CHECK_POPS", 8)
     ws = room(h=14, w=16, seed=44)
     p = FreePathProblem(ws, OBJ3)
     archive = FreePathArchive(p, n_refine=0, extremes=0)
     minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=archive)
     assert archive.approx == APPROX_EPSILON
-    assert [objs for objs, _ in archive.face_sizes] == PAIRS + [OBJ3]
+    assert [objs for objs, _, _ in archive.face_sizes] == PAIRS + [OBJ3]
     approx = free_front(ws, OBJ3, epsilon=APPROX_EPSILON)
-    assert archive.face_sizes[-1] == (OBJ3, len(approx))
+    assert archive.face_sizes[-1] == (OBJ3, len(approx), True)
     assert all(_covers(archive.F, [0, 1, 2], f) for f in approx.F)
     _check_front(ws, p, archive.front(), OBJ3)
     # the approximate search alone, and one over its budget (the faces untouched)
@@ -482,13 +509,18 @@ def test_approximate_search_follows_the_faces_within_its_own_budget():
     over = FreePathArchive(p, n_refine=0, extremes=0, approx_budget=1e-6)
     for a in (alone, over):
         minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=a)
-    assert alone.face_sizes == [(OBJ3, len(approx))]
-    assert over.face_sizes == archive.face_sizes[:3] + [(OBJ3, None)]
-    # not run when a face did not fit its budget
+    assert alone.face_sizes == [(OBJ3, len(approx), True)]
+    stopped = free_front(ws, OBJ3, epsilon=APPROX_EPSILON, max_expansions=1)
+    assert not stopped.stats["complete"] and len(stopped) < len(approx)
+    assert over.face_sizes == archive.face_sizes[:3] + [(OBJ3, len(stopped), False)]
+    # not run when a face stopped short of its front
     dropped = FreePathArchive(p, n_refine=0, extremes=0, faces=1e-6)
     minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=dropped)
-    assert dropped.face_sizes == [(pair, None) for pair in PAIRS] + [(OBJ3, None)]
-    assert dropped.n_eval == 0
+    k = len(free_front(ws, PAIRS[0], max_expansions=1))
+    assert dropped.face_sizes == [(PAIRS[0], k, False)] + [(pair, None, False) for pair in PAIRS[1:]] + [
+        (OBJ3, None, False)
+    ]
+    assert dropped.n_eval == k
     assert FreePathArchive(FreePathProblem(ws), n_refine=0).approx == 0
     assert (
         FreePathArchive(FreePathProblem(ws, ("length", "smoothness", "vulnerability")), n_refine=0).approx > 0

@@ -72,7 +72,8 @@ class LabelBudgetError(GapathError):
 
     The message says how far the search got; ``stats`` holds the same figures
     (labels, expansions, solutions so far, seconds). What was found is not a
-    Pareto front, so none is returned.
+    Pareto front, so none is returned (a work budget that returns the
+    solutions found so far is ``free_front(..., max_expansions=)``).
     """
 
     def __init__(self, message: str, stats: dict | None = None):

@@ -25,9 +25,12 @@ are re-routed under a heavy turn weight (the smooth end of the front).
 With three or more objectives the first refinement also archives the exact
 *faces* of the front: for each pair of the objectives among length,
 vulnerability and smoothness, every path of the exact two-objective front
-(:func:`gapath.planners.exact.free_front`), while the searches stay within
-a budget of expansions per reachable cell that they share (``faces``; the
-(length, smoothness) search first, the cheapest on every map measured). Each such
+(:func:`gapath.planners.exact.free_front`), within a budget of expansions
+per reachable cell that they share (``faces``; the (length, smoothness)
+search first, the cheapest on every map measured). A search that reaches
+what is left of the budget stops there and gives the points it has found,
+each on the exact front (``free_front(..., max_expansions=)``); the ones
+after it do not run. Each such
 path is best in its pair, so its objective vector lies on the boundary of
 the full front (or next to it: its third objective is not optimised); the
 refinement then works inwards from them.
@@ -35,9 +38,10 @@ refinement then works inwards from them.
 When the objectives are length, vulnerability and smoothness, the faces
 are followed by an *approximate* three-objective search
 (:func:`gapath.planners.exact.free_front` with ``epsilon=approx``, within a
-budget of its own, ``approx_budget`` expansions per reachable cell): its
-points lie across the inside of the front, which the faces bound but do
-not fill, and it misses the edges, which the faces hold.
+budget of its own, ``approx_budget`` expansions per reachable cell, and
+only when every face search finished): its points lie across the inside
+of the front, which the faces bound but do not fill, and it misses the
+edges, which the faces hold.
 
 The archive is updated incrementally (each generation's ``k`` new paths
 against its ``n`` paths: ``O(k n)``) and capped (:data:`CAP` paths by
@@ -90,10 +94,6 @@ FACE_BUDGET = 100
 APPROX_EPSILON = 0.1
 #: Its budget in expansions per reachable cell (``approx_budget``'s default).
 APPROX_BUDGET = 200
-
-
-class _OverBudget(Exception):
-    pass
 
 
 def dominated_by(B, A, tol: float = TOL) -> np.ndarray:
@@ -297,18 +297,19 @@ class FreePathArchive(PathArchive):
         two-objective face searches (see the module docstring), shared in
         their order, in expansions per reachable cell (default
         :data:`FACE_BUDGET`, 100; 0 with two objectives, or to switch the
-        faces off); the search that runs past what is left is dropped, and
-        so are the ones after it (deterministic: it depends on the map, not
-        on the clock).
+        faces off); the search that reaches what is left stops there and
+        keeps the points it found (part of its exact front), and the ones
+        after it do not run (deterministic: it depends on the map, not on
+        the clock).
         The face paths are counted in ``n_eval``.
     approx : the ``epsilon`` of the approximate three-objective search run
         after the faces (default :data:`APPROX_EPSILON` when the objectives
         are length, vulnerability and smoothness; 0 switches it off; must
         be 0 with other objectives). Its paths are counted in ``n_eval``.
     approx_budget : that search's budget in expansions per reachable cell
-        (default :data:`APPROX_BUDGET`); past it the search is dropped
-        (deterministic, as the faces). It is not run when a face search
-        was dropped: on such a map it costs more than the faces.
+        (default :data:`APPROX_BUDGET`); it stops there and keeps what it
+        found (deterministic, as the faces). It is not run when a face
+        search stopped short: on such a map it costs more than the faces.
     extremes : with smoothness as an objective, whole archived paths
         re-routed per generation under a heavy turn weight
         (``log10(c / a)`` in :data:`EXTREME_TURNS`) and a light cell cost
@@ -439,9 +440,9 @@ class FreePathArchive(PathArchive):
             )
         self.approx_budget = non_negative(approx_budget, "approx_budget", finite=False, what=per_cell)
         self._faces_done = False
-        #: the face searches run, then the approximate one: ``(objectives, points or
-        #: None when over budget)``
-        self.face_sizes: list[tuple[tuple[str, ...], int | None]] = []
+        #: the face searches, then the approximate one: ``(objectives, points kept or
+        #: None when not run, whether it finished within the budget)``
+        self.face_sizes: list[tuple[tuple[str, ...], int | None, bool]] = []
         if cap is not None:
             try:
                 ok = float(cap) == int(cap) and int(cap) >= 2
@@ -521,7 +522,8 @@ class FreePathArchive(PathArchive):
         (length, smoothness) pair first, while the searches stay within the
         ``faces`` expansions per reachable cell they share; then, with
         ``approx > 0``, those of the approximate three-objective front
-        within its own ``approx_budget``."""
+        within its own ``approx_budget``. A search stopped by its budget
+        gives the points it found (``free_front(..., max_expansions=)``)."""
         from gapath.errors import NoPathError
         from gapath.operators._archive_kernels import keyed
         from gapath.planners.exact import free_front
@@ -529,35 +531,28 @@ class FreePathArchive(PathArchive):
         enc = self.problem.encoding
         ws = self.problem.workspace
         left = self.faces * enc.n_reachable
-        spent = 0
-
-        def check(info):
-            nonlocal spent
-            spent = info["expansions"]
-            if spent > left:
-                raise _OverBudget
-
         w = ws.shape[1]
         subs = []
         searches = [(pair, 0.0) for pair in face_pairs(self.problem.objectives)] if self.faces > 0 else []
         if self.approx > 0:
             searches.append((tuple(self.problem.objectives), self.approx))
         for objectives, eps in searches:
-            if eps:  # the approximate search: a budget of its own, unless a face did not fit
-                fit = all(n is not None for _, n in self.face_sizes)
+            if eps:  # the approximate search: a budget of its own, unless a face stopped short
+                fit = all(done for _, _, done in self.face_sizes)
                 left = self.approx_budget * enc.n_reachable if fit else 0
             if left <= 0:
-                self.face_sizes.append((objectives, None))
+                self.face_sizes.append((objectives, None, False))
                 continue
             try:
-                paths = free_front(ws, objectives, progress=check, epsilon=eps).paths
-            except (_OverBudget, NoPathError):
-                self.face_sizes.append((objectives, None))
+                front = free_front(ws, objectives, epsilon=eps, max_expansions=left)
+            except NoPathError:
+                self.face_sizes.append((objectives, None, False))
                 left = 0
                 continue
-            left -= spent
-            self.face_sizes.append((objectives, len(paths)))
-            subs += [p[:, 0].astype(np.int64) * w + p[:, 1] for p in paths]
+            done = bool(front.stats["complete"])
+            left = left - front.stats["expansions"] if done else 0
+            self.face_sizes.append((objectives, len(front.paths), done))
+            subs += [p[:, 0].astype(np.int64) * w + p[:, 1] for p in front.paths]
         if not subs:
             return
         sub_off = np.concatenate([[0], np.cumsum([len(x) for x in subs])]).astype(np.int64)

@@ -32,6 +32,7 @@ from gapath.planners._multi_kernels import (
     ND,
     NS,
     OVER_BUDGET,
+    PAUSED,
     S_BUILT,
     S_DROP_NODES,
     S_EXPANDED,
@@ -221,9 +222,17 @@ def _set_sizes(sidx) -> dict[str, float]:
 
 
 def multi_front(
-    workspace, objectives, costmap=None, *, max_labels=None, progress=None, tie_break="smoothest"
+    workspace,
+    objectives,
+    costmap=None,
+    *,
+    max_labels=None,
+    progress=None,
+    tie_break="smoothest",
+    limit=float("inf"),
 ):
-    """The k-objective exact free front (see :func:`gapath.planners.exact.free_front`)."""
+    """The k-objective exact free front (see :func:`gapath.planners.exact.free_front`;
+    ``limit``: its ``max_expansions``, checked)."""
     from gapath.planners import exact
     from gapath.planners._exact_heuristics import _free_heuristics, _move_masks
 
@@ -298,7 +307,8 @@ def multi_front(
             sr * w + sc, layers, okind, ocol, cs, hs, hd, ht, hfl, hop, psum, hsol, timed, n_float
         )
         fixed = sum(a.nbytes for a in (hs, hd, ht, hfl, layers, table, psum, hsol, hop, mask))
-        slices = exact._Slices(1 << 12, 1 << 8, 1 << 24)
+        slices = exact._slices(1 << 12, 1 << 8, 1 << 24, limit)
+        stop = False
         peak = 0
         while True:
             pops, t1 = st[S_POPS], time.perf_counter()
@@ -328,9 +338,10 @@ def multi_front(
                     f"and the solar table covers 40 times the number of cells); no front. Use "
                     f"solar_rate=0 or a label budget (max_labels)"
                 )
+            stop = status == PAUSED and stats["expansions"] > limit
             if progress is not None:
                 progress({"phase": "free", **stats})
-            if status == DONE:
+            if status == DONE or stop:
                 break
 
     sols = sols[: st[S_SOLS]]
@@ -370,6 +381,7 @@ def multi_front(
         "seconds": time.perf_counter() - t0,
         "search": "k-objective",
         "timed": bool(timed),
+        "complete": not stop,
     }
     return exact.ExactFront(
         objectives=names,

@@ -46,6 +46,7 @@ Bit-exact objectives
 
 from __future__ import annotations
 
+import math
 import signal
 import threading
 import time
@@ -272,6 +273,13 @@ def _budget(max_labels) -> int:
     return int(max_labels)
 
 
+def _expansion_limit(max_expansions) -> float:
+    """``max_expansions`` checked: a number >= 0, or None (no limit: inf)."""
+    if max_expansions is None:
+        return math.inf
+    return non_negative(max_expansions, "max_expansions", finite=False, what=" (expansions)")
+
+
 class _DeferredInterrupt:
     """Hold Ctrl-C while a kernel runs and raise it between kernel calls.
 
@@ -339,9 +347,18 @@ class _DeferredInterrupt:
         return False
 
 
+#: Pops per kernel call of a search with ``max_expansions`` (fixed, so that where
+#: it stops does not depend on the machine's speed).
+CHECK_POPS = 1 << 14
+
+
 class _Slices:
     """Work per kernel call, adapted so that each call takes about
-    ``_SLICE_S`` seconds."""
+    ``_SLICE_S`` seconds (see :func:`_slices` for a search with a
+    ``max_expansions``)."""
+
+    #: the search's ``max_expansions`` (:func:`_expansion_limit`)
+    limit = math.inf
 
     def __init__(self, first: int, lo: int, hi: int):
         self.n, self.lo, self.hi = first, lo, hi
@@ -351,6 +368,16 @@ class _Slices:
             return
         scale = _SLICE_S / max(seconds, 1e-4)
         self.n = int(min(self.hi, max(self.lo, self.n * min(4.0, max(0.25, scale)))))
+
+
+def _slices(first: int, lo: int, hi: int, limit: float) -> _Slices:
+    """The :class:`_Slices` of a search; with a finite ``limit`` (its
+    ``max_expansions``) fixed at :data:`CHECK_POPS` pops per call."""
+    slices = _Slices(first, lo, hi)
+    if limit < math.inf:
+        slices.n = slices.lo = slices.hi = CHECK_POPS
+        slices.limit = limit
+    return slices
 
 
 def monotone_front(
@@ -640,6 +667,7 @@ def free_front(
     tie_break="smoothest",
     search="auto",
     epsilon=0.0,
+    max_expansions=None,
 ) -> ExactFront:
     """Exact Pareto front of all feasible 8-connected paths.
 
@@ -701,6 +729,20 @@ def free_front(
         factor: every point of the exact front is covered by a returned path
         with at most ``1 + epsilon`` times its length and its vulnerability
         and no more turns (see Notes, "Approximate fronts").
+    max_expansions : float, optional
+        A work budget: the search ends at the first check past this many
+        expansions (checks every :data:`CHECK_POPS` open-list pops, so it
+        stops at the same place on any machine) and returns the solutions
+        found so far, with ``stats["complete"]`` False. Labels leave the
+        open list in lexicographic order of their f-vectors, so each such
+        solution is a point of the exact front (up to SPEC's tolerance,
+        which the final filter can only apply among the points found), and
+        they are the front's points with the least values of the search's
+        first key: length when it is an objective; else vulnerability, when
+        it is one and there are no costmap objectives; else the first
+        objective given. A part of the front, never a front to compare with
+        (with ``epsilon > 0``, a part of the approximate front). None
+        (default): no budget.
 
     Returns
     -------
@@ -715,7 +757,8 @@ def free_front(
         length and vulnerability; with length, vulnerability and smoothness,
         ``stair_searches``, the staircase searches that the per-cell
         summaries left open (exact search only), and ``stair_floats``, the size of the
-        staircase pool).
+        staircase pool); ``complete``, False when ``max_expansions`` ended the
+        search.
 
     Raises
     ------
@@ -723,7 +766,8 @@ def free_front(
         If an objective is unknown, repeated or ``"interfering"``, a layer
         objective comes without a costmap or is a mean (``"elevation"``: use
         ``"elevation_sum"``), the costmap's grid differs, ``max_labels`` is
-        not a positive integer, ``tie_break`` or ``search`` unknown,
+        not a positive integer, ``max_expansions`` not a number >= 0,
+        ``tie_break`` or ``search`` unknown,
         ``epsilon`` negative or not finite, or non-zero with other
         objectives than length, vulnerability and smoothness, or (with
         ``"solar"`` at a non-zero ``solar_rate``) a label would take more
@@ -882,13 +926,20 @@ def free_front(
     """
     if search not in ("auto", "k"):
         raise ConfigError(f"search must be 'auto' or 'k', got {search!r}")
+    limit = _expansion_limit(max_expansions)
     if search == "k" or not _spec_objectives(objectives):
         if epsilon != 0:
             _epsilon(epsilon, None)
         from gapath.planners._multi import multi_front
 
         return multi_front(
-            workspace, objectives, costmap, max_labels=max_labels, progress=progress, tie_break=tie_break
+            workspace,
+            objectives,
+            costmap,
+            max_labels=max_labels,
+            progress=progress,
+            tie_break=tie_break,
+            limit=limit,
         )
     names, mode, P, Q = _free_plan(objectives)
     epsilon = _epsilon(epsilon, mode)
@@ -899,7 +950,7 @@ def free_front(
     occ = np.ascontiguousarray(workspace.occ)
     pot = np.ascontiguousarray(workspace.potential, dtype=np.float64)
     if mode == MODE_CELL:  # (length, vulnerability): BOA*
-        return _boa_front(workspace, names, occ, pot, budget, progress, tie_break == "smoothest", t0)
+        return _boa_front(workspace, names, occ, pot, budget, progress, tie_break == "smoothest", t0, limit)
     (sr, sc), (gr, gc) = workspace.start, workspace.goal
     h, w = workspace.shape
     cs = float(workspace.cell_size)
@@ -928,6 +979,7 @@ def free_front(
             progress,
             interrupt,
             epsilon,
+            limit,
         )
         total = {"expansions": 0, "generated": 0, "labels": 0, "peak_bytes": 0}
         li, lf, sols, st = _search_pass(*args, total, t0)
@@ -971,7 +1023,7 @@ def _no_path(workspace) -> NoPathError:
     )
 
 
-def _boa_front(workspace, names, occ, pot, budget, progress, ties, t0) -> ExactFront:
+def _boa_front(workspace, names, occ, pot, budget, progress, ties, t0, limit) -> ExactFront:
     """:func:`free_front` on (length, vulnerability), in either column order:
     BOA* (:mod:`gapath.planners._boa_kernels`). A small search is two kernel
     calls (heuristics; search and result arrays); a longer one continues in
@@ -986,13 +1038,14 @@ def _boa_front(workspace, names, occ, pot, budget, progress, ties, t0) -> ExactF
         t_heur = t1 - t0
         if hv[sr * w + sc] == np.inf:
             raise _no_path(workspace)
-        slices = _Slices(1 << 14, 1 << 10, 1 << 26)
+        slices = _slices(1 << 14, 1 << 10, 1 << 26, limit)
         status, result, state = _boa_solve(
             occ, pot, sr, sc, gr, gc, cs, mask, hs, hd, hv, ties, len_first, slices.n, budget
         )
         interrupt.check()
+        complete = True
         if result is None or progress is not None:
-            result = _boa_slices(
+            result, complete = _boa_slices(
                 workspace, occ, pot, mask, hs, hd, hv, ties, len_first, budget, progress, interrupt,
                 slices, status, result, state, t0, t1,
             )  # fmt: skip
@@ -1006,6 +1059,7 @@ def _boa_front(workspace, names, occ, pot, budget, progress, ties, t0) -> ExactF
     if ties:
         stats["tie_edges"] = int(counts[C_EDGES])
     stats["solutions"] = int(counts[C_SOLS])
+    stats["complete"] = complete
     stats["heuristic_seconds"] = t_heur
     stats["seconds"] = time.perf_counter() - t0
     return ExactFront(
@@ -1039,7 +1093,9 @@ def _boa_slices(
     slices, status, result, state, t0, t1,
 ):  # fmt: skip
     """The rest of a BOA* search that did not end in its first slice (or
-    reports progress): slices of :func:`_boa_run`, then :func:`_boa_finish`."""
+    reports progress): slices of :func:`_boa_run`, then :func:`_boa_finish`.
+    Returns ``(result, complete)``: ``complete`` is False when the search
+    stopped at ``slices.limit`` expansions (the solutions found so far)."""
     (gr, gc), w = workspace.goal, workspace.shape[1]
     cs = float(workspace.cell_size)
     pops = 0
@@ -1056,7 +1112,7 @@ def _boa_slices(
                 "seconds": now - t0,
             }
             progress({"phase": "free", **stats})
-            return result
+            return result, True
         gmin, first, li, lf, sols, hk, hid, st, stf, edges, est = state
         if status == PAUSED:  # a longer search: hold Ctrl-C from now on
             interrupt.arm()
@@ -1064,12 +1120,17 @@ def _boa_slices(
         stats = _search_stats(st, now - t0)
         if status == OVER_BUDGET:
             raise _free_budget_error(budget, stats)
-        if status == DONE:
+        stop = status == PAUSED and stats["expansions"] > slices.limit
+        if status == DONE or stop:
             peak = _boa_bytes(hs, hd, hv, gmin, first, li, lf, sols, hk, hid, edges)
             result = _boa_finish(li, lf, sols, st, edges, est[0], pot, w, cs, ties, len_first, peak)
             interrupt.check()
+            if stop:  # the solutions found so far (reported once)
+                if progress is not None:
+                    progress({"phase": "free", **stats})
+                return result, False
             if progress is None:
-                return result
+                return result, True
             continue
         if progress is not None:
             progress({"phase": "free", **stats})
@@ -1097,18 +1158,21 @@ def _search_pass(
     progress,
     interrupt,
     eps,
+    limit,
     total,
     t0,
 ):
     """One run of the free search in slices (progress, Ctrl-C and the budget
-    handled between slices) from ``state`` (what :func:`_free_init` returns);
-    adds its counts to ``total``. Returns the label tables, the solution
-    labels and the scalar state."""
+    handled between slices) from ``state`` (what :func:`_free_init` returns),
+    until done or past ``limit`` expansions; adds its counts to ``total``
+    (``complete``: False when stopped at ``limit``). Returns the label
+    tables, the solution labels and the scalar state."""
     gr, gc = goal
     hs, hd, hv, ht = heuristics
     gmin, first, li, lf, sols, hk, hid, st, stf = state
     fixed = hs.nbytes + hd.nbytes + hv.nbytes + ht.nbytes + gmin.nbytes + first.nbytes
-    slices = _Slices(1 << 14, 1 << 10, 1 << 26)
+    slices = _slices(1 << 14, 1 << 10, 1 << 26, limit)
+    stop = False
     sp = _stair_pool(1 << 16 if mode == MODE_THREE else 0)  # MODE_THREE's staircases
     if eps > 0:  # the approximate search: the last open label of each state
         open_at = np.full(first.shape[0] - 1, -1, np.int32)
@@ -1135,10 +1199,12 @@ def _search_pass(
         stats = _search_stats(st, now - t0, total)
         if status == OVER_BUDGET:
             raise _free_budget_error(budget, stats)
+        stop = status == PAUSED and stats["expansions"] > limit
         if progress is not None:
             progress({"phase": "free", **stats})
-        if status == DONE:
+        if status == DONE or stop:
             break
+    total["complete"] = not stop
     total["expansions"] += int(st[S_EXPANDED])
     total["generated"] += int(st[S_GENERATED])
     total["labels"] = max(total["labels"], int(st[S_N]))  # rows used at the peak
