@@ -71,7 +71,7 @@ def _heading_gap(ha, hb):
 #   1. heuristics: one backward single-objective search per objective, from
 #      the goal (_free_heuristics, in _exact_heuristics.py);
 #   2. an open list of labels ordered lexicographically by their f-vectors
-#      (_heap_push / _heap_pop);
+#      (_heap4_push / _heap4_pop; _free_init's first entry by _heap_push);
 #   3. a label is dropped, when generated and again when popped, if a label
 #      already expanded at its state covers it (_state_covered) or if a
 #      solution already found covers its f-vector (_goal_covered); because
@@ -158,48 +158,11 @@ def _heap_push(hk, hid, size, k1, k2, k3, node):
 
 
 @numba.njit(cache=True, inline="always")
-def _heap_pop(hk, hid, size):
-    """Remove the smallest entry of a heap of ``size`` entries; returns
-    ``(node, size - 1)``."""
-    top = hid[0]
-    size -= 1
-    if size > 0:
-        k1, k2, k3, node = hk[size, 0], hk[size, 1], hk[size, 2], hid[size]
-        i = 0
-        while True:
-            ch = 2 * i + 1
-            if ch >= size:
-                break
-            if ch + 1 < size and _key_less(
-                hk[ch + 1, 0],
-                hk[ch + 1, 1],
-                hk[ch + 1, 2],
-                hid[ch + 1],
-                hk[ch, 0],
-                hk[ch, 1],
-                hk[ch, 2],
-                hid[ch],
-            ):
-                ch += 1
-            if not _key_less(hk[ch, 0], hk[ch, 1], hk[ch, 2], hid[ch], k1, k2, k3, node):
-                break
-            hk[i, 0] = hk[ch, 0]
-            hk[i, 1] = hk[ch, 1]
-            hk[i, 2] = hk[ch, 2]
-            hid[i] = hid[ch]
-            i = ch
-        hk[i, 0] = k1
-        hk[i, 1] = k2
-        hk[i, 2] = k3
-        hid[i] = node
-    return top, size
-
-
-@numba.njit(cache=True, inline="always")
 def _heap4_push(hk, size, k1, k2, k3, node):
     """:func:`_heap_push` on a heap whose rows hold the label too (column 3,
     as a float: exact below 2**53), one row per level touched instead of
-    two arrays (MODE_THREE); the same order."""
+    two arrays (the open list of :func:`_free_steps` and of the apex
+    search); the same order."""
     i = size
     fn = np.float64(node)
     while i > 0:
@@ -219,7 +182,8 @@ def _heap4_push(hk, size, k1, k2, k3, node):
 
 @numba.njit(cache=True, inline="always")
 def _heap4_pop(hk, size):
-    """:func:`_heap_pop` on a heap of :func:`_heap4_push`."""
+    """Remove the smallest entry of a heap of :func:`_heap4_push` with
+    ``size`` entries; returns ``(label, size - 1)``."""
     top = np.int64(hk[0, 3])
     size -= 1
     if size > 0:
@@ -577,8 +541,8 @@ def _free_run(
     no state's set): its row is recycled through a free list linked by
     ``NEXT``. Stops before a pop that could take the label rows in use
     beyond ``max_labels``. Returns ``(li, lf, sols, hk, hid, sp, status)``,
-    status DONE (open list empty), PAUSED or OVER_BUDGET. MODE_THREE keeps
-    each label in its heap row (column 3, :func:`_heap4_push`): the
+    status DONE (open list empty), PAUSED or OVER_BUDGET. The open list
+    keeps each label in its heap row (column 3, :func:`_heap4_push`): the
     3-column heap of :func:`_free_init` is widened at the first call (``hid``
     then only sets the heap's capacity).
 
@@ -588,7 +552,7 @@ def _free_run(
     and this loop doubles it.
     """
     pops0 = st[S_POPS]
-    if mode == MODE_THREE and hk.shape[1] == 3:  # a new search: labels into the heap rows
+    if hk.shape[1] == 3:  # a new search: labels into the heap rows
         hk = _heap_rows(hk, hid, st[S_SIZE])
     while True:
         status = _free_steps(
@@ -625,8 +589,9 @@ def _free_run(
 
 @numba.njit(cache=True)
 def _heap_rows(hk, hid, size):
-    """MODE_THREE's open list of a new search: the 3-column heap of
-    :func:`_free_init` with each entry's label in a 4th column."""
+    """The open list of a new search (either mode, and the apex search):
+    the 3-column heap of :func:`_free_init` with each entry's label in a
+    4th column."""
     hk4 = np.empty((hk.shape[0], 4))
     for i in range(size):
         hk4[i, :3] = hk[i]
@@ -715,10 +680,7 @@ def _free_steps(
             break
         steps += 1
         # 2. the lexicographically smallest label
-        if mode == MODE_THREE:
-            x, size = _heap4_pop(hk, size)
-        else:
-            x, size = _heap_pop(hk, hid, size)
+        x, size = _heap4_pop(hk, size)
         c = li[x, CELL]
 
         # 3. dominance checks (lazy: the sets changed since x was generated)
@@ -793,20 +755,12 @@ def _free_steps(
                 j = free
             else:
                 j = n
-            # the new label's values; MODE_THREE writes its row only once it is kept
-            # (most generated labels are not)
+            # the new label's values; its row is written only once it is kept (most
+            # generated labels are not)
             ns_j = x_ns + (1 - d % 2)
             nd_j = x_nd + d % 2
             t = x_t + (turn(head, d) if head >= 0 else 0)
             v = x_v + pot[r2, c2]
-            if mode != MODE_THREE:  # the checks below read the row
-                li[j, CELL] = cell
-                li[j, F_HEAD] = d
-                li[j, F_PARENT] = x
-                li[j, NS] = ns_j
-                li[j, ND] = nd_j
-                li[j, TURNS] = t
-                lf[j, F_VUL] = v
             n_generated += 1
             # the f-vector, written out (helper calls on the arrays cost reference counting)
             f_len = ((ns_j + hs[cell]) + SQRT2 * (nd_j + hd[cell])) * cell_size
@@ -839,31 +793,27 @@ def _free_steps(
                     covered = m < np.inf and _le(m, f_vul)
                 if covered:
                     continue
-            else:
-                if cell != goal and _state_covered(li, j, gmin):
+            else:  # _state_covered and _goal_covered on the values (Q = turns)
+                if cell != goal and gmin[cell * N_SLOTS + d] <= t:
                     continue
-                if _goal_covered(li, lf, j, Q, goal_min, cell_size, hs, hd, hv, ht):
+                if goal_min < np.inf and not (f_turn < goal_min and not _eq(f_turn, goal_min)):
                     continue
             if j == free:
                 free = li[j, NEXT]
                 n_free -= 1
             else:
                 n += 1
-            if mode == MODE_THREE:
-                li[j, CELL] = cell
-                li[j, F_HEAD] = d
-                li[j, F_PARENT] = x
-                li[j, NS] = ns_j
-                li[j, ND] = nd_j
-                li[j, TURNS] = t
-                lf[j, F_VUL] = v
+            li[j, CELL] = cell
+            li[j, F_HEAD] = d
+            li[j, F_PARENT] = x
+            li[j, NS] = ns_j
+            li[j, ND] = nd_j
+            li[j, TURNS] = t
+            lf[j, F_VUL] = v
             li[j, NEXT] = -1
             k1 = f_len if P == OBJ_LEN else (f_vul if P == OBJ_VUL else f_turn)
             k2 = f_len if second == OBJ_LEN else (f_vul if second == OBJ_VUL else f_turn)
-            if mode == MODE_THREE:
-                _heap4_push(hk, size, k1, k2, f_turn, j)
-            else:
-                _heap_push(hk, hid, size, k1, k2, f_turn, j)
+            _heap4_push(hk, size, k1, k2, f_turn, j)
             size += 1
     st[S_N] = n
     st[S_SIZE] = size
