@@ -451,3 +451,33 @@ def test_search_threads_setting(monkeypatch):
     monkeypatch.setenv("GAPATH_THREADS", "two")
     with pytest.raises(ConfigError, match="GAPATH_THREADS"):
         search_threads(1000)
+
+
+@pytest.mark.parametrize("name", ["via", "field"])
+@pytest.mark.parametrize("how", ["deepcopy", "pickle"])
+def test_copied_encodings_reuse_the_compiled_decoder(name, how):
+    """A deep copy or an unpickled encoding (a Dask worker's) decodes with the
+    same read-only map arrays, so numba reuses the decoder compiled for the
+    original instead of compiling every decode kernel a second time."""
+    import copy
+    import pickle
+
+    ws = room(seed=5)
+    user_layer = np.random.default_rng(0).random(ws.shape)
+    enc = make_free_encoding(name, ws, extra=user_layer)
+    assert user_layer.flags.writeable  # the caller's array is not frozen
+    twin = copy.deepcopy(enc) if how == "deepcopy" else pickle.loads(pickle.dumps(enc))
+    for e in (enc, twin):
+        assert not (e._occ.flags.writeable or e._extra.flags.writeable)
+        assert not (e.workspace.occ.flags.writeable or e.workspace.potential.flags.writeable)
+    rng = np.random.default_rng(1)
+    dispatchers = (K.decode_field, K.decode_field_par, K.decode_via, K.decode_via_par)
+    want = enc.decode(rng.random((6, enc.n_var)))
+    compiled = [len(d.signatures) for d in dispatchers]
+    X = rng.random((6, enc.n_var))  # not in the twin's copied row cache
+    got = twin.decode(X)
+    assert [len(d.signatures) for d in dispatchers] == compiled
+    fresh = enc.decode(X)
+    np.testing.assert_array_equal(got[1], fresh[1])
+    np.testing.assert_array_equal(got[0], fresh[0])
+    assert want[0].shape[0] == 6

@@ -131,3 +131,24 @@ def test_replace():
     assert ws2.start == (30, 0) and ws2.goal == ws.goal
     with pytest.raises(ConfigError, match="unknown workspace field"):
         ws.replace(colour="red")
+
+
+def test_copies_and_unpickled_workspaces_stay_read_only():
+    """Kernels get the same (read-only) arrays from a copy, so numba does not
+    compile a second specialization for a Dask worker's workspace."""
+    import copy
+    import pickle
+
+    from gapath.workspace import read_only
+
+    occ = np.zeros((6, 7), bool)
+    occ[2, 1:5] = True
+    ws = Workspace(occ)
+    assert occ.flags.writeable  # the caller's array is not frozen
+    for twin in (copy.deepcopy(ws), pickle.loads(pickle.dumps(ws)), ws.replace(name="b")):
+        assert not twin.occ.flags.writeable and not twin.potential.flags.writeable
+        np.testing.assert_array_equal(twin.occ, ws.occ)
+        np.testing.assert_array_equal(twin.potential, ws.potential)
+    frozen = read_only(occ[:, ::-1], np.float64)
+    assert frozen.dtype == np.float64 and frozen.flags.c_contiguous and not frozen.flags.writeable
+    assert read_only(ws.occ) is ws.occ  # already read-only: no copy

@@ -18,7 +18,9 @@
   path of 8-adjacent cells (:func:`check_path`).
 
 The numba functions are ``@njit`` and may be called from other kernels; all
-work in cell units (callers scale by ``cell_size``).
+work in cell units (callers scale by ``cell_size``). A kernel that calls
+another passes :data:`ZERO`, :data:`ONE`, :data:`TRUE` or :data:`FALSE`, not
+the literals: numba compiles the callee once more for each literal argument.
 """
 
 from __future__ import annotations
@@ -29,6 +31,14 @@ import numba
 import numpy as np
 
 from gapath.errors import ConfigError
+
+#: 0, 1, True and False typed as int64 and bool, not as literals, for a
+#: kernel to pass to another kernel (a literal argument compiles the callee,
+#: and every kernel it calls, once more).
+ZERO = np.int64(0)
+ONE = np.int64(1)
+TRUE = np.bool_(True)
+FALSE = np.bool_(False)
 
 #: Length of a diagonal step in cell units.
 SQRT2 = math.sqrt(2.0)

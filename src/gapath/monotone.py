@@ -34,7 +34,7 @@ import numpy as np
 
 from gapath.errors import ConfigError
 from gapath.objectives import evaluate_profiles
-from gapath.workspace import Workspace
+from gapath.workspace import Workspace, read_only
 
 
 @dataclass(frozen=True, eq=False)
@@ -72,8 +72,8 @@ class Frame:
             sc, gc = w - 1 - sc, w - 1 - gc
         return cls(
             workspace,
-            np.ascontiguousarray(occ),
-            np.ascontiguousarray(pot),
+            read_only(occ),
+            read_only(pot, np.float64),
             (sr, sc),
             (gr, gc),
             transpose,

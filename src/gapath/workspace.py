@@ -29,6 +29,32 @@ POTENTIAL_S2 = 0.5
 POTENTIAL_RADIUS = 5
 
 
+def read_only(array: ArrayLike, dtype: Any = None) -> np.ndarray:
+    """``array`` as a C-contiguous, read-only array (a read-only view when it
+    is already C-contiguous and of ``dtype``; the caller's array is never
+    frozen).
+
+    The map arrays that reach a numba kernel (occupancy, potential, layer
+    costs) are read-only everywhere, as a :class:`Workspace`'s own are:
+    numba compiles one specialization per set of array flags, so a writable
+    copy (a mirrored frame, an unpickled workspace, a layer given by the
+    user) would otherwise compile the kernel, and every kernel it calls, a
+    second time.
+
+    Examples
+    --------
+    >>> a = np.zeros((2, 3))
+    >>> b = read_only(a[:, ::-1])
+    >>> b.flags.writeable, b.flags.c_contiguous, a.flags.writeable
+    (False, True, True)
+    """
+    out = np.ascontiguousarray(array, dtype=dtype)
+    if out.flags.writeable:
+        out = out.view()
+        out.flags.writeable = False
+    return out
+
+
 @numba.njit(cache=True)
 def _potential_kernel(occ, s2, radius):
     h, w = occ.shape
@@ -71,7 +97,7 @@ def potential_field(occ: np.ndarray, s2: float = POTENTIAL_S2, radius: int = POT
     >>> float(potential_field(occ)[1, 1])
     1.0
     """
-    return _potential_kernel(np.ascontiguousarray(occ, dtype=np.bool_), float(s2), int(radius))
+    return _potential_kernel(read_only(occ, np.bool_), float(s2), int(radius))
 
 
 @dataclass(frozen=True)
@@ -230,8 +256,11 @@ class Workspace:
                     f"occupancy must be boolean (or 0/1), got {arr[r, c].item()!r} at (row {r}, col {c})"
                 )
             arr = arr.astype(bool)
-        self._occ = np.ascontiguousarray(arr, dtype=np.bool_)
-        self._occ.setflags(write=False)
+        occ_c = np.ascontiguousarray(arr, dtype=np.bool_)
+        if occ_c.flags.writeable:  # the caller's array: a frozen private copy
+            occ_c = occ_c.copy()
+            occ_c.setflags(write=False)
+        self._occ = occ_c
         h, w = self._occ.shape
         try:
             cs = float(cell_size)
@@ -276,6 +305,14 @@ class Workspace:
         pot = potential_field(self._occ)
         pot.setflags(write=False)
         return pot
+
+    def __setstate__(self, state: dict[str, Any]) -> None:
+        # copies and unpickled arrays come back writable (a Dask worker's
+        # workspace, a deep copy): freeze them again (see read_only)
+        self.__dict__.update(state)
+        for key in ("_occ", "potential"):
+            if key in state:
+                self.__dict__[key] = read_only(state[key])
 
     def replace(self, **changes: Any) -> Workspace:
         """A copy with some of ``occ, start, goal, cell_size, corner_cutting,

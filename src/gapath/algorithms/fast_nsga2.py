@@ -148,7 +148,7 @@ def fast_survival_order(F, smoothness=None, CV=None, n_survive=None):
     >>> order.tolist(), rank.tolist()
     ([1, 0, 2], [0, 0, 1])
     """
-    F = np.asarray(F, dtype=float)
+    F = np.ascontiguousarray(F, dtype=float)
     n = len(F)
     n_survive = n if n_survive is None else min(int(n_survive), n)
     cv = np.zeros(n) if CV is None else np.asarray(CV, dtype=float).reshape(n, -1)[:, 0]
@@ -749,6 +749,7 @@ class FastNSGA2(Algorithm):
         t0 = self._tick("sorting", t0)
         smooth = data.get("smoothness") if self.tiebreak is not None else None
         smooth = np.zeros(len(F)) if smooth is None else np.asarray(smooth, dtype=float)
+        F = np.ascontiguousarray(F)  # a penalised F may be F-ordered: one kernel specialization
         order, rank, crowding = order_survivors(F, smooth, CV, feasible, ranks, n_survive)
         survivors = arrays.take(order) if offspring is None else arrays.take_merged(offspring, order)
         survivors.rank, survivors.crowding = rank, crowding

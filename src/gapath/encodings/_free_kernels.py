@@ -36,7 +36,7 @@ import math
 import numba
 import numpy as np
 
-from gapath.grid import DC, DR, STEP, move_mask, octile
+from gapath.grid import DC, DR, ONE, STEP, TRUE, ZERO, move_mask, octile
 from gapath.openlist import NOT_HELD, open_decrease, open_pop, open_push
 
 _UNSEEN = 0
@@ -441,8 +441,8 @@ def _via_one(
             b,
             corner_cutting,
             dummy,
-            0,
-            0,
+            ZERO,
+            ZERO,
             0.0,
             1.0,
             hlen,
@@ -458,7 +458,7 @@ def _via_one(
             touched,
             mcache,
             buf,
-            (0, h - 1, 0, w - 1),
+            (ZERO, h - 1, ZERO, w - 1),
         )
         for j in range(1, cnt):
             m = _append(buf[j], cur, pos, m)
@@ -583,7 +583,7 @@ def _field_one(
         mmin,
         hlen,
         hext,
-        True,
+        TRUE,
         0.0,
         hlen,
         hext,
@@ -594,7 +594,7 @@ def _field_one(
         touched,
         mcache,
         buf,
-        (0, h - 1, 0, w - 1),
+        (ZERO, h - 1, ZERO, w - 1),
     )
 
 
@@ -676,13 +676,13 @@ def weighted_paths(occ, extra, s, t, corner_cutting, genes, lam_lo, lam_hi, hlen
             b,
             corner_cutting,
             dummy,
-            0,
-            0,
+            ZERO,
+            ZERO,
             0.0,
             1.0,
             hlen,
             hext,
-            True,
+            TRUE,
             0.0,
             hlen,
             hext,
@@ -693,7 +693,7 @@ def weighted_paths(occ, extra, s, t, corner_cutting, genes, lam_lo, lam_hi, hlen
             touched,
             mcache,
             buf,
-            (0, h - 1, 0, w - 1),
+            (ZERO, h - 1, ZERO, w - 1),
         )
         flat = _store(buf, cnt, i, flat, offsets, keys)
     return flat[: offsets[n]], offsets, keys
@@ -756,8 +756,8 @@ def fit_segment_weights(
                     b,
                     corner_cutting,
                     dummy,
-                    0,
-                    0,
+                    ZERO,
+                    ZERO,
                     0.0,
                     1.0,
                     hlen,
@@ -773,7 +773,7 @@ def fit_segment_weights(
                     touched,
                     mcache,
                     buf,
-                    (0, h - 1, 0, w - 1),
+                    (ZERO, h - 1, ZERO, w - 1),
                 )
                 miss = 0
                 for j in range(cnt):
@@ -853,7 +853,7 @@ def _window(u, v, w, h, margin):
     and ``v`` widened by ``max(margin, extent)`` on every side (``extent``
     the larger side of their box); the whole grid when ``margin < 0``."""
     if margin < 0:
-        return (0, h - 1, 0, w - 1)
+        return (ZERO, h - 1, ZERO, w - 1)
     ur = u // w
     uc = u - ur * w
     vr = v // w
@@ -925,8 +925,8 @@ def _reroute_one(
             b,
             corner_cutting,
             dummy,
-            0,
-            0,
+            ZERO,
+            ZERO,
             0.0,
             1.0,
             hlen,
@@ -1395,7 +1395,7 @@ def reroute_turns(
     h, w = occ.shape
     flat_occ = occ.ravel()
     n = pick.shape[0]
-    state, g, came, heap, touched, buf = _turn_scratch(1, 9 * h * w)
+    state, g, came, heap, touched, buf = _turn_scratch(ONE, 9 * h * w)
     pos = np.full(h * w, -1, np.int64)
     cur = np.empty(h * w, np.int64)
     out = np.empty(max(16, n * (h + w)), np.int64)

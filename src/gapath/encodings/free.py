@@ -63,6 +63,7 @@ import numpy as np
 
 from gapath.encodings import _free_kernels as K
 from gapath.errors import ConfigError, NoPathError
+from gapath.workspace import read_only
 
 #: Default range of ``log10`` of the cell-cost weight (see the module docstring).
 LAM_RANGE = (-3.0, 5.0)
@@ -206,7 +207,7 @@ class FreeEncoding:
 
     def __init__(self, workspace, extra=None, lam_range=LAM_RANGE):
         self.workspace = workspace
-        occ = np.ascontiguousarray(workspace.occ)
+        occ = read_only(workspace.occ)
         h, w = occ.shape
         self.shape = (h, w)
         self._occ = occ
@@ -231,9 +232,9 @@ class FreeEncoding:
                 f"the cell cost of a free-path encoding must be a finite, "
                 f"non-negative ({h}, {w}) array, got shape {extra.shape}"
             )
-        self._extra = np.ascontiguousarray(extra.ravel())
+        self._extra = read_only(extra.ravel().copy())
         # exact costs-to-go to the goal (heuristics of searches that end there)
-        self._hlen, self._hext = K.goal_heuristics(occ, self._extra, self._t, self._cc)
+        self._hlen, self._hext = K.goal_heuristics(occ, self._extra, self._t, self._cc, False)
         self._pmin = float(self._extra[comp].min())
         self._flen, self._fext = K.goal_heuristics(occ, self._extra, self._s, self._cc, True)
         try:
@@ -244,6 +245,12 @@ class FreeEncoding:
             raise ConfigError(f"lam_range must be two finite numbers lo < hi, got {lam_range!r}")
         self.lam_range = (lo, hi)
         self._cache = _RowCache()
+
+    def __setstate__(self, state):
+        # a copy or an unpickled encoding keeps its map arrays read-only, so
+        # that its kernels are not compiled a second time (see read_only)
+        self.__dict__.update(state)
+        self._occ, self._extra = read_only(self._occ), read_only(self._extra)
 
     # -- the genome ------------------------------------------------------------
     def _setup_bounds(self):

@@ -6,7 +6,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from gapath.grid import SQRT2, cuts_corner
+from gapath.grid import SQRT2, ZERO, cuts_corner
 
 
 @numba.njit(cache=True, inline="always")
@@ -337,7 +337,7 @@ def pareto_stretches(
                         e += s
                         continue
                     here = pot[e, c]
-                    nt = 0
+                    nt = ZERO
                     for t in range(nr):
                         tL[nt], tV[nt], tP[nt] = rL[t] + straight, rV[t] + here, rP[t]
                         nt += 1

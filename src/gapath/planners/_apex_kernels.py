@@ -38,7 +38,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from gapath.grid import DC, DR, SQRT2, turn
+from gapath.grid import DC, DR, SQRT2, TRUE, turn
 from gapath.planners._exact_kernels import (
     CELL,
     DONE,
@@ -179,7 +179,7 @@ def _apex_run(
         )
         if status != NEED_ROOM:
             return li, lf, sols, hk, hid, sp, status
-        li, lf, sols, hk, hid, sp = _make_room(li, lf, sols, hk, hid, sp, st, True)
+        li, lf, sols, hk, hid, sp = _make_room(li, lf, sols, hk, hid, sp, st, TRUE)
 
 
 @numba.njit(cache=True)

@@ -758,8 +758,10 @@ def _boa_start(pot, sr, sc, w, cell_size, hs, hd, hv, ties, n_buckets):
     ``(gmin, first, li, lf, sols, hk, hid, st, stf, edges, est)``, with a
     window of ``n_buckets`` buckets (a power of 2; the tests use small ones)."""
     ht = np.zeros(1, np.int64)
+    # int64s, not literals: the same specialization as _free_prepare's call
+    mode, p, q = np.int64(MODE_CELL), np.int64(OBJ_LEN), np.int64(OBJ_VUL)
     gmin, first, li, lf, sols, hk, hid, st, stf = _free_init(
-        pot, sr, sc, w, cell_size, MODE_CELL, OBJ_LEN, OBJ_VUL, hs, hd, hv, ht, hs.shape[0]
+        pot, sr, sc, w, cell_size, mode, p, q, hs, hd, hv, ht, hs.shape[0]
     )
     hid = np.full(n_buckets, -1, np.int32)  # the buckets' heads
     edges = np.empty((1024 if ties else 16, 3), np.int32)
@@ -782,8 +784,8 @@ def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_
     costs Python a fraction of a microsecond.)"""
     w = occ.shape[1]
     gmin, first, li, lf, sols, hk, hid, st, stf, edges, est = _boa_start(
-        pot, sr, sc, w, cell_size, hs, hd, hv, ties, N_BUCKETS
-    )
+        pot, sr, sc, w, cell_size, hs, hd, hv, ties, np.int64(N_BUCKETS)
+    )  # int64, not a literal: one specialization with the tests' calls
     li, lf, sols, hk, hid, edges, status = _boa_run(
         occ, pot, gr, gc, cell_size, mask, hs, hd, hv, gmin, first, li, lf, sols, hk, hid, st, stf,
         edges, est, n_steps, max_labels, ties,

@@ -30,7 +30,7 @@ import math
 import numba
 import numpy as np
 
-from gapath.grid import DC, DR, STEP, can_step
+from gapath.grid import DC, DR, STEP, ZERO, can_step
 from gapath.planners._grid import heap_decrease, heap_pop, heap_push
 
 TWO_PI = 2.0 * math.pi
@@ -380,7 +380,7 @@ def grid_dijkstra(occ, gr, gc):
         return dist.reshape(h, w)
     s = gr * w + gc
     dist[s] = 0.0
-    size = heap_push(hnode, hk1, hk2, pos, 0, s, 0.0, 0.0)
+    size = heap_push(hnode, hk1, hk2, pos, ZERO, s, 0.0, 0.0)
     while size > 0:
         u, size = heap_pop(hnode, hk1, hk2, pos, size)
         closed[u] = True

@@ -22,7 +22,7 @@ import math
 
 import numba
 
-from gapath.grid import SQRT2, octile
+from gapath.grid import SQRT2, ZERO, octile
 
 # ---------------------------------------------------------------------------
 # heuristics
@@ -132,7 +132,7 @@ def heap_pop(hnode, hk1, hk2, pos, size):
         hnode[0] = hnode[size]
         hk1[0] = hk1[size]
         hk2[0] = hk2[size]
-        heap_sift_down(hnode, hk1, hk2, pos, 0, size)
+        heap_sift_down(hnode, hk1, hk2, pos, ZERO, size)
     return top, size
 
 

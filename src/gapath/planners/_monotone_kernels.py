@@ -33,7 +33,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from gapath.grid import SQRT2, can_step, turn
+from gapath.grid import FALSE, SQRT2, ZERO, can_step, turn
 from gapath.planners._exact_kernels import DONE, OVER_BUDGET, PAUSED, _eq, _grow, _heading_gap, _le
 
 # label table (int32): heading of the last step, straight and diagonal step
@@ -252,7 +252,7 @@ def _filter(oi, of, n, bi, bf, bk, order, m, use_len, use_vul, use_smooth, prima
 # remaining length, 1 = the vulnerability of that completion, 2 = least
 # remaining vulnerability, 3 = the length of that completion (inf: no
 # completion).
-B_EXIT, B_UP, B_DOWN = 0, 4, 8
+B_EXIT, B_UP, B_DOWN = np.int64(0), np.int64(4), np.int64(8)  # typed, not literal (gapath.grid.ZERO)
 B_LEN, B_LEN_VUL, B_VUL, B_VUL_LEN = range(4)
 #: Relative margin of the goal-bound test (much larger than the tolerance
 #: and than the rounding of sums taken in another order).
@@ -685,13 +685,13 @@ def _monotone_steps(
 
         # 1. up[t], t from the bottom: the diagonal arrivals at t + 1 (from
         #    row t + 2) and up[t + 1], one vertical step further
-        nu = 0
+        nu = ZERO
         for t in range(h - 1, -1, -1):
             ulo[t] = nu
             uhi[t] = nu
             if t == h - 1 or occ[t, c] or occ[t + 1, c]:
                 continue
-            m = 0
+            m = ZERO
             p = t + 2
             diag = p < h and off[p + 1] > off[p] and can_step(occ, p, c - 1, -1, 1, corner_cutting)
             need = (off[p + 1] - off[p] if diag else 0) + uhi[t + 1] - ulo[t + 1]
@@ -728,7 +728,7 @@ def _monotone_steps(
             ui = _grow(ui, nu + m)
             uf = _grow(uf, nu + m)
             nu0 = nu
-            nu = _filter(ui, uf, nu, bi, bf, bk, order, m, use_len, use_vul, use_smooth, primary, False)
+            nu = _filter(ui, uf, nu, bi, bf, bk, order, m, use_len, use_vul, use_smooth, primary, FALSE)
             kept = _drop_hopeless(ui, uf, nu0, nu, bounds, B_UP, k, t, pmode, stair, n_stair)
             pruned += nu - kept
             nu = kept
@@ -740,7 +740,7 @@ def _monotone_steps(
 
         # 2. down[t] from the top (kept for one row), and the labels of
         #    every exit row t
-        nn = 0
+        nn = ZERO
         dn[:] = 0
         last = goal_row if at_goal else h - 1
         for t in range(last + 1):
@@ -751,7 +751,7 @@ def _monotone_steps(
             # down[t - 1], one vertical step further
             dn[cur] = 0
             if t >= 1 and not occ[t, c] and not occ[t - 1, c]:
-                m = 0
+                m = ZERO
                 p = t - 2
                 diag = p >= 0 and off[p + 1] > off[p] and can_step(occ, p, c - 1, 1, 1, corner_cutting)
                 need = (off[p + 1] - off[p] if diag else 0) + dn[prev]
@@ -807,7 +807,7 @@ def _monotone_steps(
                     dn[cur] = _filter(
                         di[cur],
                         df[cur],
-                        0,
+                        ZERO,
                         bi,
                         bf,
                         bk,
@@ -817,10 +817,10 @@ def _monotone_steps(
                         use_vul,
                         use_smooth,
                         primary,
-                        False,
+                        FALSE,
                     )
                     kept = _drop_hopeless(
-                        di[cur], df[cur], 0, dn[cur], bounds, B_DOWN, k, t, pmode, stair, n_stair
+                        di[cur], df[cur], ZERO, dn[cur], bounds, B_DOWN, k, t, pmode, stair, n_stair
                     )
                     pruned += dn[cur] - kept
                     dn[cur] = kept
@@ -836,7 +836,7 @@ def _monotone_steps(
             if need == 0:
                 continue
             bi, bf, bk, idx, tmp = _room(bi, bf, bk, idx, tmp, need)
-            m = 0
+            m = ZERO
             if se:
                 for a in range(off[t - 1], off[t]):
                     e = ci[a, M_EIGHTHS]

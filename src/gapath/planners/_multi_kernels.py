@@ -35,7 +35,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-from gapath.grid import DC, DR, SQRT2, turn
+from gapath.grid import DC, DR, FALSE, ONE, SQRT2, TRUE, ZERO, turn
 
 #: Relative tolerance of SPEC "Duplicates and ties".
 TOL = 1e-9
@@ -170,7 +170,7 @@ def _cell_to_go(layer, mask, w, goal):
     done = np.zeros(n, np.bool_)
     keys = np.empty(8 * n + 1)
     ids = np.empty(8 * n + 1, np.int64)
-    size = _hpush(keys, ids, 0, D[goal], goal)
+    size = _hpush(keys, ids, ZERO, D[goal], goal)
     while size > 0:
         key, u, size = _hpop(keys, ids, size)
         if done[u]:
@@ -200,7 +200,7 @@ def _step_to_go(cost8, mask, w, goal):
     done = np.zeros(n, np.bool_)
     keys = np.empty(8 * n + 1)
     ids = np.empty(8 * n + 1, np.int64)
-    size = _hpush(keys, ids, 0, 0.0, goal)
+    size = _hpush(keys, ids, ZERO, 0.0, goal)
     while size > 0:
         key, u, size = _hpop(keys, ids, size)
         if done[u]:
@@ -659,7 +659,7 @@ def _insert(sv, si, sidx, sfree, tdir, st, s, q, qr, okind, tx, hx, at_goal, stk
             if 2 * live < tdir[t, T_M]:
                 tv = np.empty((live, k))
                 ti = np.empty((live, 2), np.int64)
-                _gather(sv, si, tdir[t, T_OFF], tdir[t, T_M], tv, ti, 0, k)
+                _gather(sv, si, tdir[t, T_OFF], tdir[t, T_M], tv, ti, ZERO, k)
                 _release(si, sfree, tdir[t, T_OFF], tdir[t, T_CAP])
                 off, cap = _alloc(si, sfree, st, live)
                 _build(sv, si, off, tv, ti, live, k)
@@ -681,7 +681,7 @@ def _insert(sv, si, sidx, sfree, tdir, st, s, q, qr, okind, tx, hx, at_goal, stk
         tv[0, c] = q[qr, c]
     ti[0, 0] = tx
     ti[0, 1] = hx
-    n = 1
+    n = ONE
     t = sidx[s, B_HEAD] - 1
     while n < total:
         n = _gather(sv, si, tdir[t, T_OFF], tdir[t, T_M], tv, ti, n, k)
@@ -983,8 +983,8 @@ def _k_steps(
             break
         steps += 1
         size = _pop(hid, size, lf, k)
-        hx = li[x, HEAD]
-        tx = li[x, TURNS]
+        hx = np.int64(li[x, HEAD])  # int64, as every caller of _insert passes
+        tx = np.int64(li[x, TURNS])
         _gvec(li, lg, x, okind, ocol, cell_size, gq, 0)
 
         # lazy checks: the sets may have grown since x was generated
@@ -1010,13 +1010,13 @@ def _k_steps(
             n_free += 1
             continue
         if c == goal:  # a solution: recorded, never expanded
-            _insert(sv, si, sidx, sfree, tdir, st, gs, gq, 0, okind, tx, hx, True, stk)
+            _insert(sv, si, sidx, sfree, tdir, st, gs, gq, ZERO, okind, tx, hx, TRUE, stk)
             sols[n_sols] = x
             n_sols += 1
             continue
 
         n_expanded += 1
-        _insert(sv, si, sidx, sfree, tdir, st, s, gq, 0, okind, tx, hx, False, stk)
+        _insert(sv, si, sidx, sfree, tdir, st, s, gq, ZERO, okind, tx, hx, FALSE, stk)
         r, col = c // w, c % w
         mk = mask[c]
         for d in range(8):
@@ -1131,7 +1131,7 @@ def _front_filter(F, order):
         ti[i, 0] = i
     sv = np.empty((n, _width(k)))
     si = np.empty((n, N_SI), np.int32)
-    _build(sv, si, 0, tv, ti, n, k)
+    _build(sv, si, ZERO, tv, ti, n, k)
     b0 = k
     keep = np.ones(n, np.bool_)
     partner = np.zeros(n, np.bool_)

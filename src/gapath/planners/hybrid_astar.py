@@ -85,6 +85,7 @@ from gapath.planners._geometry import (
 )
 from gapath.planners._grid import heap_pop, heap_push, heap_update
 from gapath.planners.astar import check_cost_layer
+from gapath.workspace import read_only
 
 __all__ = [
     "CarModel",
@@ -258,9 +259,7 @@ def path_objectives(poses: np.ndarray, occ: np.ndarray, cell_size: float = 1.0) 
         dth = np.diff(th)
         turning = float(np.abs((dth + np.pi) % (2 * np.pi) - np.pi).sum())
     pts = np.ascontiguousarray(p[:, :2] / cell_size) if len(p) else np.zeros((0, 2))
-    clearance = (
-        path_clearance(np.ascontiguousarray(occ, dtype=np.bool_), pts, CLEARANCE_CAP) if len(pts) else 0.0
-    )
+    clearance = path_clearance(read_only(occ, np.bool_), pts, CLEARANCE_CAP) if len(pts) else 0.0
     return {"length": length, "turning": turning, "clearance": float(clearance) * cell_size}
 
 
@@ -868,14 +867,14 @@ class HybridAStar:
         """
         t0 = time.perf_counter()
         cs = self.cell_size
-        occ = self._occ
+        occ = self.occ  # read-only, as every map handed to a kernel (workspace.read_only)
         cached = True
         if blocked is not None:
             extra = np.asarray(blocked, dtype=bool)
             if extra.shape != occ.shape:
                 raise ConfigError(f"blocked must have the grid's shape {occ.shape}, got {extra.shape}")
             if extra.any():
-                occ = occ | extra
+                occ = read_only(occ | extra)
                 cached = False
         if goal is None:
             gr, gc = self.workspace.goal

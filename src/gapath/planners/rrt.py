@@ -43,6 +43,7 @@ import numpy as np
 from gapath.errors import ConfigError, NoPathError, positive_int
 from gapath.planners._geometry import disc_free, segment_free
 from gapath.planners.hybrid_astar import check_positive, describe_pose, path_objectives
+from gapath.workspace import read_only
 
 __all__ = ["RRTPath", "rrt", "rrt_settings", "rrt_star"]
 
@@ -404,7 +405,7 @@ def rrt(
         extra = np.asarray(blocked, dtype=bool)
         if extra.shape != occ.shape:
             raise ConfigError(f"blocked must have the grid's shape {occ.shape}, got {extra.shape}")
-        occ = occ | extra
+        occ = read_only(occ | extra)  # as the workspace's: one kernel specialization
     r, stp, bias, tol, dsv, iters, extra_it, rew = rrt_settings(
         cs,
         radius=radius,
