@@ -95,7 +95,9 @@ class FreeSampling(Sampling):
             missing = n_samples - len(X)
             if missing <= 0:
                 break
-            R = random_state.random((max(2 * missing, 50), problem.n_var))
+            # random genomes rarely decode to the same path: draw a few more
+            # than needed (each one is decoded), not twice as many
+            R = random_state.random((max(missing + missing // 8 + 1, 50), problem.n_var))
             keys = problem.path_keys(R)
             R = R[~duplicate_mask(keys, problem.path_keys(X) if len(X) else None) & ~duplicate_mask(keys)][
                 :missing
