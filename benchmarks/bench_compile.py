@@ -4,9 +4,10 @@ Runs ``pytest`` (the suite's default selection, or the arguments given after
 ``--``) in a subprocess with an empty ``NUMBA_CACHE_DIR`` and the plugin
 ``_numba_compile_log.py``, then prints JSON lines: one ``suite`` line (wall
 seconds, pytest's exit code, compilations, compile seconds, and how many
-compilations and seconds went to *extra* specializations: second and later
-signatures of one kernel, compiled because an argument came writable instead
-of read-only, or as a literal instead of an ``int64``), then one line per
+compilations and seconds went to *extra* specializations: every signature of
+a kernel but its most expensive one, typically compiled because an argument
+came writable instead of read-only, or as a literal instead of an
+``int64``), then one line per
 kernel compiled more than once, most expensive first. Wall time: the suite
 runs on one process, so the figure moves with the machine's other load.
 
@@ -34,12 +35,10 @@ HERE = Path(__file__).resolve().parent
 
 
 def main(argv: list[str] | None = None) -> int:
-    argv = sys.argv[1:] if argv is None else argv
-    extra = argv[argv.index("--") + 1 :] if "--" in argv else []
-    argv = argv[: argv.index("--")] if "--" in argv else argv
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--top", type=int, default=15, help="kernels compiled more than once to list")
     ap.add_argument("--src", type=Path, default=HERE.parent / "src", help="the gapath src to measure")
+    ap.add_argument("pytest_args", nargs="*", help="pytest's arguments, after --")
     args = ap.parse_args(argv)
     src = args.src.resolve()
     root = src.parent
@@ -53,7 +52,7 @@ def main(argv: list[str] | None = None) -> int:
         )
         cmd = [sys.executable, "-m", "pytest", "-q", "-p", "_numba_compile_log", "-p", "no:cacheprovider"]
         t0 = time.perf_counter()
-        rc = subprocess.call(cmd + extra, cwd=root, env=env, stdout=subprocess.DEVNULL)
+        rc = subprocess.call(cmd + args.pytest_args, cwd=root, env=env, stdout=subprocess.DEVNULL)
         wall = time.perf_counter() - t0
         recs = [json.loads(line) for line in log.read_text().splitlines()] if log.exists() else []
     by = collections.defaultdict(list)
