@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import threading
+
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -525,6 +527,99 @@ def test_approximate_search_follows_the_faces_within_its_own_budget(monkeypatch)
     assert (
         FreePathArchive(FreePathProblem(ws, ("length", "smoothness", "vulnerability")), n_refine=0).approx > 0
     )
+
+
+@pytest.mark.parametrize("faces", [None, 1e-6])
+def test_approximate_search_in_a_second_thread_gives_the_serial_archive(monkeypatch, faces):
+    """With two threads asked for (``GAPATH_THREADS``) the approximate
+    search runs in a second thread beside the faces: the archive gets the
+    same paths, points and records as serially. When a face stops short
+    the second thread's search is cancelled and dropped, as serially it is
+    not run; no thread is left behind."""
+    from gapath.encodings import free
+    from gapath.operators import archive as A
+
+    ws = room(h=14, w=16, seed=44)
+    p = FreePathProblem(ws, OBJ3)
+
+    def run():
+        a = FreePathArchive(p, n_refine=0, extremes=0, faces=faces)
+        minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=a)
+        return a
+
+    serial = run()
+    started = []
+
+    class Spy(A._Background):
+        def __init__(self, fn):
+            started.append(self)
+            super().__init__(fn)
+
+    monkeypatch.setattr(A, "_Background", Spy)
+    monkeypatch.setattr(free, "wanted_threads", lambda: 2)
+    threaded = run()
+    assert len(started) == 1 and not started[0]._thread.is_alive()
+    assert threaded.face_sizes == serial.face_sizes
+    assert (serial.face_sizes[-1][1] is None) == (faces is not None)  # both cases are exercised
+    np.testing.assert_array_equal(threaded.F, serial.F)
+    assert all(np.array_equal(a, b) for a, b in zip(threaded.paths(), serial.paths(), strict=True))
+    assert threaded.n_eval == serial.n_eval
+    assert not any(t.name == "gapath-approx-search" for t in threading.enumerate())
+    # the two threads run at once only if the searches' kernels release the GIL
+    from gapath.planners import _apex_kernels, _boa_kernels, _exact_heuristics, _exact_kernels
+
+    kernels = (
+        _apex_kernels._apex_run,
+        _exact_kernels._free_run,
+        _exact_heuristics._free_prepare,
+        _boa_kernels._boa_run,
+        _boa_kernels._boa_prepare,
+        _boa_kernels._boa_solve,
+        _boa_kernels._boa_finish,
+    )
+    assert all(k.targetoptions.get("nogil") for k in kernels)
+
+
+def test_second_thread_errors_and_interrupts_end_both_searches(monkeypatch):
+    """An error in the second thread's search reaches the caller; a Ctrl-C
+    (KeyboardInterrupt) during the faces cancels the second thread's search,
+    which ends before the interrupt leaves :meth:`add_faces`."""
+    from gapath.encodings import free
+    from gapath.operators import archive as A
+
+    ws = room(h=14, w=16, seed=44)
+    p = FreePathProblem(ws, OBJ3)
+    monkeypatch.setattr(free, "wanted_threads", lambda: 2)
+    real = A._budget_search
+    started = []
+
+    class Spy(A._Background):
+        def __init__(self, fn):
+            started.append(self)
+            super().__init__(fn)
+
+    monkeypatch.setattr(A, "_Background", Spy)
+
+    def failing(ws, objectives, eps, budget, cancel=None):
+        if eps > 0:
+            raise RuntimeError("approximate search failed")
+        return real(ws, objectives, eps, budget, cancel)
+
+    monkeypatch.setattr(A, "_budget_search", failing)
+    with pytest.raises(RuntimeError, match="approximate search failed"):
+        FreePathArchive(p, n_refine=0, extremes=0).add_faces()
+
+    def interrupted(ws, objectives, eps, budget, cancel=None):
+        if eps > 0:  # runs until cancelled
+            while not cancel.wait(0.01):
+                pass
+            raise A._Cancelled
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(A, "_budget_search", interrupted)
+    with pytest.raises(KeyboardInterrupt):
+        FreePathArchive(p, n_refine=0, extremes=0).add_faces()
+    assert len(started) == 2 and all(not b._thread.is_alive() for b in started)
 
 
 @pytest.mark.parametrize(

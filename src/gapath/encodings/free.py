@@ -82,20 +82,15 @@ MAX_THREADS = 4
 THREADS_ENV = "GAPATH_THREADS"
 
 
-def search_threads(n: int) -> int:
-    """Threads for a batch of ``n`` searches: 0 (the serial kernels) unless
-    the environment variable ``GAPATH_THREADS`` asks for more than one
-    (``auto``: numba's thread count; at most :data:`MAX_THREADS` and
-    numba's count), and also with fewer than two searches per thread or
-    outside the main thread (numba's ``workqueue`` threading layer must not
-    be entered from two threads at once). The paths do not depend on it.
+def wanted_threads() -> int:
+    """Threads the environment variable ``GAPATH_THREADS`` asks for (1,
+    serial, when unset; ``auto``: numba's thread count), at most
+    :data:`MAX_THREADS` and numba's count; 1 outside the main thread.
 
-    Serial is the default because the parallel batches wait for their
-    slowest thread: on a machine whose cores are all busy (several runs at
-    once, ``gapath multirun`` workers) they lost wall time in
-    docs/results/free_paths.md ("Large maps"); on two idle cores two
-    threads gave 1.5-1.7x the paths per second and 1.5x per generation
-    (same file, "Parallel batches on idle cores").
+    Raises
+    ------
+    ConfigError
+        When ``GAPATH_THREADS`` is neither a number nor ``auto``.
     """
     want = os.environ.get(THREADS_ENV, "1").strip().lower()
     nt = numba.get_num_threads()
@@ -104,8 +99,27 @@ def search_threads(n: int) -> int:
             nt = min(nt, int(want))
         except ValueError:
             raise ConfigError(f"{THREADS_ENV} must be a number of threads or 'auto', got {want!r}") from None
-    nt = min(nt, MAX_THREADS)
-    if nt < 2 or n < 2 * nt or threading.current_thread() is not threading.main_thread():
+    if threading.current_thread() is not threading.main_thread():
+        return 1
+    return max(1, min(nt, MAX_THREADS))
+
+
+def search_threads(n: int) -> int:
+    """Threads for a batch of ``n`` searches: 0 (the serial kernels) unless
+    :func:`wanted_threads` is more than one, and also with fewer than two
+    searches per thread or outside the main thread (numba's ``workqueue``
+    threading layer must not be entered from two threads at once). The
+    paths do not depend on it.
+
+    Serial is the default because the parallel batches wait for their
+    slowest thread: on a machine whose cores are all busy (several runs at
+    once, ``gapath multirun`` workers) they lost wall time in
+    docs/results/free_paths.md ("Large maps"); on two idle cores two
+    threads gave 1.5-1.7x the paths per second and 1.5x per generation
+    (same file, "Parallel batches on idle cores").
+    """
+    nt = wanted_threads()
+    if nt < 2 or n < 2 * nt:
         return 0
     return nt
 
@@ -741,4 +755,5 @@ __all__ = [
     "default_n_via",
     "make_free_encoding",
     "search_threads",
+    "wanted_threads",
 ]

@@ -55,6 +55,7 @@ front (``PathFront.X`` is then empty) for free paths.
 
 from __future__ import annotations
 
+import threading
 from typing import Any
 
 import numpy as np
@@ -523,41 +524,57 @@ class FreePathArchive(PathArchive):
         ``faces`` expansions per reachable cell they share; then, with
         ``approx > 0``, those of the approximate three-objective front
         within its own ``approx_budget``. A search stopped by its budget
-        gives the points it found (``free_front(..., max_expansions=)``)."""
-        from gapath.errors import NoPathError
+        gives the points it found (``free_front(..., max_expansions=)``).
+
+        When ``GAPATH_THREADS`` asks for two threads or more
+        (:func:`gapath.encodings.free.wanted_threads`), the approximate
+        search runs in a second thread while the faces run in this one (the
+        kernels release the GIL), and is cancelled if a face stops short;
+        the archive receives the same paths in the same order either way."""
+        from gapath.encodings.free import wanted_threads
         from gapath.operators._archive_kernels import keyed
-        from gapath.planners.exact import free_front
 
         enc = self.problem.encoding
         ws = self.problem.workspace
-        left = self.faces * enc.n_reachable
         w = ws.shape[1]
-        subs = []
-        searches = [(pair, 0.0) for pair in face_pairs(self.problem.objectives)] if self.faces > 0 else []
-        if self.approx > 0:
-            searches.append((tuple(self.problem.objectives), self.approx))
-        for objectives, eps in searches:
-            if eps:  # the approximate search: a budget of its own, unless a face stopped short
+        pairs = face_pairs(self.problem.objectives) if self.faces > 0 else []
+        three = tuple(self.problem.objectives)
+        approx_budget = self.approx_budget * enc.n_reachable
+        background = None
+        if self.approx > 0 and pairs and approx_budget > 0 and wanted_threads() >= 2:
+            _ = ws.potential  # (computed here, not in both threads at once)
+            background = _Background(
+                lambda cancel: _budget_search(ws, three, self.approx, approx_budget, cancel)
+            )
+        subs: list[np.ndarray] = []
+        try:
+            left = self.faces * enc.n_reachable
+            for pair in pairs:
+                paths, record = _budget_search(ws, pair, 0.0, left) if left > 0 else ([], (pair, None, False))
+                done = record[2]
+                left = left - record[3] if done else 0
+                self.face_sizes.append(record[:3])
+                subs += paths
+            if self.approx > 0:
                 fit = all(done for _, _, done in self.face_sizes)
-                left = self.approx_budget * enc.n_reachable if fit else 0
-            if left <= 0:
-                self.face_sizes.append((objectives, None, False))
-                continue
-            try:
-                front = free_front(ws, objectives, epsilon=eps, max_expansions=left)
-            except NoPathError:
-                self.face_sizes.append((objectives, None, False))
-                left = 0
-                continue
-            done = bool(front.stats["complete"])
-            left = left - front.stats["expansions"] if done else 0
-            self.face_sizes.append((objectives, len(front.paths), done))
-            subs += [p[:, 0].astype(np.int64) * w + p[:, 1] for p in front.paths]
+                if not fit or approx_budget <= 0:  # it costs more than the faces on such a map
+                    self.face_sizes.append((three, None, False))
+                else:
+                    if background is not None:
+                        paths, record = background.result()
+                    else:
+                        paths, record = _budget_search(ws, three, self.approx, approx_budget)
+                    self.face_sizes.append(record[:3])
+                    subs += paths
+        finally:
+            if background is not None:
+                background.cancel()
         if not subs:
             return
-        sub_off = np.concatenate([[0], np.cumsum([len(x) for x in subs])]).astype(np.int64)
-        flat, offsets, keys = keyed(np.concatenate(subs), sub_off, ws.occ.size)
-        k = len(subs)
+        flat_paths = [p[:, 0].astype(np.int64) * w + p[:, 1] for p in subs]
+        sub_off = np.concatenate([[0], np.cumsum([len(x) for x in flat_paths])]).astype(np.int64)
+        flat, offsets, keys = keyed(np.concatenate(flat_paths), sub_off, ws.occ.size)
+        k = len(flat_paths)
         self.n_eval += k
         self._merge(flat, offsets, keys, np.full((k, self._X.shape[1]), np.nan), np.zeros(k, bool))
 
@@ -787,6 +804,65 @@ def _close_any(B, A, tol: float = TOL) -> np.ndarray:
     for s in range(0, len(B), chunk):
         out[s : s + chunk] = close(B[s : s + chunk, None, :], A[None, :, :], tol).all(axis=2).any(axis=1)
     return out
+
+
+class _Cancelled(Exception):
+    """Raised by a cancelled background search's progress hook."""
+
+
+def _budget_search(ws, objectives, eps, budget, cancel=None):
+    """The paths of ``free_front(ws, objectives, epsilon=eps,
+    max_expansions=budget)`` and the record ``(objectives, points or None,
+    finished within the budget, expansions)``; no path (``None``) when the
+    goal cannot be reached. With a ``cancel`` event the search ends with
+    :class:`_Cancelled` between two kernel calls once it is set."""
+    from gapath.errors import NoPathError
+    from gapath.planners.exact import free_front
+
+    hook = None
+    if cancel is not None:
+
+        def hook(info):
+            if cancel.is_set():
+                raise _Cancelled
+
+    try:
+        front = free_front(ws, objectives, epsilon=eps, max_expansions=budget, progress=hook)
+    except NoPathError:
+        return [], (objectives, None, False, 0)
+    done = bool(front.stats["complete"])
+    return list(front.paths), (objectives, len(front.paths), done, int(front.stats["expansions"]))
+
+
+class _Background:
+    """``fn(cancel)`` run in a daemon thread; :meth:`result` waits for it
+    (and raises what it raised), :meth:`cancel` sets ``cancel`` and waits
+    until the thread has ended (a Ctrl-C in the main thread then stops it
+    within one kernel call)."""
+
+    def __init__(self, fn):
+        self._event = threading.Event()
+        self._out: Any = None
+        self._error: BaseException | None = None
+
+        def run():
+            try:
+                self._out = fn(self._event)
+            except BaseException as e:  # handed to the caller by result()
+                self._error = e
+
+        self._thread = threading.Thread(target=run, name="gapath-approx-search", daemon=True)
+        self._thread.start()
+
+    def result(self):
+        self._thread.join()
+        if self._error is not None:
+            raise self._error
+        return self._out
+
+    def cancel(self) -> None:
+        self._event.set()
+        self._thread.join()
 
 
 def run_archive(algorithm) -> PathArchive | None:

@@ -109,7 +109,7 @@ def _covered(gmin, sp, first, c, goal, goal_base, goal_state, t, a, hx, tgoal, a
     return False
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _apex_run(
     occ,
     pot,

@@ -111,7 +111,7 @@ E_EDGES, E_CUR, E_OHEAD, E_OMIN, E_NWIN, E_NOVER = range(6)
 _NO_BUCKET = np.int64(1) << 62
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _boa_run(
     occ,
     pot,
@@ -712,7 +712,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
 C_EXPANDED, C_GENERATED, C_ROWS, C_FREE, C_SOLS, C_EDGES, C_PEAK = range(7)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _boa_prepare(occ, pot, gr, gc, corner_cutting):
     """The move masks and the length and vulnerability heuristics of a
     two-objective search: ``(mask, hs, hd, hv)`` as
@@ -772,7 +772,7 @@ def _boa_start(pot, sr, sc, w, cell_size, hs, hd, hv, ties, n_buckets):
     return gmin, first, li, lf, sols, hk, hid, st, stf, edges, est
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_first, n_steps, max_labels):
     """Start BOA* (:func:`_boa_run`) and run at most ``n_steps`` pops.
 
@@ -797,7 +797,7 @@ def _boa_solve(occ, pot, sr, sc, gr, gc, cell_size, mask, hs, hd, hv, ties, len_
     return status, result, None
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _boa_finish(li, lf, sols, st, edges, n_edges, pot, w, cell_size, ties, len_first, peak):
     """The front of a finished search: its paths, the tolerance filter and
     the final order, as arrays.

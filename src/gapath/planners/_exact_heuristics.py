@@ -348,7 +348,7 @@ def _free_heuristics(occ, pot, gr, gc, corner_cutting, with_turns, mask):
     return hs, hd, hv, ht
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _free_prepare(occ, pot, sr, sc, gr, gc, cell_size, corner_cutting, mode, P, Q):
     """Everything a new free search needs, in one kernel call (each call and
     each returned array costs Python time, which dominated small maps): the

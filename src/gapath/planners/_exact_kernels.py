@@ -496,7 +496,7 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
     return gmin, first, li, lf, sols, hk, hid, st, stf
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _free_run(
     occ,
     pot,
@@ -831,7 +831,7 @@ def _free_steps(
 # -- 5. paths and the final filter ------------------------------------------------
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, nogil=True)
 def _trace(li, sols, w):
     """Cells of the solution paths, concatenated, and their offsets."""
     counts = np.empty(len(sols), np.int64)
