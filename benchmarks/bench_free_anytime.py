@@ -12,7 +12,10 @@ free-path archive with its default refinement), population ``--pop``,
 seed ``--seed``, for ``--gen`` generations or until ``--ga-cap`` CPU seconds,
 recording after every generation the HV ratio of the run's front (the
 archive's) against the exact front and the wall time since the call, minus
-the time spent measuring the HV ratio (``ga_seconds`` is the GA's own time).
+the time spent measuring the HV ratio (``ga_seconds`` is the GA's own time),
+and the process CPU time (every thread's). ``threads`` is what
+``GAPATH_THREADS`` asked for (1: serial; 2 or more: parallel batches and
+the approximate search beside the faces in generation 1).
 
 Instances (``--instances``, comma-separated)::
 
@@ -78,11 +81,14 @@ from gapath.problems import FreePathProblem
 from gapath.solver import solve
 
 try:  # the parallel searches (absent before them: serial)
-    from gapath.encodings.free import search_threads
+    from gapath.encodings.free import search_threads, wanted_threads
 except ImportError:  # pragma: no cover
 
     def search_threads(n: int) -> int:
         return 0
+
+    def wanted_threads() -> int:
+        return 1
 
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -728,6 +734,7 @@ def main(argv=None):
             if variant:
                 rec["archive"] = variant
             if not a.exact_only:
+                rec["threads"] = wanted_threads()  # GAPATH_THREADS: 1 serial
                 progress = f"{a.progress}.{name}" if a.progress else None
                 save = f"{a.save}.{name}.s{a.seed}.npz" if a.save else None
                 rec.update(anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress, a.keep, save, reference))
