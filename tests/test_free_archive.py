@@ -580,6 +580,50 @@ def test_approximate_search_in_a_second_thread_gives_the_serial_archive(monkeypa
     assert all(k.targetoptions.get("nogil") for k in kernels)
 
 
+def test_search_started_before_sampling_gives_the_serial_run(monkeypatch):
+    """``solve`` starts the second thread's search before the first
+    population is sampled (:meth:`FreePathArchive.start`): the run's front
+    is the serial run's; :meth:`FreePathArchive.close` cancels a search
+    that was not taken, and a later :meth:`add_faces` runs it again."""
+    from gapath.encodings import free
+    from gapath.operators import archive as A
+
+    ws = room(h=14, w=16, seed=45)
+    serial = solve(ws, objectives=OBJ3, paths="free", pop_size=10, n_gen=2, seed=3)
+    started, log = [], []
+
+    class Spy(A._Background):
+        def __init__(self, fn):
+            started.append(self)
+            log.append("search")
+            super().__init__(fn)
+
+    evaluate = FreePathProblem._evaluate
+
+    def logged(self, *args, **kwargs):
+        log.append("evaluate")
+        return evaluate(self, *args, **kwargs)
+
+    monkeypatch.setattr(A, "_Background", Spy)
+    monkeypatch.setattr(FreePathProblem, "_evaluate", logged)
+    monkeypatch.setattr(free, "wanted_threads", lambda: 2)
+    threaded = solve(ws, objectives=OBJ3, paths="free", pop_size=10, n_gen=2, seed=3)
+    assert len(started) == 1 and not started[0]._thread.is_alive()
+    assert log[0] == "search" and "evaluate" in log  # before the first population
+    np.testing.assert_array_equal(threaded.front.F, serial.front.F)
+    p = FreePathProblem(ws, OBJ3)
+    archive = FreePathArchive(p, n_refine=0, extremes=0)
+    archive.start()
+    archive.start()  # once
+    assert len(started) == 2
+    archive.close()
+    assert started[1]._event.is_set() and not started[1]._thread.is_alive()
+    archive.add_faces()
+    assert len(started) == 3 and archive.face_sizes[-1][0] == OBJ3 and archive.face_sizes[-1][1]
+    archive.start()  # after the faces: nothing
+    assert len(started) == 3
+
+
 def test_second_thread_errors_and_interrupts_end_both_searches(monkeypatch):
     """An error in the second thread's search reaches the caller; a Ctrl-C
     (KeyboardInterrupt) during the faces cancels the second thread's search,

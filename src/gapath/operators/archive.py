@@ -441,6 +441,7 @@ class FreePathArchive(PathArchive):
             )
         self.approx_budget = non_negative(approx_budget, "approx_budget", finite=False, what=per_cell)
         self._faces_done = False
+        self._background: _Background | None = None
         #: the face searches, then the approximate one: ``(objectives, points kept or
         #: None when not run, whether it finished within the budget)``
         self.face_sizes: list[tuple[tuple[str, ...], int | None, bool]] = []
@@ -517,6 +518,32 @@ class FreePathArchive(PathArchive):
         self.n_eval += k
         self._merge(flat, offsets, keys, np.full((k, self._X.shape[1]), np.nan), np.zeros(k, bool))
 
+    def start(self) -> None:
+        """Start generation 1's approximate three-objective search in a
+        second thread now, when ``GAPATH_THREADS`` asks for two threads or
+        more and :meth:`add_faces` will run it beside the faces (else
+        nothing): :func:`gapath.solver.solve` calls it before the first
+        population is sampled, so that the search overlaps the sampling
+        too. :meth:`add_faces` takes its result; :meth:`close` cancels it."""
+        from gapath.encodings.free import wanted_threads
+
+        if self._background is not None or self.face_sizes:
+            return
+        budget = self.approx_budget * self.problem.encoding.n_reachable
+        if not (self.approx > 0 and self.faces > 0 and budget > 0 and wanted_threads() >= 2):
+            return
+        ws = self.problem.workspace
+        _ = ws.potential  # (computed here, not in both threads at once)
+        three, eps = tuple(self.problem.objectives), self.approx
+        self._background = _Background(lambda cancel: _budget_search(ws, three, eps, budget, cancel))
+
+    def close(self) -> None:
+        """Cancel a search started by :meth:`start` that :meth:`add_faces`
+        has not taken (a run that ended before its first refinement)."""
+        background, self._background = self._background, None
+        if background is not None:
+            background.cancel()
+
     def add_faces(self) -> None:
         """Archive the paths of the exact two-objective front of each pair
         of the objectives among length, vulnerability and smoothness, the
@@ -529,9 +556,9 @@ class FreePathArchive(PathArchive):
         When ``GAPATH_THREADS`` asks for two threads or more
         (:func:`gapath.encodings.free.wanted_threads`), the approximate
         search runs in a second thread while the faces run in this one (the
-        kernels release the GIL), and is cancelled if a face stops short;
-        the archive receives the same paths in the same order either way."""
-        from gapath.encodings.free import wanted_threads
+        kernels release the GIL), started here or already by :meth:`start`,
+        and is cancelled if a face stops short; the archive receives the
+        same paths in the same order either way."""
         from gapath.operators._archive_kernels import keyed
 
         enc = self.problem.encoding
@@ -540,12 +567,8 @@ class FreePathArchive(PathArchive):
         pairs = face_pairs(self.problem.objectives) if self.faces > 0 else []
         three = tuple(self.problem.objectives)
         approx_budget = self.approx_budget * enc.n_reachable
-        background = None
-        if self.approx > 0 and pairs and approx_budget > 0 and wanted_threads() >= 2:
-            _ = ws.potential  # (computed here, not in both threads at once)
-            background = _Background(
-                lambda cancel: _budget_search(ws, three, self.approx, approx_budget, cancel)
-            )
+        self.start()
+        background, self._background = self._background, None
         subs: list[np.ndarray] = []
         try:
             left = self.faces * enc.n_reachable
