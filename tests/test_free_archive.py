@@ -529,6 +529,27 @@ def test_approximate_search_follows_the_faces_within_its_own_budget(monkeypatch)
     )
 
 
+def _two_threads(monkeypatch, log=None) -> list:
+    """Ask for two threads (whatever the machine has) and record every
+    second-thread search the archive starts (appended to the returned list,
+    and ``"search"`` to ``log``)."""
+    from gapath.encodings import free
+    from gapath.operators import archive as A
+
+    started: list = []
+
+    class Spy(A._Background):
+        def __init__(self, fn):
+            started.append(self)
+            if log is not None:
+                log.append("search")
+            super().__init__(fn)
+
+    monkeypatch.setattr(A, "_Background", Spy)
+    monkeypatch.setattr(free, "wanted_threads", lambda: 2)
+    return started
+
+
 @pytest.mark.parametrize("faces", [None, 1e-6])
 def test_approximate_search_in_a_second_thread_gives_the_serial_archive(monkeypatch, faces):
     """With two threads asked for (``GAPATH_THREADS``) the approximate
@@ -536,8 +557,6 @@ def test_approximate_search_in_a_second_thread_gives_the_serial_archive(monkeypa
     same paths, points and records as serially. When a face stops short
     the second thread's search is cancelled and dropped, as serially it is
     not run; no thread is left behind."""
-    from gapath.encodings import free
-    from gapath.operators import archive as A
 
     ws = room(h=14, w=16, seed=44)
     p = FreePathProblem(ws, OBJ3)
@@ -548,15 +567,7 @@ def test_approximate_search_in_a_second_thread_gives_the_serial_archive(monkeypa
         return a
 
     serial = run()
-    started = []
-
-    class Spy(A._Background):
-        def __init__(self, fn):
-            started.append(self)
-            super().__init__(fn)
-
-    monkeypatch.setattr(A, "_Background", Spy)
-    monkeypatch.setattr(free, "wanted_threads", lambda: 2)
+    started = _two_threads(monkeypatch)
     threaded = run()
     assert len(started) == 1 and not started[0]._thread.is_alive()
     assert threaded.face_sizes == serial.face_sizes
@@ -585,28 +596,18 @@ def test_search_started_before_sampling_gives_the_serial_run(monkeypatch):
     population is sampled (:meth:`FreePathArchive.start`): the run's front
     is the serial run's; :meth:`FreePathArchive.close` cancels a search
     that was not taken, and a later :meth:`add_faces` runs it again."""
-    from gapath.encodings import free
-    from gapath.operators import archive as A
 
     ws = room(h=14, w=16, seed=45)
     serial = solve(ws, objectives=OBJ3, paths="free", pop_size=10, n_gen=2, seed=3)
-    started, log = [], []
-
-    class Spy(A._Background):
-        def __init__(self, fn):
-            started.append(self)
-            log.append("search")
-            super().__init__(fn)
-
+    log: list[str] = []
+    started = _two_threads(monkeypatch, log)
     evaluate = FreePathProblem._evaluate
 
     def logged(self, *args, **kwargs):
         log.append("evaluate")
         return evaluate(self, *args, **kwargs)
 
-    monkeypatch.setattr(A, "_Background", Spy)
     monkeypatch.setattr(FreePathProblem, "_evaluate", logged)
-    monkeypatch.setattr(free, "wanted_threads", lambda: 2)
     threaded = solve(ws, objectives=OBJ3, paths="free", pop_size=10, n_gen=2, seed=3)
     assert len(started) == 1 and not started[0]._thread.is_alive()
     assert log[0] == "search" and "evaluate" in log  # before the first population
@@ -628,21 +629,12 @@ def test_second_thread_errors_and_interrupts_end_both_searches(monkeypatch):
     """An error in the second thread's search reaches the caller; a Ctrl-C
     (KeyboardInterrupt) during the faces cancels the second thread's search,
     which ends before the interrupt leaves :meth:`add_faces`."""
-    from gapath.encodings import free
     from gapath.operators import archive as A
 
     ws = room(h=14, w=16, seed=44)
     p = FreePathProblem(ws, OBJ3)
-    monkeypatch.setattr(free, "wanted_threads", lambda: 2)
+    started = _two_threads(monkeypatch)
     real = A._budget_search
-    started = []
-
-    class Spy(A._Background):
-        def __init__(self, fn):
-            started.append(self)
-            super().__init__(fn)
-
-    monkeypatch.setattr(A, "_Background", Spy)
 
     def failing(ws, objectives, eps, budget, cancel=None):
         if eps > 0:
