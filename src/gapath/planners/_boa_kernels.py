@@ -208,6 +208,25 @@ def _sift_up(hf, i, f_len, f_vul, k3):
     hf[3 * i + 2] = k3
 
 
+@numba.njit(cache=True, inline="always")
+def _pour_drops(q, m, f_vul, goal_min, at_goal):
+    """Whether a waiting label (g2 ``q`` at a cell whose ``g2_min`` is ``m``,
+    f_vulnerability ``f_vul``) can be dropped when its bucket is poured, with
+    the smoothest tie-break: its pop would drop it and record no tie edge,
+    whatever happens before then.
+
+    ``g2_min`` and the goal's least vulnerability only decrease, and
+    vulnerabilities are sums of a non-negative potential, so a value beyond
+    the tolerance above them now stays beyond it. A label so covered by its
+    cell's ``g2_min`` is dropped at its pop with no edge (an edge needs a tie
+    with ``g2_min``); so is a label at the goal so covered by the last
+    solution. One elsewhere covered only by the last solution is kept: its
+    pop tests ``g2_min`` first, which may by then tie it (an edge)."""
+    if at_goal:
+        return f_vul > goal_min and not _eq(f_vul, goal_min)
+    return q > m and not _eq(q, m)
+
+
 @numba.njit(cache=True)
 def _boa_steps(
     occ,
@@ -285,47 +304,60 @@ def _boa_steps(
         ):
             status = NEED_ROOM
             break
-        steps += 1
         if size == 0:  # the heap ran empty: pour the next nonempty bucket into it
-            if nwin == 0:
-                cur = omin - 1
-            while True:
-                cur += 1
-                if nover > 0 and omin < cur + nb:  # the overflow's labels now in the window
-                    y = ohead
-                    ohead = -1
-                    omin = _NO_BUCKET
-                    while y >= 0:
-                        nxt = li[y, NEXT]
-                        cy = li[y, CELL]
-                        f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
-                        qz = np.int64(f_len * rq)
-                        if qz < cur + nb:
-                            b = qz & (nb - 1)
-                            li[y, NEXT] = heads[b]
-                            heads[b] = y
-                            nwin += 1
-                            nover -= 1
-                        else:
-                            li[y, NEXT] = ohead
-                            ohead = y
-                            omin = min(omin, qz)
+            while size == 0 and nwin + nover > 0:  # (a pour may drop all its labels)
+                if nwin == 0:
+                    cur = omin - 1
+                while True:
+                    cur += 1
+                    if nover > 0 and omin < cur + nb:  # the overflow's labels now in the window
+                        y = ohead
+                        ohead = -1
+                        omin = _NO_BUCKET
+                        while y >= 0:
+                            nxt = li[y, NEXT]
+                            cy = li[y, CELL]
+                            f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
+                            qz = np.int64(f_len * rq)
+                            if qz < cur + nb:
+                                b = qz & (nb - 1)
+                                li[y, NEXT] = heads[b]
+                                heads[b] = y
+                                nwin += 1
+                                nover -= 1
+                            else:
+                                li[y, NEXT] = ohead
+                                ohead = y
+                                omin = min(omin, qz)
+                            y = nxt
+                    if heads[cur & (nb - 1)] >= 0:
+                        break
+                b = cur & (nb - 1)
+                y = heads[b]
+                heads[b] = -1
+                while y >= 0:
+                    nxt = li[y, NEXT]
+                    cy = li[y, CELL]  # the keys as at the push (the same sums)
+                    qy = lf[y, F_VUL]
+                    f_vul = qy + hv[cy]
+                    # a label its pop would drop without an edge is dropped now (see
+                    # _pour_drops): its row is free for the labels generated before then
+                    if ties and _pour_drops(qy, gmin[cy], f_vul, goal_min, cy == goal):
+                        li[y, NEXT] = free
+                        free = y
+                        n_free += 1
+                        nwin -= 1
                         y = nxt
-                if heads[cur & (nb - 1)] >= 0:
-                    break
-            b = cur & (nb - 1)
-            y = heads[b]
-            heads[b] = -1
-            while y >= 0:
-                nxt = li[y, NEXT]
-                cy = li[y, CELL]  # the keys as at the push (the same sums)
-                f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
-                f_vul = lf[y, F_VUL] + hv[cy]
-                k3 = np.float64(li[y, TURNS]) * ROW_SPAN + np.float64(y)
-                _sift_up(hf, size, f_len, f_vul, k3)
-                size += 1
-                nwin -= 1
-                y = nxt
+                        continue
+                    f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
+                    k3 = np.float64(li[y, TURNS]) * ROW_SPAN + np.float64(y)
+                    _sift_up(hf, size, f_len, f_vul, k3)
+                    size += 1
+                    nwin -= 1
+                    y = nxt
+            if size == 0:  # every waiting label was dropped: the search is done
+                break
+        steps += 1
         # pop the least key (the heap written out: helpers that take the arrays
         # cost reference counting); the keys are distinct (the row is in the
         # third), so any heap pops them in the same order
