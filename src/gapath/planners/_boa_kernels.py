@@ -13,7 +13,7 @@ dropped, whatever its path.
 
 With ``ties=True`` (the default tie-break: the smoothest path among
 tolerance-equal objective vectors) the search expands the same labels, and
-two things change:
+three things change:
 
 * a label dropped because it ties, in both objectives and within the
   tolerance, the label last expanded at its cell (or the last solution, at
@@ -24,7 +24,14 @@ two things change:
   are dominated are not recorded;
 * the goal test keeps a label whose f-vector ties the last solution in both
   objectives (BOA* drops it): a tied path that left the first one earlier
-  would be lost otherwise.
+  would be lost otherwise;
+* a waiting label that its cell's ``g2_min`` covers beyond the tolerance
+  when its bucket is poured is dropped there instead of at its pop (see
+  :func:`_pour_drops`): the same decisions, fewer heap operations. Its row
+  is reused earlier, and rows break exact ties of the open list's keys, so
+  among paths with exactly equal (length, vulnerability, smoothness)
+  another may be returned than without it (``F`` and smoothness are the
+  same). Without ties nothing is dropped early.
 
 The expanded labels and their in-edges (the primary one, to the label's own
 parent, and the recorded ones) form a DAG that holds, up to the tolerance,
