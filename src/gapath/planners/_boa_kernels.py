@@ -13,7 +13,7 @@ dropped, whatever its path.
 
 With ``ties=True`` (the default tie-break: the smoothest path among
 tolerance-equal objective vectors) the search expands the same labels, and
-two things change:
+three things change:
 
 * a label dropped because it ties, in both objectives and within the
   tolerance, the label last expanded at its cell (or the last solution, at
@@ -24,7 +24,14 @@ two things change:
   are dominated are not recorded;
 * the goal test keeps a label whose f-vector ties the last solution in both
   objectives (BOA* drops it): a tied path that left the first one earlier
-  would be lost otherwise.
+  would be lost otherwise;
+* a waiting label that its cell's ``g2_min`` covers beyond the tolerance
+  when its bucket is poured is dropped there instead of at its pop (see
+  :func:`_pour_drops`): the same decisions, fewer heap operations. Its row
+  is reused earlier, and rows break exact ties of the open list's keys, so
+  among paths with exactly equal (length, vulnerability, smoothness)
+  another may be returned than without it (``F`` and smoothness are the
+  same). Without ties nothing is dropped early.
 
 The expanded labels and their in-edges (the primary one, to the label's own
 parent, and the recorded ones) form a DAG that holds, up to the tolerance,
@@ -109,6 +116,14 @@ N_BUCKETS = 256
 #: head, its least bucket, the labels waiting in the window and in the overflow.
 E_EDGES, E_CUR, E_OHEAD, E_OMIN, E_NWIN, E_NOVER = range(6)
 _NO_BUCKET = np.int64(1) << 62
+#: The label tables start with 4 rows a cell, at most this many (see _boa_start).
+LABEL_ROWS = 1 << 18
+
+#: Bits set in a byte, and the heading of a byte's single set bit.
+_POPCOUNT = np.array([bin(b).count("1") for b in range(256)], np.int64)
+_LOWBIT = np.zeros(256, np.int64)
+for _d in range(8):
+    _LOWBIT[1 << _d] = _d
 
 
 @numba.njit(cache=True, nogil=True)
@@ -208,6 +223,25 @@ def _sift_up(hf, i, f_len, f_vul, k3):
     hf[3 * i + 2] = k3
 
 
+@numba.njit(cache=True, inline="always")
+def _pour_drops(q, m, f_vul, goal_min, at_goal):
+    """Whether a waiting label (g2 ``q`` at a cell whose ``g2_min`` is ``m``,
+    f_vulnerability ``f_vul``) can be dropped when its bucket is poured, with
+    the smoothest tie-break: its pop would drop it and record no tie edge,
+    whatever happens before then.
+
+    ``g2_min`` and the goal's least vulnerability only decrease, and
+    vulnerabilities are sums of a non-negative potential, so a value beyond
+    the tolerance above them now stays beyond it. A label so covered by its
+    cell's ``g2_min`` is dropped at its pop with no edge (an edge needs a tie
+    with ``g2_min``); so is a label at the goal so covered by the last
+    solution. One elsewhere covered only by the last solution is kept: its
+    pop tests ``g2_min`` first, which may by then tie it (an edge)."""
+    if at_goal:
+        return f_vul > goal_min and not _eq(f_vul, goal_min)
+    return q > m and not _eq(q, m)
+
+
 @numba.njit(cache=True)
 def _boa_steps(
     occ,
@@ -285,47 +319,60 @@ def _boa_steps(
         ):
             status = NEED_ROOM
             break
-        steps += 1
         if size == 0:  # the heap ran empty: pour the next nonempty bucket into it
-            if nwin == 0:
-                cur = omin - 1
-            while True:
-                cur += 1
-                if nover > 0 and omin < cur + nb:  # the overflow's labels now in the window
-                    y = ohead
-                    ohead = -1
-                    omin = _NO_BUCKET
-                    while y >= 0:
-                        nxt = li[y, NEXT]
-                        cy = li[y, CELL]
-                        f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
-                        qz = np.int64(f_len * rq)
-                        if qz < cur + nb:
-                            b = qz & (nb - 1)
-                            li[y, NEXT] = heads[b]
-                            heads[b] = y
-                            nwin += 1
-                            nover -= 1
-                        else:
-                            li[y, NEXT] = ohead
-                            ohead = y
-                            omin = min(omin, qz)
+            while size == 0 and nwin + nover > 0:  # (a pour may drop all its labels)
+                if nwin == 0:
+                    cur = omin - 1
+                while True:
+                    cur += 1
+                    if nover > 0 and omin < cur + nb:  # the overflow's labels now in the window
+                        y = ohead
+                        ohead = -1
+                        omin = _NO_BUCKET
+                        while y >= 0:
+                            nxt = li[y, NEXT]
+                            cy = li[y, CELL]
+                            f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
+                            qz = np.int64(f_len * rq)
+                            if qz < cur + nb:
+                                b = qz & (nb - 1)
+                                li[y, NEXT] = heads[b]
+                                heads[b] = y
+                                nwin += 1
+                                nover -= 1
+                            else:
+                                li[y, NEXT] = ohead
+                                ohead = y
+                                omin = min(omin, qz)
+                            y = nxt
+                    if heads[cur & (nb - 1)] >= 0:
+                        break
+                b = cur & (nb - 1)
+                y = heads[b]
+                heads[b] = -1
+                while y >= 0:
+                    nxt = li[y, NEXT]
+                    cy = li[y, CELL]  # the keys as at the push (the same sums)
+                    qy = lf[y, F_VUL]
+                    f_vul = qy + hv[cy]
+                    # a label its pop would drop without an edge is dropped now (see
+                    # _pour_drops): its row is free for the labels generated before then
+                    if ties and _pour_drops(qy, gmin[cy], f_vul, goal_min, cy == goal):
+                        li[y, NEXT] = free
+                        free = y
+                        n_free += 1
+                        nwin -= 1
                         y = nxt
-                if heads[cur & (nb - 1)] >= 0:
-                    break
-            b = cur & (nb - 1)
-            y = heads[b]
-            heads[b] = -1
-            while y >= 0:
-                nxt = li[y, NEXT]
-                cy = li[y, CELL]  # the keys as at the push (the same sums)
-                f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
-                f_vul = lf[y, F_VUL] + hv[cy]
-                k3 = np.float64(li[y, TURNS]) * ROW_SPAN + np.float64(y)
-                _sift_up(hf, size, f_len, f_vul, k3)
-                size += 1
-                nwin -= 1
-                y = nxt
+                        continue
+                    f_len = ((li[y, NS] + hs[cy]) + SQRT2 * (li[y, ND] + hd[cy])) * cell_size
+                    k3 = np.float64(li[y, TURNS]) * ROW_SPAN + np.float64(y)
+                    _sift_up(hf, size, f_len, f_vul, k3)
+                    size += 1
+                    nwin -= 1
+                    y = nxt
+            if size == 0:  # every waiting label was dropped: the search is done
+                break
+        steps += 1
         # pop the least key (the heap written out: helpers that take the arrays
         # cost reference counting); the keys are distinct (the row is in the
         # third), so any heap pops them in the same order
@@ -532,7 +579,10 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     The trace prefers, at each node, its own in-edge, then the recorded
     ones in the order they were recorded, and the lowest heading: the first
     (in-edge, heading) that gives the node's value, which the programme
-    keeps (``bp``, ``bh``) as it finds it.
+    keeps (``bp``, ``bs``: the parent and its slot) as it finds it. Only
+    the headings a node is entered with have a slot (``hoff``, ``hm``): one
+    for most nodes, where an 8-heading table per node took 8 times the
+    memory and most of the programme's time in page faults and cache misses.
 
     Returns ``(cells, offsets, n_straight, n_diag, turns, vul, scratch_bytes)``:
     the cells of solution ``i``'s path are ``cells[offsets[i]:offsets[i + 1]]``
@@ -541,93 +591,121 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     of the programme's arrays.
     """
     # alternative in-edges by node (counting sort)
-    off = np.zeros(n_rows + 1, np.int64)
+    off = np.zeros(n_rows + 1, np.int32)
     for e in range(n_edges):
         off[edges[e, E_NODE] + 1] += 1
     for v in range(n_rows):
         off[v + 1] += off[v]
-    fill = off[:n_rows].copy()
     ep = np.empty(n_edges, np.int32)
-    edir = np.empty(n_edges, np.int32)
-    for e in range(n_edges):
+    edir = np.empty(n_edges, np.int8)
+    for e in range(n_edges):  # off[v] is v's fill pointer, then its end
         v = edges[e, E_NODE]
-        k = fill[v]
+        k = off[v]
         ep[k] = edges[e, E_PARENT]
         edir[k] = edges[e, E_DIR]
-        fill[v] = k + 1
+        off[v] = k + 1
+    for v in range(n_rows, 0, -1):  # back to the starts
+        off[v] = off[v - 1]
+    off[0] = 0
 
-    # post-order of the nodes reachable from the solutions
-    state = np.zeros(n_rows, np.int8)  # 0 unseen, 1 open, 2 done
+    # post-order of the nodes reachable from the solutions; idx: -1 unseen,
+    # -2 open, else the node's place in the order
     idx = np.full(n_rows, -1, np.int32)
     order = np.empty(n_rows, np.int32)
     stack = np.empty(n_rows + n_edges + len(sols) + 1, np.int32)
     k = 0
     for s in sols:
-        if state[s] != 0:
+        if idx[s] != -1:
             continue
         sp = 0
         stack[sp] = s
         sp += 1
         while sp > 0:
             v = stack[sp - 1]
-            if state[v] == 2:
+            if idx[v] >= 0:
                 sp -= 1
-            elif state[v] == 0:
-                state[v] = 1
+            elif idx[v] == -1:
+                idx[v] = -2
                 p = li[v, F_PARENT]
-                if p >= 0 and state[p] == 0:
+                if p >= 0 and idx[p] == -1:
                     stack[sp] = p
                     sp += 1
                 for e in range(off[v], off[v + 1]):
                     p = ep[e]
-                    if state[p] == 0:
+                    if idx[p] == -1:
                         stack[sp] = p
                         sp += 1
             else:
-                state[v] = 2
                 idx[v] = k
                 order[k] = v
                 k += 1
                 sp -= 1
 
-    # least (turns, vulnerability) per (node, incoming heading); hm: the headings set
-    T = np.full(k * 8, _BIG, np.int64)
-    V = np.full(k * 8, np.inf)
+    # one slot per (node, incoming heading) that occurs (most nodes have one):
+    # the slots of node i are hoff[i]:hoff[i + 1], in heading order (hm: the
+    # headings); the start label has one slot (no heading)
     hm = np.zeros(k, np.uint8)
-    # the first (in-edge, heading) giving (T, V): the trace's choice, kept
-    bp = np.empty(k * 8, np.int32)
-    bh = np.empty(k * 8, np.int8)
+    hoff = np.empty(k + 1, np.int64)
+    hoff[0] = 0
+    for i in range(k):
+        v = order[i]
+        bits = 0
+        if li[v, F_PARENT] >= 0:
+            bits = 1 << li[v, F_HEAD]
+            for e in range(off[v], off[v + 1]):
+                bits |= 1 << edir[e]
+        hm[i] = bits
+        hoff[i + 1] = hoff[i] + (_POPCOUNT[bits] if bits else 1)
+    n_slots = hoff[k]
+    # least (turns, vulnerability) per slot, and the first (in-edge, parent
+    # slot) giving it: the trace's choice, kept
+    T = np.empty(n_slots, np.int64)
+    V = np.empty(n_slots)
+    bp = np.empty(n_slots, np.int32)
+    bs = np.empty(n_slots, np.int32)
     for i in range(k):
         v = order[i]
         c = li[v, CELL]
         pv = pot[c // w, c % w]
+        s0 = hoff[i]
         if li[v, F_PARENT] < 0:  # the start label: no heading, no turn to come
-            for d in range(8):
-                T[i * 8 + d] = 0
-                V[i * 8 + d] = pv
-            hm[i] = 255
+            T[s0] = 0
+            V[s0] = pv
+            bp[s0] = -1
             continue
+        for j in range(s0, hoff[i + 1]):
+            T[j] = _BIG
+            V[j] = np.inf
+        bits_v = np.int64(hm[i])
         for e in range(off[v] - 1, off[v + 1]):
             if e < off[v]:
-                p, d = li[v, F_PARENT], li[v, F_HEAD]
+                p, d = li[v, F_PARENT], np.int64(li[v, F_HEAD])
             else:
-                p, d = ep[e], edir[e]
+                p, d = ep[e], np.int64(edir[e])
+            sd = s0 + _POPCOUNT[bits_v & ((1 << d) - 1)]
             ip = idx[p]
-            base = ip * 8
-            bits = hm[ip]
-            bt, bv = T[i * 8 + d], V[i * 8 + d]
-            b_p, b_h = bp[i * 8 + d], bh[i * 8 + d]
-            for hh in range(8):
-                if (bits >> hh) & 1:
-                    t = T[base + hh] + turn(hh, d)
-                    if t < bt or (t == bt and V[base + hh] + pv < bv):
-                        bt, bv = t, V[base + hh] + pv
-                        b_p, b_h = p, hh
-            T[i * 8 + d] = bt
-            V[i * 8 + d] = bv
-            bp[i * 8 + d] = b_p
-            bh[i * 8 + d] = b_h
-            hm[i] |= 1 << d
+            bt, bv = T[sd], V[sd]
+            b_p, b_s = bp[sd], bs[sd]
+            bits = np.int64(hm[ip])
+            sp_ = hoff[ip]
+            if bits == 0:  # the parent is the start label
+                t = T[sp_]
+                if t < bt or (t == bt and V[sp_] + pv < bv):
+                    bt, bv = t, V[sp_] + pv
+                    b_p, b_s = p, sp_
+            else:
+                while bits:
+                    hh = _LOWBIT[bits & -bits]
+                    bits &= bits - 1
+                    t = T[sp_] + turn(hh, d)
+                    if t < bt or (t == bt and V[sp_] + pv < bv):
+                        bt, bv = t, V[sp_] + pv
+                        b_p, b_s = p, sp_
+                    sp_ += 1
+            T[sd] = bt
+            V[sd] = bv
+            bp[sd] = b_p
+            bs[sd] = b_s
 
     # trace each solution back from its least (T, V) (the steps written out: a
     # helper call per step cost most of the time), then evaluate it forwards
@@ -644,20 +722,19 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     cells = np.empty((total, 2), np.int64)
     for si in range(n_sols):
         v = sols[si]
-        i = idx[v] * 8
-        d = 0
-        for dd in range(1, 8):
-            if T[i + dd] < T[i + d] or (T[i + dd] == T[i + d] and V[i + dd] < V[i + d]):
-                d = dd
+        i = idx[v]
+        j = hoff[i]  # the least (T, V), the lowest heading first
+        for jj in range(hoff[i] + 1, hoff[i + 1]):
+            if T[jj] < T[j] or (T[jj] == T[j] and V[jj] < V[j]):
+                j = jj
         m = 0
         while True:
             buf[m] = v
             m += 1
             if li[v, F_PARENT] < 0:
                 break
-            # the first in-edge (p, d) of v (its own first) and heading of p giving T, V
-            i = idx[v] * 8 + d
-            v, d = bp[i], np.int64(bh[i])
+            # the first in-edge of v (its own first) and slot of its parent giving T, V
+            v, j = bp[j], bs[j]
         a = offsets[si]
         b = a + m
         offsets[si + 1] = b
@@ -691,10 +768,11 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         out_vul[si] = vul
     cells = cells[: offsets[n_sols]]
     scratch = 0
-    for arr_bytes in (off.nbytes, fill.nbytes, ep.nbytes, edir.nbytes, state.nbytes, idx.nbytes):
+    for arr_bytes in (off.nbytes, ep.nbytes, edir.nbytes, idx.nbytes, order.nbytes, stack.nbytes):
         scratch += arr_bytes
-    scratch += order.nbytes + stack.nbytes + T.nbytes + V.nbytes + hm.nbytes + buf.nbytes + cells.nbytes
-    scratch += bp.nbytes + bh.nbytes
+    scratch += (
+        hm.nbytes + hoff.nbytes + T.nbytes + V.nbytes + bp.nbytes + bs.nbytes + buf.nbytes + cells.nbytes
+    )
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
 
 
@@ -764,6 +842,16 @@ def _boa_start(pot, sr, sc, w, cell_size, hs, hd, hv, ties, n_buckets):
         pot, sr, sc, w, cell_size, mode, p, q, hs, hd, hv, ht, hs.shape[0]
     )
     hid = np.full(n_buckets, -1, np.int32)  # the buckets' heads
+    # room for 4 labels a cell up to 2**18 rows (9.4 MB): doubling from 1,024 rows
+    # cost a Berlin_1_256 search 3-8 ms of copies and page faults (the pages
+    # are touched only as rows are used)
+    rows = min(4 * hs.shape[0], LABEL_ROWS)
+    if rows > li.shape[0]:
+        li2 = np.empty((rows, li.shape[1]), li.dtype)
+        lf2 = np.empty((rows, lf.shape[1]), lf.dtype)
+        li2[: st[S_N]] = li[: st[S_N]]  # the start label
+        lf2[: st[S_N]] = lf[: st[S_N]]
+        li, lf = li2, lf2
     edges = np.empty((1024 if ties else 16, 3), np.int32)
     est = np.zeros(6, np.int64)
     est[E_CUR] = np.int64(hk[0, 0] * (BUCKETS_PER_CELL / cell_size))  # the start label's bucket
