@@ -87,7 +87,7 @@ CAP = 5000
 #: exact front of each pair of its objectives (among length, vulnerability,
 #: smoothness); the searches share a budget of this many expansions per
 #: reachable cell (``faces``'s default; 0 with two objectives).
-FACE_BUDGET = 100
+FACE_BUDGET = 200
 #: The ``epsilon`` of the approximate three-objective search after the faces
 #: (``approx``'s default with the objectives length, vulnerability and
 #: smoothness; see ``docs/results/free_paths.md``, "Approximate
@@ -297,7 +297,7 @@ class FreePathArchive(PathArchive):
     faces : with three or more objectives, the budget of the exact
         two-objective face searches (see the module docstring), shared in
         their order, in expansions per reachable cell (default
-        :data:`FACE_BUDGET`, 100; 0 with two objectives, or to switch the
+        :data:`FACE_BUDGET`, 200; 0 with two objectives, or to switch the
         faces off); the search that reaches what is left stops there and
         keeps the points it found (part of its exact front), and the ones
         after it do not run (deterministic: it depends on the map, not on
