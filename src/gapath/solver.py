@@ -231,7 +231,7 @@ def solve(
     if pm_prob_var is not None:
         extra["pm_prob_var"] = pm_prob_var
     algorithm = ENGINES[engine](pop_size, tiebreak=tiebreak, sbx_eta=sbx_eta, sampling=sampling, **extra)
-    archive = free_archive = None
+    archive = None
     if paths == "free" and refine is not False:
         from gapath.operators.archive import FreePathArchive
 
@@ -239,7 +239,7 @@ def solve(
             n_refine = pop_size // 2 if problem.n_obj <= 2 else 2 * pop_size
         else:
             n_refine = refine
-        archive = free_archive = FreePathArchive(problem, n_refine=n_refine, seed=seed)
+        archive = FreePathArchive(problem, n_refine=n_refine, seed=seed)
     elif paths == "monotone" and refine not in (None, False):
         from gapath.operators.monotone_archive import MonotonePathArchive, default_refine
 
@@ -278,8 +278,8 @@ def solve(
     interrupted = False
     res = None
     try:
-        if free_archive is not None:  # its second thread's search (GAPATH_THREADS)
-            free_archive.start()
+        if archive is not None:  # (the free archive's second-thread search, GAPATH_THREADS)
+            archive.start()
         res = minimize(
             problem, algorithm, ("n_gen", n_gen), seed=seed, callback=callbacks, copy_algorithm=False
         )
@@ -287,8 +287,8 @@ def solve(
         interrupted = True
     finally:
         bar.close()
-        if free_archive is not None:
-            free_archive.close()
+        if archive is not None:
+            archive.close()
     seconds = time.perf_counter() - t0
     # the last complete generation's genomes (the engine's arrays, or pymoo's pop)
     A = population_arrays(algorithm)

@@ -235,6 +235,14 @@ class PathArchive(Callback):
         """The archived paths (``(m_i, 2)`` workspace cells)."""
         raise NotImplementedError
 
+    def start(self) -> None:
+        """Called by :func:`gapath.solver.solve` before the run: work that may
+        start early (none here)."""
+
+    def close(self) -> None:
+        """Called by :func:`gapath.solver.solve` after the run, even when it
+        was interrupted: end what :meth:`start` began (nothing here)."""
+
     def front(self) -> PathFront:
         """The archive as a :class:`gapath.front.PathFront` (lexicographic
         order); its ``X`` is :meth:`genomes`."""
@@ -529,13 +537,17 @@ class FreePathArchive(PathArchive):
 
         if self._background is not None or self.face_sizes:
             return
-        budget = self.approx_budget * self.problem.encoding.n_reachable
+        budget = self._approx_expansions()
         if not (self.approx > 0 and self.faces > 0 and budget > 0 and wanted_threads() >= 2):
             return
         ws = self.problem.workspace
         _ = ws.potential  # (computed here, not in both threads at once)
         three, eps = tuple(self.problem.objectives), self.approx
         self._background = _Background(lambda cancel: _budget_search(ws, three, eps, budget, cancel))
+
+    def _approx_expansions(self) -> float:
+        """The approximate search's budget in expansions."""
+        return self.approx_budget * self.problem.encoding.n_reachable
 
     def close(self) -> None:
         """Cancel a search started by :meth:`start` that :meth:`add_faces`
@@ -566,29 +578,28 @@ class FreePathArchive(PathArchive):
         w = ws.shape[1]
         pairs = face_pairs(self.problem.objectives) if self.faces > 0 else []
         three = tuple(self.problem.objectives)
-        approx_budget = self.approx_budget * enc.n_reachable
         self.start()
         background, self._background = self._background, None
         subs: list[np.ndarray] = []
         try:
             left = self.faces * enc.n_reachable
             for pair in pairs:
-                paths, record = _budget_search(ws, pair, 0.0, left) if left > 0 else ([], (pair, None, False))
-                done = record[2]
-                left = left - record[3] if done else 0
-                self.face_sizes.append(record[:3])
+                paths, kept, done, used = _budget_search(ws, pair, 0.0, left) if left > 0 else _NOT_RUN
+                left = left - used if done else 0
+                self.face_sizes.append((pair, kept, done))
                 subs += paths
             if self.approx > 0:
+                # not run where a face stopped short: it costs more than the faces there
                 fit = all(done for _, _, done in self.face_sizes)
-                if not fit or approx_budget <= 0:  # it costs more than the faces on such a map
-                    self.face_sizes.append((three, None, False))
+                budget = self._approx_expansions()
+                if not fit or budget <= 0:
+                    paths, kept, done, _ = _NOT_RUN
+                elif background is not None:
+                    paths, kept, done, _ = background.result()
                 else:
-                    if background is not None:
-                        paths, record = background.result()
-                    else:
-                        paths, record = _budget_search(ws, three, self.approx, approx_budget)
-                    self.face_sizes.append(record[:3])
-                    subs += paths
+                    paths, kept, done, _ = _budget_search(ws, three, self.approx, budget)
+                self.face_sizes.append((three, kept, done))
+                subs += paths
         finally:
             if background is not None:
                 background.cancel()
@@ -833,12 +844,16 @@ class _Cancelled(Exception):
     """Raised by a cancelled background search's progress hook."""
 
 
+#: What :func:`_budget_search` gives for a search that did not run.
+_NOT_RUN: tuple[list, None, bool, int] = ([], None, False, 0)
+
+
 def _budget_search(ws, objectives, eps, budget, cancel=None):
-    """The paths of ``free_front(ws, objectives, epsilon=eps,
-    max_expansions=budget)`` and the record ``(objectives, points or None,
-    finished within the budget, expansions)``; no path (``None``) when the
-    goal cannot be reached. With a ``cancel`` event the search ends with
-    :class:`_Cancelled` between two kernel calls once it is set."""
+    """``(paths, points kept, finished within the budget, expansions)`` of
+    ``free_front(ws, objectives, epsilon=eps, max_expansions=budget)``;
+    :data:`_NOT_RUN` when the goal cannot be reached. With a ``cancel``
+    event the search ends with :class:`_Cancelled` between two kernel calls
+    once it is set."""
     from gapath.errors import NoPathError
     from gapath.planners.exact import free_front
 
@@ -852,9 +867,8 @@ def _budget_search(ws, objectives, eps, budget, cancel=None):
     try:
         front = free_front(ws, objectives, epsilon=eps, max_expansions=budget, progress=hook)
     except NoPathError:
-        return [], (objectives, None, False, 0)
-    done = bool(front.stats["complete"])
-    return list(front.paths), (objectives, len(front.paths), done, int(front.stats["expansions"]))
+        return _NOT_RUN
+    return list(front.paths), len(front.paths), bool(front.stats["complete"]), int(front.stats["expansions"])
 
 
 class _Background:
