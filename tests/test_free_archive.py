@@ -658,6 +658,36 @@ def test_second_thread_errors_and_interrupts_end_both_searches(monkeypatch):
     assert len(started) == 2 and all(not b._thread.is_alive() for b in started)
 
 
+def test_second_thread_search_holds_a_thread_until_it_ends(monkeypatch):
+    """While the second thread's search runs, the main thread's batches of
+    searches run serially (they would wait for a thread sharing its core);
+    the thread is given back when the search ends, fails or is cancelled."""
+    from gapath.encodings import free
+    from gapath.operators import archive as A
+
+    _two_threads(monkeypatch)
+    assert free.search_threads(1000) == 2
+
+    def waiting(cancel):
+        while not cancel.wait(0.01):
+            pass
+        return "cancelled"
+
+    def failing(cancel):
+        raise RuntimeError("search failed")
+
+    b = A._Background(waiting)
+    assert free.search_threads(1000) == 0
+    b.cancel()
+    assert free.search_threads(1000) == 2
+    b = A._Background(failing)
+    with pytest.raises(RuntimeError, match="search failed"):
+        b.result()
+    assert free.search_threads(1000) == 2
+    b = A._Background(lambda cancel: 7)
+    assert b.result() == 7 and free.search_threads(1000) == 2
+
+
 @pytest.mark.parametrize(
     "kwargs, match",
     [

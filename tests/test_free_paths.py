@@ -453,6 +453,26 @@ def test_search_threads_setting(monkeypatch):
         search_threads(1000)
 
 
+def test_a_held_thread_is_left_to_its_search(monkeypatch):
+    """A background search holds one of the wanted threads: the batches run
+    serially on two threads while it is held, in parallel again once it is
+    released (twice: the second release does nothing)."""
+    from gapath.encodings import free
+
+    monkeypatch.setattr(free, "wanted_threads", lambda: 2)
+    assert free.search_threads(1000) == 2
+    release = free.hold_thread()
+    assert free.search_threads(1000) == 0
+    release()
+    assert free.search_threads(1000) == 2
+    release()
+    assert free.search_threads(1000) == 2
+    monkeypatch.setattr(free, "wanted_threads", lambda: 4)
+    with_one = free.hold_thread()
+    assert free.search_threads(1000) == 3
+    with_one()
+
+
 @pytest.mark.parametrize("name", ["via", "field"])
 @pytest.mark.parametrize("how", ["deepcopy", "pickle"])
 def test_copied_encodings_reuse_the_compiled_decoder(name, how):

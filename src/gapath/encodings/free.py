@@ -57,6 +57,7 @@ from __future__ import annotations
 import math
 import os
 import threading
+from collections.abc import Callable
 
 import numba
 import numpy as np
@@ -104,9 +105,38 @@ def wanted_threads() -> int:
     return max(1, min(nt, MAX_THREADS))
 
 
+#: Threads of :func:`wanted_threads` that background searches hold (see
+#: :func:`hold_thread`).
+_held = 0
+_held_lock = threading.Lock()
+
+
+def hold_thread() -> Callable[[], None]:
+    """Count one of the :func:`wanted_threads` as busy until the returned
+    function is called (the first call releases it, later ones nothing). A
+    search running in a background thread (generation 1's approximate
+    search, :class:`gapath.operators.archive.FreePathArchive`) holds one, so
+    that the batches of :func:`search_threads` leave its core to it instead
+    of waiting for a thread that shares that core."""
+    global _held
+    with _held_lock:
+        _held += 1
+    done = threading.Event()
+
+    def release() -> None:
+        global _held
+        with _held_lock:
+            if not done.is_set():
+                done.set()
+                _held -= 1
+
+    return release
+
+
 def search_threads(n: int) -> int:
     """Threads for a batch of ``n`` searches: 0 (the serial kernels) unless
-    :func:`wanted_threads` is more than one, and also with fewer than two
+    :func:`wanted_threads`, less those a background search holds
+    (:func:`hold_thread`), is more than one, and also with fewer than two
     searches per thread or outside the main thread (numba's ``workqueue``
     threading layer must not be entered from two threads at once). The
     paths do not depend on it.
@@ -118,7 +148,7 @@ def search_threads(n: int) -> int:
     threads gave 1.5-1.7x the paths per second and 1.5x per generation
     (same file, "Parallel batches on idle cores").
     """
-    nt = wanted_threads()
+    nt = wanted_threads() - _held
     if nt < 2 or n < 2 * nt:
         return 0
     return nt
@@ -754,6 +784,7 @@ __all__ = [
     "default_field_shape",
     "default_n_via",
     "make_free_encoding",
+    "hold_thread",
     "search_threads",
     "wanted_threads",
 ]

@@ -872,21 +872,27 @@ def _budget_search(ws, objectives, eps, budget, cancel=None):
 
 
 class _Background:
-    """``fn(cancel)`` run in a daemon thread; :meth:`result` waits for it
-    (and raises what it raised), :meth:`cancel` sets ``cancel`` and waits
-    until the thread has ended (a Ctrl-C in the main thread then stops it
-    within one kernel call)."""
+    """``fn(cancel)`` run in a daemon thread, which holds one of the
+    ``GAPATH_THREADS`` until it ends (:func:`gapath.encodings.free.hold_thread`);
+    :meth:`result` waits for it (and raises what it raised), :meth:`cancel`
+    sets ``cancel`` and waits until the thread has ended (a Ctrl-C in the
+    main thread then stops it within one kernel call)."""
 
     def __init__(self, fn):
+        from gapath.encodings.free import hold_thread
+
         self._event = threading.Event()
         self._out: Any = None
         self._error: BaseException | None = None
+        release = hold_thread()  # the main thread's batches leave this core to it
 
         def run():
             try:
                 self._out = fn(self._event)
             except BaseException as e:  # handed to the caller by result()
                 self._error = e
+            finally:
+                release()
 
         self._thread = threading.Thread(target=run, name="gapath-approx-search", daemon=True)
         self._thread.start()

@@ -82,12 +82,18 @@ F_APEX, F_APEX_LEN = 1, 2
 MERGED = -2
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, _nrt=False)
 def _covered(gmin, sp, first, c, goal, goal_base, goal_state, t, a, hx, tgoal, ahv):
     """True if an expanded label of cell ``c`` (its staircases of (turns,
     apex)) or a solution (the goal front of apexes) covers a label with
     ``t`` turns, heading ``hx`` (-1: the start) and apex ``a``; ``tgoal`` and
-    ``ahv`` are its turn and vulnerability lower bounds at the goal."""
+    ``ahv`` are its turn and vulnerability lower bounds at the goal.
+
+    Compiled without numba's reference counting (``_nrt=False``: it
+    allocates nothing). Inlined into the loop, or called as an ordinary
+    function, its three arrays were counted in and out at every call: six
+    atomic operations per generated label, 16 % of the search's samples on
+    gen256-s1 (fifteenth session, ``docs/results/free_paths.md``)."""
     base = c * THREE_BLOCK
     if c != goal and gmin[base] < np.inf and _le(gmin[base], a):
         for k in range(N_SLOTS):
@@ -107,6 +113,13 @@ def _covered(gmin, sp, first, c, goal, goal_base, goal_state, t, a, hx, tgoal, a
         if m < np.inf and _le(m, ahv):
             return True
     return False
+
+
+@numba.njit(cache=True, _nrt=False)
+def _pop(hk, size):
+    """:func:`_heap4_pop` as a call without reference counting (see
+    :func:`_covered`)."""
+    return _heap4_pop(hk, size)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -239,7 +252,7 @@ def _apex_steps(
             status = NEED_ROOM
             break
         steps += 1
-        x, size = _heap4_pop(hk, size)
+        x, size = _pop(hk, size)
         if li[x, NEXT] == MERGED:  # another open label stands for it
             li[x, NEXT] = free
             free = x
