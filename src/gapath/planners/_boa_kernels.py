@@ -242,6 +242,27 @@ def _pour_drops(q, m, f_vul, goal_min, at_goal):
     return q > m and not _eq(q, m)
 
 
+@numba.njit(cache=True, inline="always")
+def _pour_drops_tied(q, m, len_q, len_first):
+    """Whether a waiting label (not at the goal) that ties its cell's
+    ``g2_min`` ``m`` within the tolerance (g2 ``q``, length ``len_q``) can be
+    dropped when its bucket is poured, with the smoothest tie-break: when
+    ``q >= m`` and its length does not tie ``len_first``, that of the label
+    last expanded at the cell (``first``). Its pop would drop it with no edge.
+
+    Proof. Until its pop, the label stays covered, and it records an edge only
+    if it ties, in g2 and in length, the label then last expanded at its
+    cell. If none is expanded there before its pop, that is ``first``, whose
+    length it does not tie. If one is, with g2 ``m'``, then ``m' < m`` and not
+    ``_eq(m', m)`` (the expansion test), and then not ``_eq(q, m')`` for any
+    ``q >= m`` (docs/results/exact_speed.md, fifteenth session: the
+    tolerance is not transitive, but moving away from ``m'`` only widens the
+    gap faster than the tolerance grows); the same holds for every later
+    expansion there, each below the one before. So it records no edge at its
+    pop. A label with ``q < m`` is kept: a later ``m'`` may tie it."""
+    return q >= m and not _eq(len_q, len_first)
+
+
 @numba.njit(cache=True)
 def _boa_steps(
     occ,
@@ -357,7 +378,20 @@ def _boa_steps(
                     f_vul = qy + hv[cy]
                     # a label its pop would drop without an edge is dropped now (see
                     # _pour_drops): its row is free for the labels generated before then
-                    if ties and _pour_drops(qy, gmin[cy], f_vul, goal_min, cy == goal):
+                    if ties:
+                        m = gmin[cy]
+                        drop = _pour_drops(qy, m, f_vul, goal_min, cy == goal)
+                        if not drop and cy != goal and qy >= m:  # tied with g2_min, from above
+                            a = first[cy]
+                            drop = _pour_drops_tied(
+                                qy,
+                                m,
+                                (li[y, NS] + SQRT2 * li[y, ND]) * cell_size,
+                                (li[a, NS] + SQRT2 * li[a, ND]) * cell_size,
+                            )
+                    else:
+                        drop = False
+                    if drop:
                         li[y, NEXT] = free
                         free = y
                         n_free += 1
