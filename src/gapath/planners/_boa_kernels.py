@@ -77,6 +77,7 @@ from gapath.planners._exact_kernels import (
     S_SIZE,
     S_SOLS,
     SF_GOAL_MIN,
+    TOL,
     TURNS,
     _eq,
     _free_init,
@@ -116,6 +117,11 @@ N_BUCKETS = 256
 #: head, its least bucket, the labels waiting in the window and in the overflow.
 E_EDGES, E_CUR, E_OHEAD, E_OMIN, E_NWIN, E_NOVER = range(6)
 _NO_BUCKET = np.int64(1) << 62
+#: A waiting label away from the goal is dropped at the pour when its
+#: f_vulnerability exceeds the last solution's by more than this (relative,
+#: as SPEC's tolerance), see _pour_drops: three tolerances, one more than
+#: the proof needs.
+GOAL_MARGIN = 3.0 * TOL
 #: The label tables start with 4 rows a cell, at most this many (see _boa_start).
 LABEL_ROWS = 1 << 18
 
@@ -236,10 +242,19 @@ def _pour_drops(q, m, f_vul, goal_min, at_goal):
     cell's ``g2_min`` is dropped at its pop with no edge (an edge needs a tie
     with ``g2_min``); so is a label at the goal so covered by the last
     solution. One elsewhere covered only by the last solution is kept: its
-    pop tests ``g2_min`` first, which may by then tie it (an edge)."""
+    pop tests ``g2_min`` first, which may by then tie it (an edge), unless it
+    is clear of ``g2_min`` (not tied with it) and its f_vulnerability exceeds
+    the last solution's by more than three tolerances (``GOAL_MARGIN``): then
+    every label expanded at its cell before its pop has a g2 more than one
+    tolerance below its own (such a label's f_vulnerability is at most one
+    tolerance above the last solution's, even when kept as tied with it), so
+    no ``g2_min`` it meets at its pop ties it (docs/results/exact_speed.md,
+    fifteenth session)."""
     if at_goal:
         return f_vul > goal_min and not _eq(f_vul, goal_min)
-    return q > m and not _eq(q, m)
+    if q > m and not _eq(q, m):
+        return True
+    return (m == np.inf or not _eq(q, m)) and f_vul - goal_min > GOAL_MARGIN * max(1.0, f_vul)
 
 
 @numba.njit(cache=True, inline="always")
