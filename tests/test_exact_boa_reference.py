@@ -348,5 +348,3 @@ def test_goal_margin_keeps_a_dropped_label_apart_from_every_expansion():
     fz = _doubles_tied(g, True)
     fy = _next(g + TOL * g * (1 + 1e-6))
     assert fy - g > TOL * fy and _eq(fy, fz)
-
-
