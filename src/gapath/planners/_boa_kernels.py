@@ -658,10 +658,25 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     off[0] = 0
 
     # post-order of the nodes reachable from the solutions; idx: -1 unseen,
-    # -2 open, else the node's place in the order
+    # -2 open, else the node's place in the order. A node is finished after
+    # its parents, so when it is, its in-edges are written out in that order's
+    # numbers (kin_p, kin_d: its own first, then the recorded ones in the
+    # order they were recorded; none for the start label) with its cell and
+    # its slots (below): the programme then reads these compact arrays in
+    # order instead of label rows scattered over the table
     idx = np.full(n_rows, -1, np.int32)
-    order = np.empty(n_rows, np.int32)
+    ncell = np.empty(n_rows, np.int32)
+    kin_off = np.empty(n_rows + 1, np.int32)
+    kin_p = np.empty(n_rows + n_edges, np.int32)
+    kin_d = np.empty(n_rows + n_edges, np.int8)
     stack = np.empty(n_rows + n_edges + len(sols) + 1, np.int32)
+    # one slot per (node, incoming heading) that occurs (most nodes have one):
+    # the slots of node i are hoff[i]:hoff[i + 1], in heading order (hm: the
+    # headings; 0 for the start label, which has one slot and no heading)
+    hm = np.zeros(n_rows, np.uint8)
+    hoff = np.empty(n_rows + 1, np.int64)
+    hoff[0] = 0
+    kin_off[0] = 0
     k = 0
     for s in sols:
         if idx[s] != -1:
@@ -686,38 +701,39 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                         sp += 1
             else:
                 idx[v] = k
-                order[k] = v
+                ncell[k] = li[v, CELL]
+                t = kin_off[k]
+                bits = 0
+                p = li[v, F_PARENT]
+                if p >= 0:
+                    d = li[v, F_HEAD]
+                    kin_p[t] = idx[p]
+                    kin_d[t] = d
+                    t += 1
+                    bits = 1 << d
+                    for e in range(off[v], off[v + 1]):
+                        kin_p[t] = idx[ep[e]]
+                        kin_d[t] = edir[e]
+                        t += 1
+                        bits |= 1 << edir[e]
+                kin_off[k + 1] = t
+                hm[k] = bits
+                hoff[k + 1] = hoff[k] + (_POPCOUNT[bits] if bits else 1)
                 k += 1
                 sp -= 1
-
-    # one slot per (node, incoming heading) that occurs (most nodes have one):
-    # the slots of node i are hoff[i]:hoff[i + 1], in heading order (hm: the
-    # headings); the start label has one slot (no heading)
-    hm = np.zeros(k, np.uint8)
-    hoff = np.empty(k + 1, np.int64)
-    hoff[0] = 0
-    for i in range(k):
-        v = order[i]
-        bits = 0
-        if li[v, F_PARENT] >= 0:
-            bits = 1 << li[v, F_HEAD]
-            for e in range(off[v], off[v + 1]):
-                bits |= 1 << edir[e]
-        hm[i] = bits
-        hoff[i + 1] = hoff[i] + (_POPCOUNT[bits] if bits else 1)
     n_slots = hoff[k]
     # least (turns, vulnerability) per slot, and the first (in-edge, parent
     # slot) giving it: the trace's choice, kept
     T = np.empty(n_slots, np.int64)
     V = np.empty(n_slots)
-    bp = np.empty(n_slots, np.int32)
+    bp = np.empty(n_slots, np.int32)  # the parent's place in the order
     bs = np.empty(n_slots, np.int32)
+    pf = pot.reshape(pot.size)
     for i in range(k):
-        v = order[i]
-        c = li[v, CELL]
-        pv = pot[c // w, c % w]
+        pv = pf[ncell[i]]
         s0 = hoff[i]
-        if li[v, F_PARENT] < 0:  # the start label: no heading, no turn to come
+        bits_v = np.int64(hm[i])
+        if bits_v == 0:  # the start label: no heading, no turn to come
             T[s0] = 0
             V[s0] = pv
             bp[s0] = -1
@@ -725,14 +741,10 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         for j in range(s0, hoff[i + 1]):
             T[j] = _BIG
             V[j] = np.inf
-        bits_v = np.int64(hm[i])
-        for e in range(off[v] - 1, off[v + 1]):
-            if e < off[v]:
-                p, d = li[v, F_PARENT], np.int64(li[v, F_HEAD])
-            else:
-                p, d = ep[e], np.int64(edir[e])
+        for e in range(kin_off[i], kin_off[i + 1]):
+            ip = kin_p[e]
+            d = np.int64(kin_d[e])
             sd = s0 + _POPCOUNT[bits_v & ((1 << d) - 1)]
-            ip = idx[p]
             bt, bv = T[sd], V[sd]
             b_p, b_s = bp[sd], bs[sd]
             bits = np.int64(hm[ip])
@@ -741,7 +753,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                 t = T[sp_]
                 if t < bt or (t == bt and V[sp_] + pv < bv):
                     bt, bv = t, V[sp_] + pv
-                    b_p, b_s = p, sp_
+                    b_p, b_s = ip, sp_
             else:
                 while bits:
                     hh = _LOWBIT[bits & -bits]
@@ -749,7 +761,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                     t = T[sp_] + turn(hh, d)
                     if t < bt or (t == bt and V[sp_] + pv < bv):
                         bt, bv = t, V[sp_] + pv
-                        b_p, b_s = p, sp_
+                        b_p, b_s = ip, sp_
                     sp_ += 1
             T[sd] = bt
             V[sd] = bv
@@ -770,20 +782,19 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         total += li[sols[si], NS] + li[sols[si], ND] + 1
     cells = np.empty((total, 2), np.int64)
     for si in range(n_sols):
-        v = sols[si]
-        i = idx[v]
+        i = idx[sols[si]]
         j = hoff[i]  # the least (T, V), the lowest heading first
         for jj in range(hoff[i] + 1, hoff[i + 1]):
             if T[jj] < T[j] or (T[jj] == T[j] and V[jj] < V[j]):
                 j = jj
         m = 0
         while True:
-            buf[m] = v
+            buf[m] = i
             m += 1
-            if li[v, F_PARENT] < 0:
+            if hm[i] == 0:  # the start label
                 break
-            # the first in-edge of v (its own first) and slot of its parent giving T, V
-            v, j = bp[j], bs[j]
+            # the first in-edge of i (its own first) and slot of its parent giving T, V
+            i, j = bp[j], bs[j]
         a = offsets[si]
         b = a + m
         offsets[si + 1] = b
@@ -792,7 +803,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
             grown[:a] = cells[:a]
             cells = grown
         for t in range(m):
-            c = li[buf[m - 1 - t], CELL]
+            c = ncell[buf[m - 1 - t]]
             cells[a + t, 0] = c // w
             cells[a + t, 1] = c % w
         # the objectives along the path, in path order (as gapath.objectives does)
@@ -817,11 +828,10 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         out_vul[si] = vul
     cells = cells[: offsets[n_sols]]
     scratch = 0
-    for arr_bytes in (off.nbytes, ep.nbytes, edir.nbytes, idx.nbytes, order.nbytes, stack.nbytes):
+    for arr_bytes in (off.nbytes, ep.nbytes, edir.nbytes, idx.nbytes, ncell.nbytes, kin_off.nbytes, stack.nbytes):
         scratch += arr_bytes
-    scratch += (
-        hm.nbytes + hoff.nbytes + T.nbytes + V.nbytes + bp.nbytes + bs.nbytes + buf.nbytes + cells.nbytes
-    )
+    scratch += kin_p.nbytes + kin_d.nbytes + hm.nbytes + hoff.nbytes + T.nbytes + V.nbytes + bp.nbytes
+    scratch += bs.nbytes + buf.nbytes + cells.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
 
 
