@@ -866,18 +866,13 @@ def _boa_prepare(occ, pot, gr, gc, corner_cutting):
     _length_to_go(mask, w, goal, hs, hd)
     hv = np.full(n, np.inf)
     _vulnerability_to_go(mask, pot, w, goal, hv)
-    # no move into a cell the goal cannot be reached from (the search's own test before)
-    off = np.empty(8, np.int64)
-    for d in range(8):
-        off[d] = DR[d] * w + DC[d]
+    # no move into a cell the goal cannot be reached from (the search's own test
+    # before). The moves are symmetric, so the cells a cell can move to can reach
+    # the goal iff it can: the moves to clear are all those of the cells with
+    # hv == inf, and no other
     for c in range(n):
-        m0 = mask[c]
-        mk = np.int64(m0)
-        for j in range(COUNT[m0]):
-            d = MOVES[m0, j]
-            if hv[c + off[d]] == np.inf:
-                mk &= ~(np.int64(1) << d)
-        mask[c] = mk
+        if hv[c] == np.inf:
+            mask[c] = 0
     return mask, hs, hd, hv
 
 
