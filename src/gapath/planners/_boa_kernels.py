@@ -27,7 +27,12 @@ three things change:
   would be lost otherwise;
 * a waiting label that its cell's ``g2_min`` covers beyond the tolerance
   when its bucket is poured is dropped there instead of at its pop (see
-  :func:`_pour_drops`): the same decisions, fewer heap operations. Its row
+  :func:`_pour_drops`), and so is one tied with ``g2_min`` from above whose
+  length does not tie the label last expanded at its cell
+  (:func:`_pour_drops_tied`), and one clear of ``g2_min`` that the last
+  solution covers by more than three tolerances (``GOAL_MARGIN``): its pop
+  would drop each of them without an edge, whatever happens before then.
+  The same decisions, fewer heap operations. Its row
   is reused earlier, and rows break exact ties of the open list's keys, so
   among paths with exactly equal (length, vulnerability, smoothness)
   another may be returned than without it (``F`` and smoothness are the
@@ -828,8 +833,9 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         out_vul[si] = vul
     cells = cells[: offsets[n_sols]]
     scratch = 0
-    for arr_bytes in (off.nbytes, ep.nbytes, edir.nbytes, idx.nbytes, ncell.nbytes, kin_off.nbytes, stack.nbytes):
+    for arr_bytes in (off.nbytes, ep.nbytes, edir.nbytes, idx.nbytes, ncell.nbytes, kin_off.nbytes):
         scratch += arr_bytes
+    scratch += stack.nbytes
     scratch += kin_p.nbytes + kin_d.nbytes + hm.nbytes + hoff.nbytes + T.nbytes + V.nbytes + bp.nbytes
     scratch += bs.nbytes + buf.nbytes + cells.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
