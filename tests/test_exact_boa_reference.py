@@ -128,11 +128,15 @@ def test_equals_the_previous_kernels_on_movingai_queries(name, lines):
             assert _assert_same(ws, LV, tie_break) > 0
 
 
-def test_equals_the_previous_kernels_on_a_berlin_query():
-    """Berlin_1_256 (optional data): tens of thousands of tie edges."""
+@pytest.mark.parametrize("line", [500, 0])
+def test_equals_the_previous_kernels_on_a_berlin_query(line):
+    """Berlin_1_256 (optional data): tens of thousands of tie edges. On
+    query 0 a label tied with g2_min from below when its bucket is poured
+    records an edge later (dropping it at the pour, which _pour_drops_tied
+    does not do, loses one of its 38,495 edges)."""
     mp = data_path("movingai/mapf/Berlin_1_256.map")
     scen = load_scenarios(data_path("movingai/mapf/Berlin_1_256-random-1.scen"))
-    ws = load_movingai(mp, scen[500].start, scen[500].goal, corner_cutting=False)
+    ws = load_movingai(mp, scen[line].start, scen[line].goal, corner_cutting=False)
     for tie_break in ("smoothest", "none"):
         assert _assert_same(ws, LV, tie_break) > 0
 
