@@ -27,7 +27,12 @@ three things change:
   would be lost otherwise;
 * a waiting label that its cell's ``g2_min`` covers beyond the tolerance
   when its bucket is poured is dropped there instead of at its pop (see
-  :func:`_pour_drops`): the same decisions, fewer heap operations. Its row
+  :func:`_pour_drops`), and so is one tied with ``g2_min`` from above whose
+  length does not tie the label last expanded at its cell
+  (:func:`_pour_drops_tied`), and one clear of ``g2_min`` that the last
+  solution covers by more than three tolerances (``GOAL_MARGIN``): its pop
+  would drop each of them without an edge, whatever happens before then.
+  The same decisions, fewer heap operations. Its row
   is reused earlier, and rows break exact ties of the open list's keys, so
   among paths with exactly equal (length, vulnerability, smoothness)
   another may be returned than without it (``F`` and smoothness are the
@@ -77,6 +82,7 @@ from gapath.planners._exact_kernels import (
     S_SIZE,
     S_SOLS,
     SF_GOAL_MIN,
+    TOL,
     TURNS,
     _eq,
     _free_init,
@@ -116,6 +122,11 @@ N_BUCKETS = 256
 #: head, its least bucket, the labels waiting in the window and in the overflow.
 E_EDGES, E_CUR, E_OHEAD, E_OMIN, E_NWIN, E_NOVER = range(6)
 _NO_BUCKET = np.int64(1) << 62
+#: A waiting label away from the goal is dropped at the pour when its
+#: f_vulnerability exceeds the last solution's by more than this (relative,
+#: as SPEC's tolerance), see _pour_drops: three tolerances, one more than
+#: the proof needs.
+GOAL_MARGIN = 3.0 * TOL
 #: The label tables start with 4 rows a cell, at most this many (see _boa_start).
 LABEL_ROWS = 1 << 18
 
@@ -236,10 +247,40 @@ def _pour_drops(q, m, f_vul, goal_min, at_goal):
     cell's ``g2_min`` is dropped at its pop with no edge (an edge needs a tie
     with ``g2_min``); so is a label at the goal so covered by the last
     solution. One elsewhere covered only by the last solution is kept: its
-    pop tests ``g2_min`` first, which may by then tie it (an edge)."""
+    pop tests ``g2_min`` first, which may by then tie it (an edge), unless it
+    is clear of ``g2_min`` (not tied with it) and its f_vulnerability exceeds
+    the last solution's by more than three tolerances (``GOAL_MARGIN``): then
+    every label expanded at its cell before its pop has a g2 more than one
+    tolerance below its own (such a label's f_vulnerability is at most one
+    tolerance above the last solution's, even when kept as tied with it), so
+    no ``g2_min`` it meets at its pop ties it (docs/results/exact_speed.md,
+    fifteenth session)."""
     if at_goal:
         return f_vul > goal_min and not _eq(f_vul, goal_min)
-    return q > m and not _eq(q, m)
+    if q > m and not _eq(q, m):
+        return True
+    return (m == np.inf or not _eq(q, m)) and f_vul - goal_min > GOAL_MARGIN * max(1.0, f_vul)
+
+
+@numba.njit(cache=True, inline="always")
+def _pour_drops_tied(q, m, len_q, len_first):
+    """Whether a waiting label (not at the goal) that ties its cell's
+    ``g2_min`` ``m`` within the tolerance (g2 ``q``, length ``len_q``) can be
+    dropped when its bucket is poured, with the smoothest tie-break: when
+    ``q >= m`` and its length does not tie ``len_first``, that of the label
+    last expanded at the cell (``first``). Its pop would drop it with no edge.
+
+    Proof. Until its pop, the label stays covered, and it records an edge only
+    if it ties, in g2 and in length, the label then last expanded at its
+    cell. If none is expanded there before its pop, that is ``first``, whose
+    length it does not tie. If one is, with g2 ``m'``, then ``m' < m`` and not
+    ``_eq(m', m)`` (the expansion test), and then not ``_eq(q, m')`` for any
+    ``q >= m`` (docs/results/exact_speed.md, fifteenth session: the
+    tolerance is not transitive, but moving away from ``m'`` only widens the
+    gap faster than the tolerance grows); the same holds for every later
+    expansion there, each below the one before. So it records no edge at its
+    pop. A label with ``q < m`` is kept: a later ``m'`` may tie it."""
+    return q >= m and not _eq(len_q, len_first)
 
 
 @numba.njit(cache=True)
@@ -357,7 +398,20 @@ def _boa_steps(
                     f_vul = qy + hv[cy]
                     # a label its pop would drop without an edge is dropped now (see
                     # _pour_drops): its row is free for the labels generated before then
-                    if ties and _pour_drops(qy, gmin[cy], f_vul, goal_min, cy == goal):
+                    if ties:
+                        m = gmin[cy]
+                        drop = _pour_drops(qy, m, f_vul, goal_min, cy == goal)
+                        if not drop and cy != goal and qy >= m:  # tied with g2_min, from above
+                            a = first[cy]
+                            drop = _pour_drops_tied(
+                                qy,
+                                m,
+                                (li[y, NS] + SQRT2 * li[y, ND]) * cell_size,
+                                (li[a, NS] + SQRT2 * li[a, ND]) * cell_size,
+                            )
+                    else:
+                        drop = False
+                    if drop:
                         li[y, NEXT] = free
                         free = y
                         n_free += 1
@@ -609,10 +663,25 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     off[0] = 0
 
     # post-order of the nodes reachable from the solutions; idx: -1 unseen,
-    # -2 open, else the node's place in the order
+    # -2 open, else the node's place in the order. A node is finished after
+    # its parents, so when it is, its in-edges are written out in that order's
+    # numbers (kin_p, kin_d: its own first, then the recorded ones in the
+    # order they were recorded; none for the start label) with its cell and
+    # its slots (below): the programme then reads these compact arrays in
+    # order instead of label rows scattered over the table
     idx = np.full(n_rows, -1, np.int32)
-    order = np.empty(n_rows, np.int32)
+    ncell = np.empty(n_rows, np.int32)
+    kin_off = np.empty(n_rows + 1, np.int32)
+    kin_p = np.empty(n_rows + n_edges, np.int32)
+    kin_d = np.empty(n_rows + n_edges, np.int8)
     stack = np.empty(n_rows + n_edges + len(sols) + 1, np.int32)
+    # one slot per (node, incoming heading) that occurs (most nodes have one):
+    # the slots of node i are hoff[i]:hoff[i + 1], in heading order (hm: the
+    # headings; 0 for the start label, which has one slot and no heading)
+    hm = np.zeros(n_rows, np.uint8)
+    hoff = np.empty(n_rows + 1, np.int64)
+    hoff[0] = 0
+    kin_off[0] = 0
     k = 0
     for s in sols:
         if idx[s] != -1:
@@ -637,38 +706,39 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                         sp += 1
             else:
                 idx[v] = k
-                order[k] = v
+                ncell[k] = li[v, CELL]
+                t = kin_off[k]
+                bits = 0
+                p = li[v, F_PARENT]
+                if p >= 0:
+                    d = li[v, F_HEAD]
+                    kin_p[t] = idx[p]
+                    kin_d[t] = d
+                    t += 1
+                    bits = 1 << d
+                    for e in range(off[v], off[v + 1]):
+                        kin_p[t] = idx[ep[e]]
+                        kin_d[t] = edir[e]
+                        t += 1
+                        bits |= 1 << edir[e]
+                kin_off[k + 1] = t
+                hm[k] = bits
+                hoff[k + 1] = hoff[k] + (_POPCOUNT[bits] if bits else 1)
                 k += 1
                 sp -= 1
-
-    # one slot per (node, incoming heading) that occurs (most nodes have one):
-    # the slots of node i are hoff[i]:hoff[i + 1], in heading order (hm: the
-    # headings); the start label has one slot (no heading)
-    hm = np.zeros(k, np.uint8)
-    hoff = np.empty(k + 1, np.int64)
-    hoff[0] = 0
-    for i in range(k):
-        v = order[i]
-        bits = 0
-        if li[v, F_PARENT] >= 0:
-            bits = 1 << li[v, F_HEAD]
-            for e in range(off[v], off[v + 1]):
-                bits |= 1 << edir[e]
-        hm[i] = bits
-        hoff[i + 1] = hoff[i] + (_POPCOUNT[bits] if bits else 1)
     n_slots = hoff[k]
     # least (turns, vulnerability) per slot, and the first (in-edge, parent
     # slot) giving it: the trace's choice, kept
     T = np.empty(n_slots, np.int64)
     V = np.empty(n_slots)
-    bp = np.empty(n_slots, np.int32)
+    bp = np.empty(n_slots, np.int32)  # the parent's place in the order
     bs = np.empty(n_slots, np.int32)
+    pf = pot.reshape(pot.size)
     for i in range(k):
-        v = order[i]
-        c = li[v, CELL]
-        pv = pot[c // w, c % w]
+        pv = pf[ncell[i]]
         s0 = hoff[i]
-        if li[v, F_PARENT] < 0:  # the start label: no heading, no turn to come
+        bits_v = np.int64(hm[i])
+        if bits_v == 0:  # the start label: no heading, no turn to come
             T[s0] = 0
             V[s0] = pv
             bp[s0] = -1
@@ -676,14 +746,10 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         for j in range(s0, hoff[i + 1]):
             T[j] = _BIG
             V[j] = np.inf
-        bits_v = np.int64(hm[i])
-        for e in range(off[v] - 1, off[v + 1]):
-            if e < off[v]:
-                p, d = li[v, F_PARENT], np.int64(li[v, F_HEAD])
-            else:
-                p, d = ep[e], np.int64(edir[e])
+        for e in range(kin_off[i], kin_off[i + 1]):
+            ip = kin_p[e]
+            d = np.int64(kin_d[e])
             sd = s0 + _POPCOUNT[bits_v & ((1 << d) - 1)]
-            ip = idx[p]
             bt, bv = T[sd], V[sd]
             b_p, b_s = bp[sd], bs[sd]
             bits = np.int64(hm[ip])
@@ -692,7 +758,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                 t = T[sp_]
                 if t < bt or (t == bt and V[sp_] + pv < bv):
                     bt, bv = t, V[sp_] + pv
-                    b_p, b_s = p, sp_
+                    b_p, b_s = ip, sp_
             else:
                 while bits:
                     hh = _LOWBIT[bits & -bits]
@@ -700,7 +766,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                     t = T[sp_] + turn(hh, d)
                     if t < bt or (t == bt and V[sp_] + pv < bv):
                         bt, bv = t, V[sp_] + pv
-                        b_p, b_s = p, sp_
+                        b_p, b_s = ip, sp_
                     sp_ += 1
             T[sd] = bt
             V[sd] = bv
@@ -721,20 +787,19 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         total += li[sols[si], NS] + li[sols[si], ND] + 1
     cells = np.empty((total, 2), np.int64)
     for si in range(n_sols):
-        v = sols[si]
-        i = idx[v]
+        i = idx[sols[si]]
         j = hoff[i]  # the least (T, V), the lowest heading first
         for jj in range(hoff[i] + 1, hoff[i + 1]):
             if T[jj] < T[j] or (T[jj] == T[j] and V[jj] < V[j]):
                 j = jj
         m = 0
         while True:
-            buf[m] = v
+            buf[m] = i
             m += 1
-            if li[v, F_PARENT] < 0:
+            if hm[i] == 0:  # the start label
                 break
-            # the first in-edge of v (its own first) and slot of its parent giving T, V
-            v, j = bp[j], bs[j]
+            # the first in-edge of i (its own first) and slot of its parent giving T, V
+            i, j = bp[j], bs[j]
         a = offsets[si]
         b = a + m
         offsets[si + 1] = b
@@ -743,7 +808,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
             grown[:a] = cells[:a]
             cells = grown
         for t in range(m):
-            c = li[buf[m - 1 - t], CELL]
+            c = ncell[buf[m - 1 - t]]
             cells[a + t, 0] = c // w
             cells[a + t, 1] = c % w
         # the objectives along the path, in path order (as gapath.objectives does)
@@ -768,11 +833,11 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         out_vul[si] = vul
     cells = cells[: offsets[n_sols]]
     scratch = 0
-    for arr_bytes in (off.nbytes, ep.nbytes, edir.nbytes, idx.nbytes, order.nbytes, stack.nbytes):
+    for arr_bytes in (off.nbytes, ep.nbytes, edir.nbytes, idx.nbytes, ncell.nbytes, kin_off.nbytes):
         scratch += arr_bytes
-    scratch += (
-        hm.nbytes + hoff.nbytes + T.nbytes + V.nbytes + bp.nbytes + bs.nbytes + buf.nbytes + cells.nbytes
-    )
+    scratch += stack.nbytes
+    scratch += kin_p.nbytes + kin_d.nbytes + hm.nbytes + hoff.nbytes + T.nbytes + V.nbytes + bp.nbytes
+    scratch += bs.nbytes + buf.nbytes + cells.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
 
 
@@ -807,18 +872,13 @@ def _boa_prepare(occ, pot, gr, gc, corner_cutting):
     _length_to_go(mask, w, goal, hs, hd)
     hv = np.full(n, np.inf)
     _vulnerability_to_go(mask, pot, w, goal, hv)
-    # no move into a cell the goal cannot be reached from (the search's own test before)
-    off = np.empty(8, np.int64)
-    for d in range(8):
-        off[d] = DR[d] * w + DC[d]
+    # no move into a cell the goal cannot be reached from (the search's own test
+    # before). The moves are symmetric, so the cells a cell can move to can reach
+    # the goal iff it can: the moves to clear are all those of the cells with
+    # hv == inf, and no other
     for c in range(n):
-        m0 = mask[c]
-        mk = np.int64(m0)
-        for j in range(COUNT[m0]):
-            d = MOVES[m0, j]
-            if hv[c + off[d]] == np.inf:
-                mk &= ~(np.int64(1) << d)
-        mask[c] = mk
+        if hv[c] == np.inf:
+            mask[c] = 0
     return mask, hs, hd, hv
 
 

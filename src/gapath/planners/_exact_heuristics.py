@@ -171,7 +171,13 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
     heap of (key, cell) entries, sifting a hole; a cell is pushed again when
     its key falls and the stale entries are skipped when popped (measured
     faster than an indexed binary heap with decrease-key: no position
-    updates, half the depth)."""
+    updates, half the depth). A cell whose potential is 0 (a third of
+    Berlin_1_256's free cells: no obstacle within the kernel's window) gets
+    the key of the cell that reaches it, the least key there is, so it is
+    settled next without entering the heap. The settling order stays
+    non-decreasing in key, so the values are those of any Dijkstra: ``hv``
+    of a cell is the key of the first neighbour to reach its least ``D``,
+    and neighbours with different keys are settled in key order."""
     n = mask.shape[0]
     off = np.empty(8, np.int64)
     for d in range(8):
@@ -186,34 +192,44 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
     keys[0] = D[goal]
     ids[0] = goal
     size = 1
-    while size > 0:
-        # pop the smallest entry
-        u = ids[0]
-        du = keys[0]
-        size -= 1
-        if size > 0:
-            key = keys[size]
-            x = ids[size]
-            i = 0
-            while True:
-                ch = 4 * i + 1
-                if ch >= size:
-                    break
-                best = ch
-                bk = keys[ch]
-                for c2 in range(ch + 1, min(ch + 4, size)):
-                    if keys[c2] < bk:
-                        bk = keys[c2]
-                        best = c2
-                if not bk < key:
-                    break
-                keys[i] = bk
-                ids[i] = ids[best]
-                i = best
-            keys[i] = key
-            ids[i] = x
-        if du > D[u]:  # stale: u was pushed again with a smaller key
-            continue
+    # a cell reached through a zero potential gets the key of the cell being
+    # settled, the least there is: it waits on a stack (each cell at most
+    # once, its key falls no further), emptied before the heap is popped
+    stack = np.empty(n, np.int32)
+    sp = 0
+    while size > 0 or sp > 0:
+        if sp > 0:
+            sp -= 1
+            u = stack[sp]
+            du = D[u]
+        else:
+            # pop the smallest entry
+            u = ids[0]
+            du = keys[0]
+            size -= 1
+            if size > 0:
+                key = keys[size]
+                x = ids[size]
+                i = 0
+                while True:
+                    ch = 4 * i + 1
+                    if ch >= size:
+                        break
+                    best = ch
+                    bk = keys[ch]
+                    for c2 in range(ch + 1, min(ch + 4, size)):
+                        if keys[c2] < bk:
+                            bk = keys[c2]
+                            best = c2
+                    if not bk < key:
+                        break
+                    keys[i] = bk
+                    ids[i] = ids[best]
+                    i = best
+                keys[i] = key
+                ids[i] = x
+            if du > D[u]:  # stale: u was pushed again with a smaller key
+                continue
         mk = mask[u]
         for j in range(COUNT[mk]):
             v = u + off[MOVES[mk, j]]
@@ -223,6 +239,10 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
             if val < D[v]:
                 D[v] = val
                 hv[v] = du
+                if val == du:  # a zero potential: settled next, from the stack
+                    stack[sp] = v
+                    sp += 1
+                    continue
                 i = size  # push: sift the hole up
                 size += 1
                 while i > 0:
