@@ -440,3 +440,15 @@ def test_bad_options():
     occ[:, 2] = True
     with pytest.raises(NoPathError):
         free_front(Workspace(occ), ["length", "risk_sum"], costmap=_costmap(Workspace(occ), 0))
+
+
+def test_per_label_helpers_skip_reference_counting():
+    """The helpers called for every generated label allocate nothing and
+    are compiled without numba's reference counting: counted, their arrays
+    cost atomic operations at every call (docs/results/exact_speed.md,
+    "Reference counting in the search kernels")."""
+    from gapath.planners import _apex_kernels as A
+    from gapath.planners import _multi_kernels as M
+
+    helpers = (M._covered, M._gvec, M._fvec, M._push, M._pop, A._covered, A._pop)
+    assert all(h.targetoptions.get("_nrt") is False for h in helpers)

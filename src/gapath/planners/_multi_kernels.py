@@ -264,7 +264,7 @@ def _less(lf, a, b, k):
     return a < b
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def _push(hid, size, lf, k, x):
     i = size
     while i > 0:
@@ -276,7 +276,7 @@ def _push(hid, size, lf, k, x):
     hid[i] = x
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def _pop(hid, size, lf, k):
     """Remove the smallest entry; returns the new size."""
     size -= 1
@@ -485,7 +485,7 @@ def _build(sv, si, off, tv, ti, m, k):
                         sv[r, b1 + j - 1] = sv[rc, b1 + j - 1]
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, _nrt=False)
 def _covered(sv, si, tdir, head, q, qr, okind, tx, hx, at_goal, to_go, ties, smooth, stk):
     """True if a member of the set whose first tree is ``head - 1`` covers the
     vector ``q[qr]``: at a state, ``q[qr]`` is a label's g-vector and a member
@@ -496,7 +496,14 @@ def _covered(sv, si, tdir, head, q, qr, okind, tx, hx, at_goal, to_go, ties, smo
     an objective) not less smooth (at the goal: not more turns than the label's
     ``tx`` plus ``to_go``, a lower bound of the turns still to come). ``stk``:
     scratch of ``N_STACK`` ints. Returns ``(covered, members tested, tree nodes
-    visited)``."""
+    visited)``.
+
+    This helper and the other per-label ones (:func:`_gvec`, :func:`_fvec`,
+    :func:`_push`, :func:`_pop`) allocate nothing and are compiled without
+    reference counting (``_nrt=False``): inlined or called, numba counted
+    their arrays in and out atomically at every call, 17 % of the samples
+    of a four-objective search (docs/results/exact_speed.md, "Reference
+    counting in the search kernels")."""
     k = okind.shape[0]
     b0 = k
     tested = 0
@@ -710,7 +717,7 @@ def _room(live):
     return 4 * (live + 1) + 256
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, _nrt=False)
 def _gvec(li, lg, x, okind, ocol, cell_size, q, qr):
     for o in range(okind.shape[0]):
         q[qr, o] = _g(li, lg, x, okind[o], ocol[o], cell_size)
@@ -755,7 +762,7 @@ def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, h
     return li, lg, lf, hid, sols, st, sv, si, sfree, tdir
 
 
-@numba.njit(cache=True, inline="always")
+@numba.njit(cache=True, _nrt=False)
 def _fvec(li, lg, lf, j, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, hsol, timed):
     """Write the f-vector (``g + h``, internal order) of label ``j``."""
     c = li[j, CELL]
