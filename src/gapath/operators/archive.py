@@ -56,6 +56,7 @@ front (``PathFront.X`` is then empty) for free paths.
 from __future__ import annotations
 
 import threading
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -878,7 +879,7 @@ class _Background:
     sets ``cancel`` and waits until the thread has ended (a Ctrl-C in the
     main thread then stops it within one kernel call)."""
 
-    def __init__(self, fn):
+    def __init__(self, fn: Callable[[threading.Event], Any]) -> None:
         from gapath.encodings.free import hold_thread
 
         self._event = threading.Event()
