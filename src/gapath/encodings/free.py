@@ -121,13 +121,14 @@ def hold_thread() -> Callable[[], None]:
     global _held
     with _held_lock:
         _held += 1
-    done = threading.Event()
+    held = True
 
     def release() -> None:
         global _held
+        nonlocal held
         with _held_lock:
-            if not done.is_set():
-                done.set()
+            if held:
+                held = False
                 _held -= 1
 
     return release
