@@ -616,7 +616,7 @@ def _boa_steps(
 
 
 @numba.njit(cache=True)
-def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
+def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
     """The smoothest path of each solution over the DAG of expanded labels.
 
     Nodes are the label rows reachable backward from ``sols``; the in-edges
@@ -638,14 +638,31 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     for most nodes, where an 8-heading table per node took 8 times the
     memory and most of the programme's time in page faults and cache misses.
 
+    The label tables are dead by then and their first ``n_rows`` rows are
+    already in memory (written by the search), so the arrays indexed by row
+    (``off``, ``idx``) are carved out of the float table ``lf`` and, once the
+    depth-first search has read the labels, the programme's (``T``, ``V``,
+    ``bp``, ``bs``) out of ``li``, when they fit and ``reuse`` is true: no
+    fresh pages for them. Both tables are then overwritten (the search cannot
+    go on); the values are the same either way.
+
     Returns ``(cells, offsets, n_straight, n_diag, turns, vul, scratch_bytes)``:
     the cells of solution ``i``'s path are ``cells[offsets[i]:offsets[i + 1]]``
     (``(row, col)``), its step counts, total turn and vulnerability summed
     along it in path order from the start cell; ``scratch_bytes``, the memory
-    of the programme's arrays.
+    of the programme's fresh arrays.
     """
-    # alternative in-edges by node (counting sort)
-    off = np.zeros(n_rows + 1, np.int32)
+    # alternative in-edges by node (counting sort); off and idx in lf's rows
+    scratch = 0
+    fb = lf.reshape(lf.size).view(np.int32)  # two int32 a row
+    if reuse and 2 * n_rows + 1 <= fb.shape[0]:  # (row n_rows's first half: one page at most)
+        off = fb[: n_rows + 1]
+        idx = fb[n_rows + 1 : 2 * n_rows + 1]
+    else:
+        off = np.empty(n_rows + 1, np.int32)
+        idx = np.empty(n_rows, np.int32)
+        scratch += off.nbytes + idx.nbytes
+    off[:] = 0
     for e in range(n_edges):
         off[edges[e, E_NODE] + 1] += 1
     for v in range(n_rows):
@@ -669,7 +686,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     # order they were recorded; none for the start label) with its cell and
     # its slots (below): the programme then reads these compact arrays in
     # order instead of label rows scattered over the table
-    idx = np.full(n_rows, -1, np.int32)
+    idx[:] = -1
     ncell = np.empty(n_rows, np.int32)
     kin_off = np.empty(n_rows + 1, np.int32)
     kin_p = np.empty(n_rows + n_edges, np.int32)
@@ -678,7 +695,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     # one slot per (node, incoming heading) that occurs (most nodes have one):
     # the slots of node i are hoff[i]:hoff[i + 1], in heading order (hm: the
     # headings; 0 for the start label, which has one slot and no heading)
-    hm = np.zeros(n_rows, np.uint8)
+    hm = np.empty(n_rows, np.uint8)  # (written in order, as hoff)
     hoff = np.empty(n_rows + 1, np.int64)
     hoff[0] = 0
     kin_off[0] = 0
@@ -727,12 +744,26 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                 k += 1
                 sp -= 1
     n_slots = hoff[k]
+    # the labels are read for the last time: the solutions' step counts
+    n_sols = len(sols)
+    total = 0
+    for si in range(n_sols):
+        total += li[sols[si], NS] + li[sols[si], ND] + 1
     # least (turns, vulnerability) per slot, and the first (in-edge, parent
-    # slot) giving it: the trace's choice, kept
-    T = np.empty(n_slots, np.int64)
-    V = np.empty(n_slots)
-    bp = np.empty(n_slots, np.int32)  # the parent's place in the order
-    bs = np.empty(n_slots, np.int32)
+    # slot) giving it: the trace's choice, kept; in li's rows when they fit
+    # (6 int32 a slot, 7 a row)
+    fb = li.reshape(li.size)
+    if reuse and 6 * n_slots <= 7 * n_rows:
+        T = fb[: 2 * n_slots].view(np.int64)
+        V = fb[2 * n_slots : 4 * n_slots].view(np.float64)
+        bp = fb[4 * n_slots : 5 * n_slots]  # the parent's place in the order
+        bs = fb[5 * n_slots : 6 * n_slots]
+    else:
+        T = np.empty(n_slots, np.int64)
+        V = np.empty(n_slots)
+        bp = np.empty(n_slots, np.int32)
+        bs = np.empty(n_slots, np.int32)
+        scratch += T.nbytes + V.nbytes + bp.nbytes + bs.nbytes
     pf = pot.reshape(pot.size)
     for i in range(k):
         pv = pf[ncell[i]]
@@ -775,16 +806,12 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
 
     # trace each solution back from its least (T, V) (the steps written out: a
     # helper call per step cost most of the time), then evaluate it forwards
-    n_sols = len(sols)
     offsets = np.zeros(n_sols + 1, np.int64)
     out_ns = np.zeros(n_sols, np.int64)
     out_nd = np.zeros(n_sols, np.int64)
     out_turns = np.zeros(n_sols, np.int64)
     out_vul = np.zeros(n_sols)
     buf = np.empty(k, np.int32)  # the nodes of one path, goal first (distinct nodes)
-    total = 0
-    for si in range(n_sols):
-        total += li[sols[si], NS] + li[sols[si], ND] + 1
     cells = np.empty((total, 2), np.int64)
     for si in range(n_sols):
         i = idx[sols[si]]
@@ -832,12 +859,9 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         out_turns[si] = eighths
         out_vul[si] = vul
     cells = cells[: offsets[n_sols]]
-    scratch = 0
-    for arr_bytes in (off.nbytes, ep.nbytes, edir.nbytes, idx.nbytes, ncell.nbytes, kin_off.nbytes):
+    for arr_bytes in (ep.nbytes, edir.nbytes, ncell.nbytes, kin_off.nbytes, stack.nbytes):
         scratch += arr_bytes
-    scratch += stack.nbytes
-    scratch += kin_p.nbytes + kin_d.nbytes + hm.nbytes + hoff.nbytes + T.nbytes + V.nbytes + bp.nbytes
-    scratch += bs.nbytes + buf.nbytes + cells.nbytes
+    scratch += kin_p.nbytes + kin_d.nbytes + hm.nbytes + hoff.nbytes + buf.nbytes + cells.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
 
 
@@ -965,12 +989,16 @@ def _boa_finish(li, lf, sols, st, edges, n_edges, pot, w, cell_size, ties, len_f
     Returns ``(F, smoothness, cells, offsets, counts)``: ``F`` (k, 2), the
     path of point ``i`` is ``cells[offsets[i]:offsets[i + 1]]``, ``counts``
     the int64 figures indexed by ``C_*`` (``C_PEAK``: ``peak`` plus the
-    dynamic programme's scratch memory).
+    dynamic programme's fresh scratch memory). With ``ties`` the label tables
+    ``li`` and ``lf`` are overwritten (:func:`_smoothest` works in them): the
+    search cannot be continued after its finish.
     """
     n_sols = st[S_SOLS]
     sols = sols[:n_sols]
     if ties and n_edges > 0:
-        cells, offsets, ns, nd, turns, vul, scratch = _smoothest(li, st[S_N], sols, edges, n_edges, pot, w)
+        cells, offsets, ns, nd, turns, vul, scratch = _smoothest(
+            li, lf, st[S_N], sols, edges, n_edges, pot, w, True
+        )
         peak += scratch
     else:
         cells, offsets = _trace(li, sols, w)
