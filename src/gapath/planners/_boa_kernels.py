@@ -283,6 +283,32 @@ def _pour_drops_tied(q, m, len_q, len_first):
     return q >= m and not _eq(len_q, len_first)
 
 
+@numba.njit(cache=True, inline="always")
+def _back_step_drops(ns_x, nd_x, s, t, cell_size, ties):
+    """Whether the child of an expanded label ``x`` (step counts ``ns_x``,
+    ``nd_x``, entered by a straight step if ``s == 1``, a diagonal one if
+    ``t == 1``) that steps back to the cell of its parent ``p`` would be
+    dropped by its eager check without an edge.
+
+    Proof. The potential is non-negative and rounding is monotone, so the
+    child's g2, ``fl(fl(q_p + P(x's cell)) + P(p's cell))``, is at least
+    ``q_p``, and ``g2_min`` of ``p``'s cell is at most ``q_p`` (``p`` was
+    expanded there): the child is covered. It records an edge only if it
+    ties, in g2 and in length, the label ``a`` last expanded at that cell.
+    If ``a`` is not ``p``, ``a`` was expanded after ``p`` with a g2 below
+    ``q_p`` beyond the tolerance, and each later expansion there below the
+    one before: then no value at or above ``q_p`` ties it (the step of rule 1,
+    docs/results/exact_speed.md, fifteenth session). If ``a`` is ``p``, the
+    lengths are those computed here, the child's (two steps more than
+    ``p``'s) and ``p``'s, which do not tie unless the cell size is below
+    the tolerance's scale. Without ties nothing is recorded."""
+    if not ties:
+        return True
+    len_child = ((ns_x + s) + SQRT2 * (nd_x + t)) * cell_size
+    len_p = ((ns_x - s) + SQRT2 * (nd_x - t)) * cell_size
+    return not _eq(len_child, len_p)
+
+
 @numba.njit(cache=True)
 def _boa_steps(
     occ,
@@ -529,11 +555,17 @@ def _boa_steps(
         first[c] = x
         head = li[x, F_HEAD]
         ns_x, nd_x, turns_x = li[x, NS], li[x, ND], li[x, TURNS]
-        mk = mask[c]
+        mk = np.int64(mask[c])
+        n_generated += COUNT[mk]
+        if head >= 0:
+            # the step back to the parent's cell is not generated: its eager check
+            # would drop it with no edge (see _back_step_drops)
+            s_x = 1 - head % 2
+            if _back_step_drops(ns_x, nd_x, s_x, 1 - s_x, cell_size, ties):
+                mk &= ~(1 << ((head + 4) & 7))
         for jm in range(COUNT[mk]):  # the allowed moves (a test per bit mispredicts)
             d = MOVES[mk, jm]
             cell = c + off[d]  # (the goal can be reached from there: _boa_prepare's mask)
-            n_generated += 1
             ns_j = ns_x + (1 - d % 2)
             nd_j = nd_x + d % 2
             qj = q + pf[cell]
