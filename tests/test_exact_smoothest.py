@@ -207,7 +207,9 @@ def _searched(ws: Workspace):
 
 def test_smoothest_in_the_label_tables_equals_fresh_arrays():
     """``_smoothest`` carves its arrays out of the dead label tables (``off``
-    and ``idx`` out of ``lf``, the programme's out of ``li``) when they fit:
+    and ``idx`` out of ``lf``; the rows' parents, cells and headings, copied
+    over ``li``'s first rows, and the programme's arrays after them) when
+    they fit:
     the same paths, step counts, turns and vulnerabilities as with fresh
     arrays (``reuse=False``), and less fresh memory, on the random tie cases
     and a MovingAI query with thousands of tie edges."""
@@ -230,5 +232,5 @@ def test_smoothest_in_the_label_tables_equals_fresh_arrays():
         for a, b in zip(fresh[:6], reused[:6], strict=True):
             np.testing.assert_array_equal(a, b)
         assert reused[6] < fresh[6]
-        carved += not np.array_equal(li2, li)  # the programme's arrays went into li
+        carved += fresh[6] - reused[6] > 20 * n_rows + 4  # the programme's arrays went into li too
     assert carved >= 20

@@ -672,11 +672,14 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
 
     The label tables are dead by then and their first ``n_rows`` rows are
     already in memory (written by the search), so the arrays indexed by row
-    (``off``, ``idx``) are carved out of the float table ``lf`` and, once the
-    depth-first search has read the labels, the programme's (``T``, ``V``,
-    ``bp``, ``bs``) out of ``li``, when they fit and ``reuse`` is true: no
-    fresh pages for them. Both tables are then overwritten (the search cannot
-    go on); the values are the same either way.
+    (``off``, ``idx``) are carved out of the float table ``lf``, each row's
+    parent, cell and heading are copied, in one pass in row order, into
+    ``li``'s first rows (the depth-first search then reads them from there
+    instead of rows scattered over the table, a cache miss each), and the
+    programme's arrays (``T``, ``V``, ``bp``, ``bs``) are carved out of ``li``
+    after them, when they fit, if ``reuse`` is true: no fresh pages for them.
+    Both tables are then overwritten (the search cannot go on); the values are
+    the same either way.
 
     Returns ``(cells, offsets, n_straight, n_diag, turns, vul, scratch_bytes)``:
     the cells of solution ``i``'s path are ``cells[offsets[i]:offsets[i + 1]]``
@@ -719,6 +722,27 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
     # its slots (below): the programme then reads these compact arrays in
     # order instead of label rows scattered over the table
     idx[:] = -1
+    # each row's parent, cell and heading, compact, in one pass in row order:
+    # the search's reads of label rows scattered over the table were a cache
+    # miss each. Written over li's first rows, already read (row v's three
+    # entries below row v), when reuse
+    n_sols = len(sols)
+    total = 0  # (the labels' step counts are read before)
+    for si in range(n_sols):
+        total += li[sols[si], NS] + li[sols[si], ND] + 1
+    fb = li.reshape(li.size)
+    if reuse:
+        pch = fb[: 3 * n_rows]
+    else:
+        pch = np.empty(3 * n_rows, np.int32)
+        scratch += pch.nbytes
+    for v in range(n_rows):
+        p = li[v, F_PARENT]
+        cv = li[v, CELL]
+        hd_v = li[v, F_HEAD]
+        pch[3 * v] = p
+        pch[3 * v + 1] = cv
+        pch[3 * v + 2] = hd_v
     ncell = np.empty(n_rows, np.int32)
     kin_off = np.empty(n_rows + 1, np.int32)
     kin_p = np.empty(n_rows + n_edges, np.int32)
@@ -744,7 +768,7 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
                 sp -= 1
             elif idx[v] == -1:
                 idx[v] = -2
-                p = li[v, F_PARENT]
+                p = pch[3 * v]
                 if p >= 0 and idx[p] == -1:
                     stack[sp] = p
                     sp += 1
@@ -755,12 +779,12 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
                         sp += 1
             else:
                 idx[v] = k
-                ncell[k] = li[v, CELL]
+                ncell[k] = pch[3 * v + 1]
                 t = kin_off[k]
                 bits = 0
-                p = li[v, F_PARENT]
+                p = pch[3 * v]
                 if p >= 0:
-                    d = li[v, F_HEAD]
+                    d = pch[3 * v + 2]
                     kin_p[t] = idx[p]
                     kin_d[t] = d
                     t += 1
@@ -776,20 +800,15 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
                 k += 1
                 sp -= 1
     n_slots = hoff[k]
-    # the labels are read for the last time: the solutions' step counts
-    n_sols = len(sols)
-    total = 0
-    for si in range(n_sols):
-        total += li[sols[si], NS] + li[sols[si], ND] + 1
     # least (turns, vulnerability) per slot, and the first (in-edge, parent
-    # slot) giving it: the trace's choice, kept; in li's rows when they fit
-    # (6 int32 a slot, 7 a row)
-    fb = li.reshape(li.size)
-    if reuse and 6 * n_slots <= 7 * n_rows:
-        T = fb[: 2 * n_slots].view(np.int64)
-        V = fb[2 * n_slots : 4 * n_slots].view(np.float64)
-        bp = fb[4 * n_slots : 5 * n_slots]  # the parent's place in the order
-        bs = fb[5 * n_slots : 6 * n_slots]
+    # slot) giving it: the trace's choice, kept; in li's rows after pch when
+    # they fit (6 int32 a slot, 7 a row)
+    o = 3 * n_rows + (n_rows & 1)  # (even: T and V 8-byte aligned)
+    if reuse and o + 6 * n_slots <= 7 * n_rows:
+        T = fb[o : o + 2 * n_slots].view(np.int64)
+        V = fb[o + 2 * n_slots : o + 4 * n_slots].view(np.float64)
+        bp = fb[o + 4 * n_slots : o + 5 * n_slots]  # the parent's place in the order
+        bs = fb[o + 5 * n_slots : o + 6 * n_slots]
     else:
         T = np.empty(n_slots, np.int64)
         V = np.empty(n_slots)
