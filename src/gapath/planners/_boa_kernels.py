@@ -987,10 +987,11 @@ def _boa_start(pot, sr, sc, w, cell_size, hs, hd, hv, ties, n_buckets):
         li2[: st[S_N]] = li[: st[S_N]]  # the start label
         lf2[: st[S_N]] = lf[: st[S_N]]
         li, lf = li2, lf2
-    # the edge table: two rows a cell (about one tie edge per two expansions on
-    # Berlin_1_256: doubling from 1,024 rows copied 1.5 MB and touched twice
-    # the pages used; the rows are touched only as edges are recorded)
-    edges = np.empty((max(1024, 2 * hs.shape[0]) if ties else 16, 3), np.int32)
+    # the edge table: two rows a cell, at most LABEL_ROWS (about one tie edge per
+    # two expansions on Berlin_1_256: doubling from 1,024 rows copied 1.5 MB and
+    # touched twice the pages used; the rows are touched only as edges are
+    # recorded)
+    edges = np.empty((max(1024, min(2 * hs.shape[0], LABEL_ROWS)) if ties else 16, 3), np.int32)
     est = np.zeros(6, np.int64)
     est[E_CUR] = np.int64(hk[0, 0] * (BUCKETS_PER_CELL / cell_size))  # the start label's bucket
     est[E_OHEAD] = -1
