@@ -588,7 +588,7 @@ def gap(E, G, parts=5):
 
 
 def archive_variant(text):
-    """``K=V,...`` (numbers) as FreePathArchive keyword arguments, installed
+    """``K=V,...`` (numbers; ``K=A/B`` a pair) as FreePathArchive keyword arguments, installed
     as the defaults of the archive :func:`gapath.solver.solve` builds; ``{}``
     for None."""
     if not text:
@@ -598,7 +598,8 @@ def archive_variant(text):
     opts = {}
     for item in text.split(","):
         k, _, v = item.partition("=")
-        opts[k.strip()] = float(v) if any(c in v for c in ".e") else int(v)
+        num = [float(x) if any(c in x for c in ".e") else int(x) for x in v.split("/")]
+        opts[k.strip()] = tuple(num) if len(num) > 1 else num[0]
     base = archive.FreePathArchive
 
     class Variant(base):  # type: ignore[misc, valid-type]

@@ -452,3 +452,18 @@ def test_per_label_helpers_skip_reference_counting():
 
     helpers = (M._covered, M._gvec, M._fvec, M._push, M._pop, A._covered, A._pop)
     assert all(h.targetoptions.get("_nrt") is False for h in helpers)
+
+
+def test_search_loops_skip_reference_counting():
+    """The loops of the three-objective searches (exact and apex) and of the
+    free-path decoders' A* searches allocate nothing and are compiled
+    without reference counting: the helpers inlined into them (heap, moves,
+    heuristics) bind their arrays anew at every call, which numba counts
+    atomically (20 % of the decoder's samples, 8 % of the face searches';
+    docs/results/free_paths.md, sixteenth session)."""
+    from gapath.encodings import _free_kernels as D
+    from gapath.planners import _apex_kernels as A
+    from gapath.planners import _exact_kernels as E
+
+    loops = (E._free_steps, A._apex_steps, D._segment, D._turn_segment)
+    assert all(f.targetoptions.get("_nrt") is False for f in loops)

@@ -148,7 +148,7 @@ def test_solve_free_returns_the_archive_deterministically():
     assert [x.tolist() for x in a.paths] == [x.tolist() for x in b.paths]
     assert runs[0].settings["refine"] == 10
     three = solve(ws, objectives=OBJ3, paths="free", pop_size=10, n_gen=2, seed=5, tiebreak=None)
-    assert three.settings["refine"] == 20
+    assert three.settings["refine"] == 160  # 16 x pop with smoothness (default_refine)
     assert runs[0].n_eval > runs[0].pymoo_result.algorithm.evaluator.n_eval
     arch = run_archive(runs[0].pymoo_result.algorithm)
     np.testing.assert_array_equal(arch.F, a.F)
@@ -374,17 +374,20 @@ def test_bad_sparse_and_cap(kwargs, match):
 
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_extreme_reroutes_reach_the_smoothest_exact_point(seed):
-    """With smoothness as an objective the whole-path re-routings under a
-    heavy turn weight give the front's smoothest point (exact search on a
-    small map says which it is)."""
+    """With smoothness as an objective and no face searches, the whole-path
+    re-routings under a heavy turn weight give the front's smoothest point
+    (exact search on a small map says which it is); with the faces (the
+    default) there are none by default, and the faces give that point."""
     ws = room(h=14, w=16, seed=20 + seed, density=0.2)
     p = FreePathProblem(ws, OBJ3)
-    archive = FreePathArchive(p, n_refine=4, seed=seed)
-    minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 2), seed=seed, callback=archive)
     want = free_front(ws, OBJ3).F[:, 2].min()
-    assert archive.F[:, 2].min() == pytest.approx(want, rel=TOL, abs=1e-12)
-    plain = FreePathArchive(p, n_refine=4, seed=seed, extremes=0)
-    assert plain.extremes == 0 and archive.extremes == 4
+    for faces in (0, None):
+        archive = FreePathArchive(p, n_refine=4, seed=seed, faces=faces, approx=0 if faces == 0 else None)
+        assert archive.extremes == (4 if faces == 0 else 0)
+        minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 2), seed=seed, callback=archive)
+        assert archive.F[:, 2].min() == pytest.approx(want, rel=TOL, abs=1e-12)
+    plain = FreePathArchive(p, n_refine=4, seed=seed, extremes=0, faces=0)
+    assert plain.extremes == 0
 
 
 @pytest.mark.parametrize("objectives", [("length", "vulnerability"), OBJ3])

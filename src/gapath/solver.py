@@ -114,8 +114,11 @@ def solve(
         non-dominated path it meets and re-routes a segment of ``refine``
         archived paths per generation
         (:class:`gapath.operators.archive.FreePathArchive`); the front is
-        the archive's. Default ``pop_size // 2`` with two objectives,
-        ``2 * pop_size`` with three or more (docs/results/free_paths.md;
+        the archive's. Default
+        :func:`gapath.operators.archive.default_refine`: ``pop_size // 2``
+        with two objectives, ``16 * pop_size`` with three or more among
+        which smoothness (over short segments), ``2 * pop_size`` with other
+        three or more (docs/results/free_paths.md;
         with three or more objectives the archive's first refinement also
         adds the exact front of each pair of objectives, where that search
         is cheap, then, for length, vulnerability and smoothness, an
@@ -233,10 +236,10 @@ def solve(
     algorithm = ENGINES[engine](pop_size, tiebreak=tiebreak, sbx_eta=sbx_eta, sampling=sampling, **extra)
     archive = None
     if paths == "free" and refine is not False:
-        from gapath.operators.archive import FreePathArchive
+        from gapath.operators.archive import FreePathArchive, default_refine
 
         if refine is None or refine is True:  # the fronts outgrow the population with 3+ objectives
-            n_refine = pop_size // 2 if problem.n_obj <= 2 else 2 * pop_size
+            n_refine = default_refine(problem.objectives, pop_size)
         else:
             n_refine = refine
         archive = FreePathArchive(problem, n_refine=n_refine, seed=seed)

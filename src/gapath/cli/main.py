@@ -188,7 +188,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--refine",
         default="auto",
         help="archived paths re-routed per generation, auto (free paths: pop/2 with two "
-        "objectives, 2 x pop with more; monotone paths: pop/5), an integer >= 0, or off "
+        "objectives, 16 x pop with three or more among which smoothness, 2 x pop with other "
+        "three or more; monotone paths: pop/5), an integer >= 0, or off "
         "(no archive: the last population's front) (default: %(default)s)",
     )
     from gapath.cli._args import add_costmap_arguments

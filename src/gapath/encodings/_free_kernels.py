@@ -173,7 +173,7 @@ def _landmark_h(v, t, tr, tc, w, ha, b, pmin, hlen, hext, flen, fext):
     return ha * hl + b * he
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def _segment(
     occ,
     h,
@@ -223,9 +223,6 @@ def _segment(
     Writes the cells ``s .. t`` into ``buf``; returns their number (0 when
     ``t`` is unreachable). Scratch arrays as in :mod:`gapath.planners.astar`
     (``state`` all zero on entry and on return)."""
-    offset = np.empty(8, np.int64)
-    for k in range(8):
-        offset[k] = DR[k] * w + DC[k]
     tr = t // w
     tc = t - tr * w
     ha = a * mmin
@@ -254,7 +251,7 @@ def _segment(
         for k in range(8):
             if not (moves >> k) & 1:
                 continue
-            v = u + offset[k]
+            v = u + DR[k] * w + DC[k]
             sv = state[v]
             if sv == _CLOSED:
                 continue
@@ -290,13 +287,13 @@ def _segment(
     m = 1
     v = t
     while v != s:
-        v -= offset[came[v]]
+        v -= DR[came[v]] * w + DC[came[v]]
         m += 1
     v = t
     for i in range(m - 1, -1, -1):
         buf[i] = v
         if i > 0:
-            v -= offset[came[v]]
+            v -= DR[came[v]] * w + DC[came[v]]
     return m
 
 
@@ -1144,7 +1141,7 @@ def _eighths(k1, k2):
     return min(d, 8 - d)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def _turn_segment(
     occ,
     h,

@@ -19,8 +19,10 @@ sub-paths that are Pareto optimal between their ends, so splicing
 weighted-sum sub-paths into front paths reaches front points that no
 weighting of the whole path reaches (the non-supported points).
 
-With smoothness as an objective, ``extremes`` whole paths per generation
-are re-routed under a heavy turn weight (the smooth end of the front).
+With smoothness as an objective, segments are shorter and many more paths
+are re-routed (:data:`SEGMENT_TURNS`, :func:`default_refine`), and, unless
+the faces below run, ``extremes`` whole paths per generation are re-routed
+under a heavy turn weight (the smooth end of the front).
 
 With three or more objectives the first refinement also archives the exact
 *faces* of the front: for each pair of the objectives among length,
@@ -84,6 +86,17 @@ EXACT_STRETCHES = 8
 EXACT_SPAN = (0.02, 0.1)
 #: Default cap on the archive's size (see :class:`FreePathArchive`).
 CAP = 5000
+#: Default share of a path's cells a re-routed segment spans (drawn uniformly).
+SEGMENT = (0.05, 0.5)
+#: The same with smoothness as an objective: shorter segments, many more of
+#: them (:func:`default_refine`). A re-routing search then runs over (cell,
+#: heading) states in a window around its segment, so its cost grows with
+#: the segment's square; on 256x256 maps, 16 times as many paths re-routed
+#: over at most 15 % of their length reach HV 0.99 of the exact front in
+#: fewer generations than twice the population over up to half of it, at a
+#: lower cost per generation (docs/results/free_paths.md, sixteenth
+#: session).
+SEGMENT_TURNS = (0.01, 0.15)
 #: With three or more objectives, the archive's first refinement adds the
 #: exact front of each pair of its objectives (among length, vulnerability,
 #: smoothness); the searches share a budget of this many expansions per
@@ -169,6 +182,27 @@ def crowding_truncation(F, cap: int) -> np.ndarray:
         r = min(len(keep) - cap, max(1, len(keep) // 10), len(movable))
         keep = np.delete(keep, movable[np.argsort(cd[movable], kind="stable")[:r]])
     return keep
+
+
+def default_refine(objectives, pop_size: int) -> int:
+    """Archived paths re-routed per generation by the archive
+    :func:`gapath.solver.solve` keeps for free paths, with a population of
+    ``pop_size``: ``pop_size // 2`` with two objectives, ``16 * pop_size``
+    with three or more among which smoothness (each over a short segment,
+    :data:`SEGMENT_TURNS`), ``2 * pop_size`` with other three or more
+    (docs/results/free_paths.md).
+
+    Examples
+    --------
+    >>> default_refine(["length", "vulnerability"], 200)
+    100
+    >>> default_refine(["length", "vulnerability", "smoothness"], 200)
+    3200
+    """
+    objectives = list(objectives)
+    if len(objectives) <= 2:
+        return int(pop_size) // 2
+    return (16 if "smoothness" in objectives else 2) * int(pop_size)
 
 
 def face_pairs(objectives) -> list[tuple[str, str]]:
@@ -275,7 +309,8 @@ class FreePathArchive(PathArchive):
     seed : seed of the archive's own random numbers (the GA's are untouched,
         so the population evolves as without the archive).
     segment : ``(lo, hi)``, the share of a path's cells a re-routed segment
-        spans, drawn uniformly.
+        spans, drawn uniformly (default :data:`SEGMENT`, or
+        :data:`SEGMENT_TURNS` with smoothness as an objective).
     lam_range : ``(lo, hi)``, the range of ``log10`` of the cell-cost weight
         of the re-routing searches (see :mod:`gapath.encodings.free`), drawn
         log-uniformly; wider than the genomes' by default: the last points
@@ -325,7 +360,10 @@ class FreePathArchive(PathArchive):
         (``log10(c / a)`` in :data:`EXTREME_TURNS`) and a light cell cost
         (weight genes up to :data:`EXTREME_LAM`): the smooth end of the
         front, whose extreme sets the HV's smoothness ideal (counted in
-        ``n_eval``).
+        ``n_eval``). Default 4, or 0 when the face searches run
+        (``faces > 0``): their fronts with smoothness hold that end exactly,
+        and a whole path re-routed over (cell, heading) states costs as much
+        as hundreds of short segments.
 
     Attributes
     ----------
@@ -359,12 +397,12 @@ class FreePathArchive(PathArchive):
         problem,
         n_refine: int = 100,
         seed: int = 1,
-        segment=(0.05, 0.5),
+        segment=None,
         lam_range=LAM_RANGE,
         shortcut=None,
         sparse=None,
         cap=CAP,
-        extremes=4,
+        extremes=None,
         exact_stretches=None,
         faces=None,
         approx=None,
@@ -373,6 +411,8 @@ class FreePathArchive(PathArchive):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
             raise ConfigError(f"FreePathArchive needs a FreePathProblem, got {type(problem).__name__}")
+        if segment is None:
+            segment = SEGMENT_TURNS if "smoothness" in problem.objectives else SEGMENT
         try:
             n_refine = int(n_refine)
         except (TypeError, ValueError):
@@ -417,13 +457,6 @@ class FreePathArchive(PathArchive):
         if not 0.0 <= sparse <= 1.0:
             raise ConfigError(f"sparse must be a share in [0, 1], got {sparse!r}")
         self.sparse = sparse
-        try:
-            ok = float(extremes) == int(extremes) and int(extremes) >= 0
-        except (TypeError, ValueError, OverflowError):
-            ok = False
-        if not ok:
-            raise ConfigError(f"extremes must be an integer >= 0, got {extremes!r}")
-        self.extremes = int(extremes)
         if exact_stretches is None:  # measured with two objectives only
             exact_stretches = EXACT_STRETCHES if problem.n_obj == 2 else 0
         try:
@@ -449,6 +482,15 @@ class FreePathArchive(PathArchive):
                 f"got {', '.join(problem.objectives)}; use approx=0"
             )
         self.approx_budget = non_negative(approx_budget, "approx_budget", finite=False, what=per_cell)
+        if extremes is None:  # the faces with smoothness hold the smooth end exactly
+            extremes = 0 if self.faces > 0 else 4
+        try:
+            ok = float(extremes) == int(extremes) and int(extremes) >= 0
+        except (TypeError, ValueError, OverflowError):
+            ok = False
+        if not ok:
+            raise ConfigError(f"extremes must be an integer >= 0, got {extremes!r}")
+        self.extremes = int(extremes)
         self._faces_done = False
         self._background: _Background | None = None
         #: the face searches, then the approximate one: ``(objectives, points kept or

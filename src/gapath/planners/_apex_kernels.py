@@ -195,7 +195,7 @@ def _apex_run(
         li, lf, sols, hk, hid, sp = _make_room(li, lf, sols, hk, hid, sp, st, TRUE)
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def _apex_steps(
     occ,
     pot,

@@ -616,7 +616,7 @@ def _make_room(li, lf, sols, hk, hid, sp, st, three):
     return li, lf, sols, hk, hid, sp
 
 
-@numba.njit(cache=True)
+@numba.njit(cache=True, _nrt=False)
 def _free_steps(
     occ,
     pot,
