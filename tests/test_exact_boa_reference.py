@@ -61,8 +61,8 @@ def _case(i: int) -> Workspace:
 
 
 def reference_front(ws: Workspace, names, ties: bool):
-    """``(F, smoothness, paths, expansions, tie edges)`` of the reference
-    kernels, or None when the goal cannot be reached."""
+    """``(F, smoothness, paths, expansions, tie edges, generated labels)`` of
+    the reference kernels, or None when the goal cannot be reached."""
     occ = np.ascontiguousarray(ws.occ)
     pot = np.ascontiguousarray(ws.potential, dtype=np.float64)
     (sr, sc), (gr, gc) = ws.start, ws.goal
@@ -77,7 +77,14 @@ def reference_front(ws: Workspace, names, ties: bool):
     assert status == ref.DONE
     F, smooth, cells, offsets, counts = result
     paths = [cells[offsets[i] : offsets[i + 1]] for i in range(len(F))]
-    return F, smooth, paths, int(counts[ref.C_EXPANDED]), int(counts[ref.C_EDGES])
+    return (
+        F,
+        smooth,
+        paths,
+        int(counts[ref.C_EXPANDED]),
+        int(counts[ref.C_EDGES]),
+        int(counts[ref.C_GENERATED]),
+    )
 
 
 def _assert_same(ws, names, tie_break):
@@ -88,7 +95,7 @@ def _assert_same(ws, names, tie_break):
         assert want is None
         return 0
     assert want is not None
-    F, smooth, paths, expansions, edges = want
+    F, smooth, paths, expansions, edges, generated = want
     assert np.array_equal(got.F, F)
     assert np.array_equal(got.smoothness, smooth)
     assert len(got.paths) == len(paths)
@@ -100,6 +107,7 @@ def _assert_same(ws, names, tie_break):
             assert len(p) == len(q)
             assert evaluate_path(ws, p) == evaluate_path(ws, q)
     assert got.stats["expansions"] == expansions
+    assert got.stats["generated"] == generated  # (the steps back are counted, not generated)
     if tie_break == "smoothest":  # labels dropped early are ones that record no edge
         assert got.stats["tie_edges"] == edges
     return len(F)
@@ -352,3 +360,50 @@ def test_goal_margin_keeps_a_dropped_label_apart_from_every_expansion():
     fz = _doubles_tied(g, True)
     fy = _next(g + TOL * g * (1 + 1e-6))
     assert fy - g > TOL * fy and _eq(fy, fz)
+
+
+def test_back_step_is_covered_by_the_parents_g2():
+    """The first step of _back_step_drops' proof: the child stepping back to
+    its grandparent's cell has a g2, ``fl(fl(q_p + P) + P')``, at or above
+    ``q_p`` for non-negative potentials (rounding is monotone), however
+    small the potentials are against ``q_p``."""
+    for q_p in MAGNITUDES:
+        for p1 in (0.0, 5e-324, 1e-300, 1e-17, 2.0**-60, 0.25, 1.0 / 3):
+            for p2 in (0.0, 5e-324, 1e-17, 0.5):
+                assert (q_p + p1) + p2 >= q_p
+
+
+def test_back_step_drops_exactly_when_the_eager_length_test_cannot_tie():
+    """_back_step_drops computes the lengths the eager check would compare
+    when the label last expanded at the grandparent's cell is the
+    grandparent itself (two steps apart): it drops the step back iff they are
+    not tied, which holds for any cell size above the tolerance's scale, and
+    not at the cell size (found by bisection) where two steps from the start
+    tie. Without ties the step back is always dropped."""
+    from gapath.planners._boa_kernels import _back_step_drops
+    from gapath.planners._exact_kernels import _eq
+
+    sqrt2 = np.sqrt(2.0)
+    for ns, nd in ((1, 0), (0, 1), (5, 3), (700, 1200), (10**6, 10**6)):
+        for s in (0, 1):
+            if (ns if s else nd) < 1:  # x was entered by such a step
+                continue
+            for cs in (1.0, 0.05, 3.7, 1e-6):
+                assert _back_step_drops(ns, nd, s, 1 - s, cs, True)
+                assert _back_step_drops(ns, nd, s, 1 - s, cs, False)
+
+    def tied(cs, s):  # x one step from the start: the child is two steps from p
+        a = ((s + s) + sqrt2 * ((1 - s) + (1 - s))) * cs
+        return _eq(a, 0.0 * cs)
+
+    for s in (0, 1):
+        lo, hi = 1e-12, 1.0  # tied at lo, not at hi
+        assert tied(lo, s) and not tied(hi, s)
+        for _ in range(200):
+            mid = (lo + hi) / 2
+            if mid in (lo, hi):
+                break
+            lo, hi = (mid, hi) if tied(mid, s) else (lo, mid)
+        assert not _back_step_drops(s, 1 - s, s, 1 - s, lo, True)
+        assert _back_step_drops(s, 1 - s, s, 1 - s, hi, True)
+        assert _back_step_drops(s, 1 - s, s, 1 - s, lo, False)

@@ -17,6 +17,7 @@ import math
 
 import numpy as np
 import pytest
+from data_files import data_path
 from test_exact_free import martins_front
 
 from gapath import Workspace
@@ -180,3 +181,56 @@ def test_tied_labels_are_not_expanded():
 def test_tie_break_none_has_no_edges():
     ws = _case(2)
     assert "tie_edges" not in free_front(ws, LV, tie_break="none").stats
+
+
+def _searched(ws: Workspace):
+    """The state of a finished smoothest-tie-break search on ``ws`` (the
+    kernels called as :func:`free_front` calls them), or None."""
+    from gapath.planners import _boa_kernels as K
+
+    occ = np.ascontiguousarray(ws.occ)
+    pot = np.ascontiguousarray(ws.potential, dtype=np.float64)
+    (sr, sc), (gr, gc) = ws.start, ws.goal
+    w = ws.shape[1]
+    mask, hs, hd, hv = K._boa_prepare(occ, pot, gr, gc, bool(ws.corner_cutting))
+    if hv[sr * w + sc] == np.inf:
+        return None
+    state = K._boa_start(pot, sr, sc, w, float(ws.cell_size), hs, hd, hv, True, np.int64(K.N_BUCKETS))
+    gmin, first, li, lf, sols, hk, hid, st, stf, edges, est = state
+    li, lf, sols, hk, hid, edges, status = K._boa_run(
+        occ, pot, gr, gc, float(ws.cell_size), mask, hs, hd, hv, gmin, first, li, lf, sols, hk, hid, st, stf,
+        edges, est, 1 << 40, 1 << 60, True,
+    )  # fmt: skip
+    assert status == K.DONE
+    return li, lf, int(st[K.S_N]), sols[: st[K.S_SOLS]], edges, int(est[K.E_EDGES]), pot, w
+
+
+def test_smoothest_in_the_label_tables_equals_fresh_arrays():
+    """``_smoothest`` carves its arrays out of the dead label tables (``off``
+    and ``idx`` out of ``lf``; the rows' parents, cells and headings, copied
+    over ``li``'s first rows, and the programme's arrays after them) when
+    they fit:
+    the same paths, step counts, turns and vulnerabilities as with fresh
+    arrays (``reuse=False``), and less fresh memory, on the random tie cases
+    and a MovingAI query with thousands of tie edges."""
+    from gapath.loaders import load_movingai, load_scenarios
+    from gapath.planners._boa_kernels import _smoothest
+
+    mp = data_path("movingai/mapf/den312d.map")
+    sc = load_scenarios(data_path("movingai/mapf/den312d-random-1.scen"))[749]
+    cases = [_case(seed) for seed in range(N_CASES)]
+    cases.append(load_movingai(mp, sc.start, sc.goal, corner_cutting=False))
+    carved = 0
+    for ws in cases:
+        s = _searched(ws)
+        if s is None or s[5] == 0:
+            continue
+        li, lf, n_rows, sols, edges, n_edges, pot, w = s
+        fresh = _smoothest(li.copy(), lf.copy(), n_rows, sols, edges, n_edges, pot, w, False)
+        li2, lf2 = li.copy(), lf.copy()
+        reused = _smoothest(li2, lf2, n_rows, sols, edges, n_edges, pot, w, True)
+        for a, b in zip(fresh[:6], reused[:6], strict=True):
+            np.testing.assert_array_equal(a, b)
+        assert reused[6] < fresh[6]
+        carved += fresh[6] - reused[6] > 20 * n_rows + 4  # the programme's arrays went into li too
+    assert carved >= 20

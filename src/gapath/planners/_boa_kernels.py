@@ -283,6 +283,32 @@ def _pour_drops_tied(q, m, len_q, len_first):
     return q >= m and not _eq(len_q, len_first)
 
 
+@numba.njit(cache=True, inline="always")
+def _back_step_drops(ns_x, nd_x, s, t, cell_size, ties):
+    """Whether the child of an expanded label ``x`` (step counts ``ns_x``,
+    ``nd_x``, entered by a straight step if ``s == 1``, a diagonal one if
+    ``t == 1``) that steps back to the cell of its parent ``p`` would be
+    dropped by its eager check without an edge.
+
+    Proof. The potential is non-negative and rounding is monotone, so the
+    child's g2, ``fl(fl(q_p + P(x's cell)) + P(p's cell))``, is at least
+    ``q_p``, and ``g2_min`` of ``p``'s cell is at most ``q_p`` (``p`` was
+    expanded there): the child is covered. It records an edge only if it
+    ties, in g2 and in length, the label ``a`` last expanded at that cell.
+    If ``a`` is not ``p``, ``a`` was expanded after ``p`` with a g2 below
+    ``q_p`` beyond the tolerance, and each later expansion there below the
+    one before: then no value at or above ``q_p`` ties it (the step of rule 1,
+    docs/results/exact_speed.md, fifteenth session). If ``a`` is ``p``, the
+    lengths are those computed here, the child's (two steps more than
+    ``p``'s) and ``p``'s, which do not tie unless the cell size is below
+    the tolerance's scale. Without ties nothing is recorded."""
+    if not ties:
+        return True
+    len_child = ((ns_x + s) + SQRT2 * (nd_x + t)) * cell_size
+    len_p = ((ns_x - s) + SQRT2 * (nd_x - t)) * cell_size
+    return not _eq(len_child, len_p)
+
+
 @numba.njit(cache=True)
 def _boa_steps(
     occ,
@@ -529,11 +555,17 @@ def _boa_steps(
         first[c] = x
         head = li[x, F_HEAD]
         ns_x, nd_x, turns_x = li[x, NS], li[x, ND], li[x, TURNS]
-        mk = mask[c]
+        mk = np.int64(mask[c])
+        n_generated += COUNT[mk]
+        if head >= 0:
+            # the step back to the parent's cell is not generated: its eager check
+            # would drop it with no edge (see _back_step_drops)
+            s_x = 1 - head % 2
+            if _back_step_drops(ns_x, nd_x, s_x, 1 - s_x, cell_size, ties):
+                mk &= ~(1 << ((head + 4) & 7))
         for jm in range(COUNT[mk]):  # the allowed moves (a test per bit mispredicts)
             d = MOVES[mk, jm]
             cell = c + off[d]  # (the goal can be reached from there: _boa_prepare's mask)
-            n_generated += 1
             ns_j = ns_x + (1 - d % 2)
             nd_j = nd_x + d % 2
             qj = q + pf[cell]
@@ -616,7 +648,7 @@ def _boa_steps(
 
 
 @numba.njit(cache=True)
-def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
+def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
     """The smoothest path of each solution over the DAG of expanded labels.
 
     Nodes are the label rows reachable backward from ``sols``; the in-edges
@@ -638,14 +670,34 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     for most nodes, where an 8-heading table per node took 8 times the
     memory and most of the programme's time in page faults and cache misses.
 
+    The label tables are dead by then and their first ``n_rows`` rows are
+    already in memory (written by the search), so the arrays indexed by row
+    (``off``, ``idx``) are carved out of the float table ``lf``, each row's
+    parent, cell and heading are copied, in one pass in row order, into
+    ``li``'s first rows (the depth-first search then reads them from there
+    instead of rows scattered over the table, a cache miss each), and the
+    programme's arrays (``T``, ``V``, ``bp``, ``bs``) are carved out of ``li``
+    after them, when they fit, if ``reuse`` is true: no fresh pages for them.
+    Both tables are then overwritten (the search cannot go on); the values are
+    the same either way.
+
     Returns ``(cells, offsets, n_straight, n_diag, turns, vul, scratch_bytes)``:
     the cells of solution ``i``'s path are ``cells[offsets[i]:offsets[i + 1]]``
     (``(row, col)``), its step counts, total turn and vulnerability summed
     along it in path order from the start cell; ``scratch_bytes``, the memory
-    of the programme's arrays.
+    of the programme's fresh arrays.
     """
-    # alternative in-edges by node (counting sort)
-    off = np.zeros(n_rows + 1, np.int32)
+    # alternative in-edges by node (counting sort); off and idx in lf's rows
+    scratch = 0
+    fb = lf.reshape(lf.size).view(np.int32)  # two int32 a row
+    if reuse and 2 * n_rows + 1 <= fb.shape[0]:  # (row n_rows's first half: one page at most)
+        off = fb[: n_rows + 1]
+        idx = fb[n_rows + 1 : 2 * n_rows + 1]
+    else:
+        off = np.empty(n_rows + 1, np.int32)
+        idx = np.empty(n_rows, np.int32)
+        scratch += off.nbytes + idx.nbytes
+    off[:] = 0
     for e in range(n_edges):
         off[edges[e, E_NODE] + 1] += 1
     for v in range(n_rows):
@@ -669,7 +721,28 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     # order they were recorded; none for the start label) with its cell and
     # its slots (below): the programme then reads these compact arrays in
     # order instead of label rows scattered over the table
-    idx = np.full(n_rows, -1, np.int32)
+    idx[:] = -1
+    # each row's parent, cell and heading, compact, in one pass in row order:
+    # the search's reads of label rows scattered over the table were a cache
+    # miss each. Written over li's first rows, already read (row v's three
+    # entries below row v), when reuse
+    n_sols = len(sols)
+    total = 0  # (the labels' step counts are read before)
+    for si in range(n_sols):
+        total += li[sols[si], NS] + li[sols[si], ND] + 1
+    fb = li.reshape(li.size)
+    if reuse:
+        pch = fb[: 3 * n_rows]
+    else:
+        pch = np.empty(3 * n_rows, np.int32)
+        scratch += pch.nbytes
+    for v in range(n_rows):
+        p = li[v, F_PARENT]
+        cv = li[v, CELL]
+        hd_v = li[v, F_HEAD]
+        pch[3 * v] = p
+        pch[3 * v + 1] = cv
+        pch[3 * v + 2] = hd_v
     ncell = np.empty(n_rows, np.int32)
     kin_off = np.empty(n_rows + 1, np.int32)
     kin_p = np.empty(n_rows + n_edges, np.int32)
@@ -678,7 +751,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
     # one slot per (node, incoming heading) that occurs (most nodes have one):
     # the slots of node i are hoff[i]:hoff[i + 1], in heading order (hm: the
     # headings; 0 for the start label, which has one slot and no heading)
-    hm = np.zeros(n_rows, np.uint8)
+    hm = np.empty(n_rows, np.uint8)  # (written in order, as hoff)
     hoff = np.empty(n_rows + 1, np.int64)
     hoff[0] = 0
     kin_off[0] = 0
@@ -695,7 +768,7 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                 sp -= 1
             elif idx[v] == -1:
                 idx[v] = -2
-                p = li[v, F_PARENT]
+                p = pch[3 * v]
                 if p >= 0 and idx[p] == -1:
                     stack[sp] = p
                     sp += 1
@@ -706,12 +779,12 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                         sp += 1
             else:
                 idx[v] = k
-                ncell[k] = li[v, CELL]
+                ncell[k] = pch[3 * v + 1]
                 t = kin_off[k]
                 bits = 0
-                p = li[v, F_PARENT]
+                p = pch[3 * v]
                 if p >= 0:
-                    d = li[v, F_HEAD]
+                    d = pch[3 * v + 2]
                     kin_p[t] = idx[p]
                     kin_d[t] = d
                     t += 1
@@ -728,11 +801,20 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
                 sp -= 1
     n_slots = hoff[k]
     # least (turns, vulnerability) per slot, and the first (in-edge, parent
-    # slot) giving it: the trace's choice, kept
-    T = np.empty(n_slots, np.int64)
-    V = np.empty(n_slots)
-    bp = np.empty(n_slots, np.int32)  # the parent's place in the order
-    bs = np.empty(n_slots, np.int32)
+    # slot) giving it: the trace's choice, kept; in li's rows after pch when
+    # they fit (6 int32 a slot, 7 a row)
+    o = 3 * n_rows + (n_rows & 1)  # (even: T and V 8-byte aligned)
+    if reuse and o + 6 * n_slots <= 7 * n_rows:
+        T = fb[o : o + 2 * n_slots].view(np.int64)
+        V = fb[o + 2 * n_slots : o + 4 * n_slots].view(np.float64)
+        bp = fb[o + 4 * n_slots : o + 5 * n_slots]  # the parent's place in the order
+        bs = fb[o + 5 * n_slots : o + 6 * n_slots]
+    else:
+        T = np.empty(n_slots, np.int64)
+        V = np.empty(n_slots)
+        bp = np.empty(n_slots, np.int32)
+        bs = np.empty(n_slots, np.int32)
+        scratch += T.nbytes + V.nbytes + bp.nbytes + bs.nbytes
     pf = pot.reshape(pot.size)
     for i in range(k):
         pv = pf[ncell[i]]
@@ -775,16 +857,12 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
 
     # trace each solution back from its least (T, V) (the steps written out: a
     # helper call per step cost most of the time), then evaluate it forwards
-    n_sols = len(sols)
     offsets = np.zeros(n_sols + 1, np.int64)
     out_ns = np.zeros(n_sols, np.int64)
     out_nd = np.zeros(n_sols, np.int64)
     out_turns = np.zeros(n_sols, np.int64)
     out_vul = np.zeros(n_sols)
     buf = np.empty(k, np.int32)  # the nodes of one path, goal first (distinct nodes)
-    total = 0
-    for si in range(n_sols):
-        total += li[sols[si], NS] + li[sols[si], ND] + 1
     cells = np.empty((total, 2), np.int64)
     for si in range(n_sols):
         i = idx[sols[si]]
@@ -832,12 +910,9 @@ def _smoothest(li, n_rows, sols, edges, n_edges, pot, w):
         out_turns[si] = eighths
         out_vul[si] = vul
     cells = cells[: offsets[n_sols]]
-    scratch = 0
-    for arr_bytes in (off.nbytes, ep.nbytes, edir.nbytes, idx.nbytes, ncell.nbytes, kin_off.nbytes):
+    for arr_bytes in (ep.nbytes, edir.nbytes, ncell.nbytes, kin_off.nbytes, stack.nbytes):
         scratch += arr_bytes
-    scratch += stack.nbytes
-    scratch += kin_p.nbytes + kin_d.nbytes + hm.nbytes + hoff.nbytes + T.nbytes + V.nbytes + bp.nbytes
-    scratch += bs.nbytes + buf.nbytes + cells.nbytes
+    scratch += kin_p.nbytes + kin_d.nbytes + hm.nbytes + hoff.nbytes + buf.nbytes + cells.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
 
 
@@ -912,7 +987,11 @@ def _boa_start(pot, sr, sc, w, cell_size, hs, hd, hv, ties, n_buckets):
         li2[: st[S_N]] = li[: st[S_N]]  # the start label
         lf2[: st[S_N]] = lf[: st[S_N]]
         li, lf = li2, lf2
-    edges = np.empty((1024 if ties else 16, 3), np.int32)
+    # the edge table: two rows a cell, at most LABEL_ROWS (about one tie edge per
+    # two expansions on Berlin_1_256: doubling from 1,024 rows copied 1.5 MB and
+    # touched twice the pages used; the rows are touched only as edges are
+    # recorded)
+    edges = np.empty((max(1024, min(2 * hs.shape[0], LABEL_ROWS)) if ties else 16, 3), np.int32)
     est = np.zeros(6, np.int64)
     est[E_CUR] = np.int64(hk[0, 0] * (BUCKETS_PER_CELL / cell_size))  # the start label's bucket
     est[E_OHEAD] = -1
@@ -962,12 +1041,16 @@ def _boa_finish(li, lf, sols, st, edges, n_edges, pot, w, cell_size, ties, len_f
     Returns ``(F, smoothness, cells, offsets, counts)``: ``F`` (k, 2), the
     path of point ``i`` is ``cells[offsets[i]:offsets[i + 1]]``, ``counts``
     the int64 figures indexed by ``C_*`` (``C_PEAK``: ``peak`` plus the
-    dynamic programme's scratch memory).
+    dynamic programme's fresh scratch memory). With ``ties`` the label tables
+    ``li`` and ``lf`` are overwritten (:func:`_smoothest` works in them): the
+    search cannot be continued after its finish.
     """
     n_sols = st[S_SOLS]
     sols = sols[:n_sols]
     if ties and n_edges > 0:
-        cells, offsets, ns, nd, turns, vul, scratch = _smoothest(li, st[S_N], sols, edges, n_edges, pot, w)
+        cells, offsets, ns, nd, turns, vul, scratch = _smoothest(
+            li, lf, st[S_N], sols, edges, n_edges, pot, w, True
+        )
         peak += scratch
     else:
         cells, offsets = _trace(li, sols, w)

@@ -208,24 +208,44 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
             du = keys[0]
             size -= 1
             if size > 0:
+                # bottom-up: the hole goes down along the least child (four
+                # compared without branches) to a leaf, then the last entry
+                # rises from there
                 key = keys[size]
                 x = ids[size]
                 i = 0
-                while True:
+                ch = 1
+                while ch + 3 < size:
+                    a, b = keys[ch], keys[ch + 1]
+                    c, d = keys[ch + 2], keys[ch + 3]
+                    ia = ch + (b < a)
+                    a = min(a, b)
+                    ic = ch + 2 + (d < c)
+                    c = min(c, d)
+                    if c < a:
+                        ia = ic
+                        a = c
+                    keys[i] = a
+                    ids[i] = ids[ia]
+                    i = ia
                     ch = 4 * i + 1
-                    if ch >= size:
+                if ch < size:
+                    ia = ch
+                    a = keys[ch]
+                    for c2 in range(ch + 1, size):
+                        if keys[c2] < a:
+                            a = keys[c2]
+                            ia = c2
+                    keys[i] = a
+                    ids[i] = ids[ia]
+                    i = ia
+                while i > 0:
+                    p = (i - 1) >> 2
+                    if not key < keys[p]:
                         break
-                    best = ch
-                    bk = keys[ch]
-                    for c2 in range(ch + 1, min(ch + 4, size)):
-                        if keys[c2] < bk:
-                            bk = keys[c2]
-                            best = c2
-                    if not bk < key:
-                        break
-                    keys[i] = bk
-                    ids[i] = ids[best]
-                    i = best
+                    keys[i] = keys[p]
+                    ids[i] = ids[p]
+                    i = p
                 keys[i] = key
                 ids[i] = x
             if du > D[u]:  # stale: u was pushed again with a smaller key
