@@ -64,6 +64,7 @@ def test_bad_occupancy(occ, match):
         (dict(start=(0, 3)), "start and goal are the same cell"),
         (dict(cell_size=0), "cell_size must be a positive number"),
         (dict(cell_size=-2.0), "cell_size must be a positive number"),
+        (dict(cell_size=7e-10), r"cell_size must be at least 1e-06, got 7e-10"),
         (dict(start="a"), "start must be a \\(row, col\\) pair"),
     ],
 )
@@ -72,6 +73,21 @@ def test_bad_workspace_settings(kw, match):
     occ[1, 1] = True
     with pytest.raises(ConfigError, match=match):
         Workspace(occ, **kw)
+
+
+def test_the_least_cell_size_keeps_the_smoothest_tie_break_acyclic():
+    """At MIN_CELL_SIZE an open grid (zero potential everywhere, so every
+    path ties in vulnerability) gives its one-point front with a path of the
+    least step count: lengths two steps apart do not tie. (At 7e-10 the same
+    search crashed the process: the tie edges formed cycles.)"""
+    from gapath.planners.exact import free_front
+    from gapath.workspace import MIN_CELL_SIZE
+
+    ws = Workspace(np.zeros((8, 9), bool), cell_size=MIN_CELL_SIZE)
+    front = free_front(ws, ("length", "vulnerability"))
+    assert len(front) == 1
+    assert len(front.paths[0]) == 9  # 8 diagonal-first steps from (7, 0) to (0, 8)
+    assert front.F[0, 0] == pytest.approx((1 + 7 * np.sqrt(2)) * MIN_CELL_SIZE, rel=1e-12)
 
 
 def test_errors_are_value_errors():

@@ -181,6 +181,14 @@ class MapFrame:
         return {"origin": [self.x, self.y, self.yaw], "resolution": self.resolution, "units": "m"}
 
 
+#: The least ``cell_size`` a :class:`Workspace` takes. Below about 5e-10 a
+#: path's length and that of the same path with a detour of two steps compare
+#: equal under SPEC's tolerance (``1e-9`` absolute for values below 1), so
+#: the exact searches' smoothest tie-break would link labels into cycles (a
+#: segmentation fault on an open 8x9 grid at 7e-10); 1e-6 leaves a factor
+#: of 2,000 (docs/CONVENTIONS.md).
+MIN_CELL_SIZE = 1e-6
+
 class Workspace:
     """A grid with obstacles, a start and a goal cell.
 
@@ -189,7 +197,8 @@ class Workspace:
     occ : (H, W) array of bool (or 0/1 integers), True/1 for an obstacle.
     start, goal : ``(row, col)``; default bottom-left ``(H-1, 0)`` and
         top-right ``(0, W-1)``.
-    cell_size : length of a cell side (scales path lengths, not potentials).
+    cell_size : length of a cell side (scales path lengths, not potentials),
+        at least :data:`MIN_CELL_SIZE`.
     corner_cutting : if False a diagonal move needs both orthogonally
         adjacent cells free (MovingAI convention); default True (SPEC).
     name : a label used in outputs.
@@ -215,7 +224,7 @@ class Workspace:
         If ``occ`` is not a non-empty 2-D boolean (or 0/1) array.
     ConfigError
         If start or goal is outside the grid or on an obstacle, if they are
-        equal, if ``cell_size`` is not positive, or if ``corner_cutting`` is
+        equal, if ``cell_size`` is not a number >= :data:`MIN_CELL_SIZE`, or if ``corner_cutting`` is
         not a bool (``"no"`` would otherwise read as True).
 
     Examples
@@ -268,6 +277,12 @@ class Workspace:
             raise ConfigError(f"cell_size must be a positive number, got {cell_size!r}") from None
         if not np.isfinite(cs) or cs <= 0:
             raise ConfigError(f"cell_size must be a positive number, got {cell_size!r}")
+        if cs < MIN_CELL_SIZE:
+            raise ConfigError(
+                f"cell_size must be at least {MIN_CELL_SIZE:g}, got {cell_size!r}: below it, paths a few "
+                "steps apart in length compare equal under SPEC's tolerance (1e-9, absolute below 1); "
+                "use larger units"
+            )
         self.cell_size = cs
         if not isinstance(corner_cutting, (bool, np.bool_)):
             raise ConfigError(f"corner_cutting must be True or False, got {corner_cutting!r}")
