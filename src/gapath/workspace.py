@@ -189,6 +189,7 @@ class MapFrame:
 #: of 2,000 (docs/CONVENTIONS.md).
 MIN_CELL_SIZE = 1e-6
 
+
 class Workspace:
     """A grid with obstacles, a start and a goal cell.
 
