@@ -459,12 +459,7 @@ class FreePathArchive(PathArchive):
         self.sparse = sparse
         if exact_stretches is None:  # measured with two objectives only
             exact_stretches = EXACT_STRETCHES if problem.n_obj == 2 else 0
-        try:
-            ok = float(exact_stretches) == int(exact_stretches) and int(exact_stretches) >= 0
-        except (TypeError, ValueError, OverflowError):
-            ok = False
-        if not ok:
-            raise ConfigError(f"exact_stretches must be an integer >= 0, got {exact_stretches!r}")
+        exact_stretches = _whole(exact_stretches, "exact_stretches")
         # only over the objectives the exact search has (no costmap layers)
         additive = set(problem.objectives) <= {"length", "vulnerability", "smoothness"}
         self.exact_stretches = int(exact_stretches) if additive else 0
@@ -484,26 +479,14 @@ class FreePathArchive(PathArchive):
         self.approx_budget = non_negative(approx_budget, "approx_budget", finite=False, what=per_cell)
         if extremes is None:  # the faces with smoothness hold the smooth end exactly
             extremes = 0 if self.faces > 0 else 4
-        try:
-            ok = float(extremes) == int(extremes) and int(extremes) >= 0
-        except (TypeError, ValueError, OverflowError):
-            ok = False
-        if not ok:
-            raise ConfigError(f"extremes must be an integer >= 0, got {extremes!r}")
-        self.extremes = int(extremes)
+        self.extremes = _whole(extremes, "extremes")
         self._faces_done = False
         self._background: _Background | None = None
         #: the face searches, then the approximate one: ``(objectives, points kept or
         #: None when not run, whether it finished within the budget)``
         self.face_sizes: list[tuple[tuple[str, ...], int | None, bool]] = []
         if cap is not None:
-            try:
-                ok = float(cap) == int(cap) and int(cap) >= 2
-            except (TypeError, ValueError, OverflowError):
-                ok = False
-            if not ok:
-                raise ConfigError(f"cap must be an integer >= 2 or None, got {cap!r}")
-            cap = int(cap)
+            cap = _whole(cap, "cap", least=2, also=" or None")
         self.cap = cap
         self.rng = np.random.default_rng(seed)
         self.n_eval = 0
@@ -860,6 +843,19 @@ class FreePathArchive(PathArchive):
         """The archived paths' genomes when every one has one (re-routed
         paths have none), else ``(k, 0)``."""
         return self._X if self._genome.all() else np.empty((len(self), 0))
+
+
+def _whole(value, name: str, least: int = 0, also: str = "") -> int:
+    """``value`` as an ``int`` if it is a whole number >= ``least``, else a
+    :class:`ConfigError` naming ``name`` (``also``: other values allowed,
+    for the message)."""
+    try:
+        ok = float(value) == int(value) and int(value) >= least
+    except (TypeError, ValueError, OverflowError):
+        ok = False
+    if not ok:
+        raise ConfigError(f"{name} must be an integer >= {least}{also}, got {value!r}")
+    return int(value)
 
 
 def _rows_in(B, A) -> np.ndarray:
