@@ -225,8 +225,9 @@ class Workspace:
         If ``occ`` is not a non-empty 2-D boolean (or 0/1) array.
     ConfigError
         If start or goal is outside the grid or on an obstacle, if they are
-        equal, if ``cell_size`` is not a number >= :data:`MIN_CELL_SIZE`, or if ``corner_cutting`` is
-        not a bool (``"no"`` would otherwise read as True).
+        equal, if ``cell_size`` is not a number >= :data:`MIN_CELL_SIZE`, or
+        if ``corner_cutting`` is not a bool (``"no"`` would otherwise read
+        as True).
 
     Examples
     --------

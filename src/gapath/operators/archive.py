@@ -462,7 +462,7 @@ class FreePathArchive(PathArchive):
         exact_stretches = _whole(exact_stretches, "exact_stretches")
         # only over the objectives the exact search has (no costmap layers)
         additive = set(problem.objectives) <= {"length", "vulnerability", "smoothness"}
-        self.exact_stretches = int(exact_stretches) if additive else 0
+        self.exact_stretches = exact_stretches if additive else 0
         if faces is None:
             faces = FACE_BUDGET if problem.n_obj >= 3 else 0
         per_cell = " (expansions per reachable cell)"
