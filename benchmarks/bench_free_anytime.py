@@ -25,6 +25,9 @@ Instances (``--instances``, comma-separated)::
     gen512-sK   the same on 512 x 512
     berlin      MovingAI Berlin_1_256, its longest .scen query
     random512   MovingAI random512-10-0, its longest .scen query
+    random512-40  MovingAI random512-40-0 (dense: 40 % obstacles), the same
+    8room       MovingAI 8room_000 (512 x 512 rooms), the same
+    maze512     MovingAI maze512-1-0, the same
 
 (MovingAI maps with ``corner_cutting=False``.) One JSON line per instance:
 exact front size and seconds (or ``exact_finished: false``), the GA's
@@ -102,6 +105,16 @@ def data_dir(arg=None) -> Path:
     return Path(env) if env else ROOT.parent / "shared" / "data"
 
 
+#: Instances on MovingAI's 512 x 512 grid maps (``movingai/grid``): the
+#: sparse random field, the dense one (40 % obstacles), rooms and a maze.
+GRID_MAPS = {
+    "random512": "random512-10-0",
+    "random512-40": "random512-40-0",
+    "8room": "8room_000",
+    "maze512": "maze512-1-0",
+}
+
+
 def _longest(scen_path):
     return sorted(load_scenarios(scen_path), key=lambda s: -s.optimal)[0]
 
@@ -116,10 +129,10 @@ def workspace(name: str, data: Path):
         d = data / "movingai" / "mapf"
         sc = _longest(d / "Berlin_1_256-random-1.scen")
         return load_movingai(d / "Berlin_1_256.map", start=sc.start, goal=sc.goal, corner_cutting=False)
-    if name == "random512":
+    if name in GRID_MAPS:
         d = data / "movingai" / "grid"
-        sc = _longest(d / "random512-10-0.map.scen")
-        return load_movingai(d / "random512-10-0.map", start=sc.start, goal=sc.goal, corner_cutting=False)
+        sc = _longest(d / f"{GRID_MAPS[name]}.map.scen")
+        return load_movingai(d / f"{GRID_MAPS[name]}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
     raise SystemExit(f"unknown instance {name!r}")
 
 
