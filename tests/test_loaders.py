@@ -585,7 +585,8 @@ def test_ros_missing_key(tmp_path, key):
 @pytest.mark.parametrize(
     "changes, fragments",
     [
-        ({"resolution": 0}, ["'resolution'", "positive number", "got 0"]),
+        ({"resolution": 0}, ["'resolution'", "metres per cell", "got 0"]),
+        ({"resolution": "1.0e-9"}, ["'resolution'", "at least 1e-06", "got 1e-09"]),
         ({"resolution": "fine"}, ["'resolution'", "'fine'"]),
         ({"resolution": "true"}, ["'resolution'", "True"]),
         ({"occupied_thresh": 1.5}, ["'occupied_thresh'", "[0, 1]", "1.5"]),

@@ -56,7 +56,7 @@ import yaml
 from PIL import Image
 
 from gapath.errors import ConfigError, MapError
-from gapath.workspace import MapFrame, Workspace
+from gapath.workspace import MIN_CELL_SIZE, MapFrame, Workspace
 
 __all__ = [
     "CORNER_RULES",
@@ -936,7 +936,11 @@ def _read_ros(path: Path) -> _Grid:
         meta, "image", path, "the image file name", lambda v: isinstance(v, str) and v.strip()
     )
     resolution = _yaml_value(
-        meta, "resolution", path, "a positive number (metres per cell)", lambda v: _is_number(v) and v > 0
+        meta,
+        "resolution",
+        path,
+        f"a number of metres per cell, at least {MIN_CELL_SIZE:g} (gapath's least cell size)",
+        lambda v: _is_number(v) and v >= MIN_CELL_SIZE,
     )
     origin = _yaml_value(
         meta,
