@@ -1,8 +1,10 @@
 import csv
 import json
+import os
 import subprocess
 import sys
 
+import numba
 import pytest
 
 from gapath.cli import main
@@ -126,6 +128,11 @@ def test_solve_three_objectives_and_start_goal(text_map, tmp_path):
         (["solve", "{map}", "--paths", "monotone", "--repair", "tidy"], "unknown repair 'tidy'"),
         (["solve", "{map}", "--refine", "-2"], "--refine must be auto, off or an integer >= 0, got '-2'"),
         (["solve", "{map}", "--refine", "lots"], "--refine must be auto, off or an integer >= 0"),
+        (
+            ["solve", "{map}", "--threads", "0"],
+            "--threads: expected a number of threads (1 or more) or 'auto', got '0'",
+        ),
+        (["solve", "{map}", "--threads", "many"], "--threads: expected a number of threads"),
         (
             ["solve", "{map}", "--paths", "monotone", "--refine", "-1"],
             "--refine must be auto, off or an integer",
@@ -284,3 +291,17 @@ def test_solve_refine_flag_reaches_the_run(flag, expected, paths, text_map, tmp_
     if paths == "monotone" and flag == "auto":
         expected = 2  # pop // 5 re-routed paths (docs/results/monotone_lift.md)
     assert settings.get("refine") == expected  # auto: pop // 2 with two objectives
+
+
+def test_solve_threads_flag_gives_the_serial_front(text_map, tmp_path, monkeypatch):
+    monkeypatch.setenv("GAPATH_THREADS", "1")  # restored after the test
+    fronts = {}
+    for flag in ("1", "2"):
+        out = tmp_path / flag
+        args = ["solve", str(text_map), "--paths", "free", "--pop", "12", "--gen", "4", "--seed", "3"]
+        assert main(args + ["--threads", flag, "--out", str(out), "--quiet", "--no-plots"]) == 0
+        settings = json.loads((out / "summary.json").read_text())["settings"]
+        assert settings["threads"] == min(int(flag), numba.get_num_threads())
+        fronts[flag] = (out / "front.csv").read_text()
+        assert os.environ["GAPATH_THREADS"] == "1"  # the flag holds for its run only
+    assert fronts["1"] == fronts["2"]

@@ -277,6 +277,10 @@ def solve(
         settings["repair"] = repair if isinstance(repair, str) else repr(extra["repair"])
     if archive is not None:
         settings["refine"] = archive.n_refine
+    if paths == "free":  # GAPATH_THREADS / --threads: the same results, another time
+        from gapath.encodings.free import wanted_threads
+
+        settings["threads"] = wanted_threads()
     t0 = time.perf_counter()
     interrupted = False
     res = None

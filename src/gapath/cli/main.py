@@ -15,9 +15,11 @@ one message; ``GAPATH_TRACEBACK=1`` shows the traceback); 130 interrupted
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import os
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 
 from gapath.errors import (
@@ -146,6 +148,14 @@ def _add_run_options(p: argparse.ArgumentParser, *, pop: int, gen: int, out: str
         help="judge the front against the exact monotone front, the exact free front "
         "or a front.csv: adds hypervolume ratio, IGD+ and the share of reference "
         "points found to summary.json",
+    )
+    p.add_argument(
+        "--threads",
+        metavar="N|auto",
+        default=None,
+        help="threads for the free-path GA's batches of searches and generation 1's second "
+        "search (the same results as one thread; sets GAPATH_THREADS; auto: every core numba "
+        "sees, at most 4) (default: GAPATH_THREADS, else 1)",
     )
     p.add_argument("--no-plots", action="store_true", help="skip front.png and paths.png")
     p.add_argument("--quiet", action="store_true", help="no progress bar or report")
@@ -302,7 +312,36 @@ def _refine(args):
     return n
 
 
+@contextlib.contextmanager
+def _threads(value: str | None) -> Iterator[None]:
+    """``--threads``, checked, given to the library as ``GAPATH_THREADS``
+    (:func:`gapath.encodings.free.wanted_threads` reads it) for the run, and
+    the variable restored after it."""
+    if value is None:
+        yield
+        return
+    from gapath.encodings.free import THREADS_ENV
+
+    text = value.strip().lower()
+    if text != "auto" and not (text.isdigit() and int(text) >= 1):
+        raise ConfigError(f"--threads: expected a number of threads (1 or more) or 'auto', got {value!r}")
+    before = os.environ.get(THREADS_ENV)
+    os.environ[THREADS_ENV] = text
+    try:
+        yield
+    finally:
+        if before is None:
+            del os.environ[THREADS_ENV]
+        else:
+            os.environ[THREADS_ENV] = before
+
+
 def _run(args, workspace) -> int:
+    with _threads(getattr(args, "threads", None)):
+        return _run_with(args, workspace)
+
+
+def _run_with(args, workspace) -> int:
     from gapath.cli._args import costmap_from_args, costmap_settings
     from gapath.results import write_result
     from gapath.solver import solve
