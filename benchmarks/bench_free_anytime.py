@@ -511,12 +511,16 @@ def approx(ws, E, epsilons):
     epsilon=eps)``) beside the exact faces, as the archive runs them: for
     each ``eps`` its CPU seconds, points, expansions and HV ratio against
     the exact front ``E``, alone and merged with the faces (each face path
-    scored on all three objectives); the faces' own cost and ratio first."""
+    scored on all three objectives), and (``on_faces``) the HV ratio of its
+    projection on each pair of objectives against that pair's exact front
+    (the face: known at run time, unlike ``E``); the faces' own cost and
+    ratio first."""
     from gapath.objectives import evaluate_paths, pad_paths
     from gapath.operators.archive import face_pairs
 
     c0 = time.process_time()
-    face_paths = [p for pair in face_pairs(OBJECTIVES) for p in free_front(ws, pair).paths]
+    face_fronts = {pair: free_front(ws, pair) for pair in face_pairs(OBJECTIVES)}
+    face_paths = [p for front in face_fronts.values() for p in front.paths]
     face_cpu = time.process_time() - c0
     P, L = pad_paths(face_paths)  # each face path on all three objectives, as the problem scores it
     M = evaluate_paths(P, L, ws.occ, ws.potential, ws.cell_size, ws.corner_cutting)
@@ -536,6 +540,13 @@ def approx(ws, E, epsilons):
                 factor=round(cover_factor(front.F, E), 6),
                 with_faces=round(float(hv_ratio(np.vstack([FF, front.F]), E)), 6),
                 with_faces_cpu_seconds=round(cpu + face_cpu, 3),
+                # the approximate front projected on each pair, against that pair's exact front
+                on_faces={
+                    "/".join(pair): round(
+                        float(hv_ratio(front.F[:, [OBJECTIVES.index(o) for o in pair]], face.F)), 6
+                    )
+                    for pair, face in face_fronts.items()
+                },
             )
         )
     return dict(
