@@ -28,6 +28,7 @@ Instances (``--instances``, comma-separated)::
     random512-40  MovingAI random512-40-0 (dense: 40 % obstacles), the same
     8room       MovingAI 8room_000 (512 x 512 rooms), the same
     maze512     MovingAI maze512-1-0, the same
+    NAME-qK     one of the four above, its K-th longest query (``8room-q2``)
 
 (MovingAI maps with ``corner_cutting=False``.) One JSON line per instance:
 exact front size and seconds (or ``exact_finished: false``), the GA's
@@ -115,8 +116,9 @@ GRID_MAPS = {
 }
 
 
-def _longest(scen_path):
-    return sorted(load_scenarios(scen_path), key=lambda s: -s.optimal)[0]
+def _longest(scen_path, rank=1):
+    """The ``rank``-th longest query of a ``.scen`` file (1: the longest)."""
+    return sorted(load_scenarios(scen_path), key=lambda s: -s.optimal)[rank - 1]
 
 
 def workspace(name: str, data: Path):
@@ -129,10 +131,12 @@ def workspace(name: str, data: Path):
         d = data / "movingai" / "mapf"
         sc = _longest(d / "Berlin_1_256-random-1.scen")
         return load_movingai(d / "Berlin_1_256.map", start=sc.start, goal=sc.goal, corner_cutting=False)
-    if name in GRID_MAPS:
+    base, _, rank = name.rpartition("-q")
+    base, rank = (base, int(rank)) if base in GRID_MAPS and rank.isdigit() else (name, 1)
+    if base in GRID_MAPS:
         d = data / "movingai" / "grid"
-        sc = _longest(d / f"{GRID_MAPS[name]}.map.scen")
-        return load_movingai(d / f"{GRID_MAPS[name]}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
+        sc = _longest(d / f"{GRID_MAPS[base]}.map.scen", rank)
+        return load_movingai(d / f"{GRID_MAPS[base]}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
     raise SystemExit(f"unknown instance {name!r}")
 
 

@@ -18,9 +18,9 @@ from gapath.encodings import _free_kernels as K
 from gapath.encodings.free import FieldEncoding, ViaPointEncoding
 from gapath.errors import ConfigError
 from gapath.front import path_front
-from gapath.metrics import nondominated
+from gapath.metrics import hv_ratio, nondominated
 from gapath.objectives import evaluate_paths, pad_paths
-from gapath.operators.archive import APPROX_EPSILON, FreePathArchive, run_archive
+from gapath.operators.archive import APPROX_EPSILON, APPROX_RETRY_EPSILON, FreePathArchive, run_archive
 from gapath.operators.sampling.free_sampling import FreeSampling
 from gapath.planners.exact import free_front
 from gapath.problems import FreePathProblem, GridPathProblem
@@ -699,6 +699,8 @@ def test_second_thread_search_holds_a_thread_until_it_ends(monkeypatch):
         ({"approx": "x"}, "approx must be"),
         ({"approx_budget": -1}, "approx_budget"),
         ({"approx_budget": "x"}, "approx_budget"),
+        ({"approx_retry": -0.5}, "approx_retry"),
+        ({"approx_retry": "x"}, "approx_retry"),
     ],
 )
 def test_bad_approx_settings(kwargs, match):
@@ -707,3 +709,41 @@ def test_bad_approx_settings(kwargs, match):
         FreePathArchive(p, **kwargs)
     with pytest.raises(ConfigError, match="needs the objectives length, vulnerability and smoothness"):
         FreePathArchive(FreePathProblem(room(seed=1)), approx=0.1)
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_coarse_approximation_is_searched_again_at_a_smaller_epsilon(monkeypatch, threads):
+    """When the approximate front, projected on (length, vulnerability),
+    scores below ``approx_retry`` against that exact face, the search runs
+    again at APPROX_RETRY_EPSILON: the ratio is recorded as computed from
+    the two fronts, every point of the second front is matched in the
+    archive, the front stays valid, and two threads give the serial
+    archive. Above the bound (or with ``approx_retry=0``) nothing more runs
+    and the archive is the one without the rule."""
+    ws = room(h=14, w=16, seed=44)
+    p = FreePathProblem(ws, OBJ3)
+    lv = ("length", "vulnerability")
+    first = free_front(ws, OBJ3, epsilon=APPROX_EPSILON)
+    shortfall = hv_ratio(first.F[:, [0, 1]], free_front(ws, lv).F)
+    assert 0 < shortfall < 1  # the bounds below fall on both sides of it
+
+    def run(bound):
+        a = FreePathArchive(p, n_refine=0, extremes=0, approx_retry=bound)
+        minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=a)
+        return a
+
+    serial = {b: run(b) for b in (0, shortfall - 1e-6, shortfall + 1e-6)}
+    if threads == 2:
+        _two_threads(monkeypatch)
+    second = free_front(ws, OBJ3, epsilon=APPROX_RETRY_EPSILON)
+    for bound, a in serial.items():
+        b = run(bound) if threads == 2 else a
+        assert b.approx_shortfall == (None if bound == 0 else pytest.approx(shortfall, abs=1e-12))
+        fired = bound > shortfall
+        assert b.retry_size == ((len(second), True) if fired else None)
+        assert all(_covers(b.F, [0, 1, 2], f) for f in second.F) or not fired
+        _check_front(ws, p, b.front(), OBJ3)
+        np.testing.assert_array_equal(b.F, a.F)
+        assert b.n_eval == a.n_eval
+    np.testing.assert_array_equal(serial[0].F, serial[shortfall - 1e-6].F)
+    assert serial[shortfall + 1e-6].n_eval == serial[0].n_eval + len(second)

@@ -66,7 +66,7 @@ from pymoo.core.callback import Callback
 
 from gapath.errors import ConfigError, non_negative
 from gapath.front import PathFront
-from gapath.metrics import TOL, close, dedupe
+from gapath.metrics import TOL, close, dedupe, hv_ratio
 from gapath.objectives import INTERFERING, SMOOTHNESS
 
 #: Default range of ``log10`` of the re-routing searches' cell-cost weight.
@@ -109,6 +109,14 @@ FACE_BUDGET = 200
 APPROX_EPSILON = 0.1
 #: Its budget in expansions per reachable cell (``approx_budget``'s default).
 APPROX_BUDGET = 200
+#: ``approx_retry``'s default: when the approximate front, projected on
+#: (length, vulnerability), scores an HV ratio below this against that exact
+#: face, the search runs again at :data:`APPROX_RETRY_EPSILON` (seventeenth
+#: session, ``docs/results/free_paths.md``: 0.73 on MovingAI 8room_000,
+#: 0.92-0.95 on seven 256 x 256 random fields).
+APPROX_RETRY_BELOW = 0.85
+#: The ``epsilon`` of that second search.
+APPROX_RETRY_EPSILON = 0.03
 
 
 def dominated_by(B, A, tol: float = TOL) -> np.ndarray:
@@ -355,6 +363,13 @@ class FreePathArchive(PathArchive):
         (default :data:`APPROX_BUDGET`); it stops there and keeps what it
         found (deterministic, as the faces). It is not run when a face
         search stopped short: on such a map it costs more than the faces.
+    approx_retry : when that search finished and its front, projected on
+        (length, vulnerability), scores an HV ratio below this against the
+        exact (length, vulnerability) face, it runs again at
+        :data:`APPROX_RETRY_EPSILON` within the same budget (default
+        :data:`APPROX_RETRY_BELOW`; 0 switches it off). The ratio is in
+        ``approx_shortfall``, the second front's size and whether it
+        finished in ``retry_size``.
     extremes : with smoothness as an objective, whole archived paths
         re-routed per generation under a heavy turn weight
         (``log10(c / a)`` in :data:`EXTREME_TURNS`) and a light cell cost
@@ -407,6 +422,7 @@ class FreePathArchive(PathArchive):
         faces=None,
         approx=None,
         approx_budget=APPROX_BUDGET,
+        approx_retry=APPROX_RETRY_BELOW,
     ):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
@@ -477,6 +493,9 @@ class FreePathArchive(PathArchive):
                 f"got {', '.join(problem.objectives)}; use approx=0"
             )
         self.approx_budget = non_negative(approx_budget, "approx_budget", finite=False, what=per_cell)
+        self.approx_retry = non_negative(approx_retry, "approx_retry", what=" (an HV ratio)")
+        self.approx_shortfall: float | None = None
+        self.retry_size: tuple[int | None, bool] | None = None
         if extremes is None:  # the faces with smoothness hold the smooth end exactly
             extremes = 0 if self.faces > 0 else 4
         self.extremes = _whole(extremes, "extremes")
@@ -609,23 +628,28 @@ class FreePathArchive(PathArchive):
         subs: list[np.ndarray] = []
         try:
             left = self.faces * enc.n_reachable
+            face_F = {}
             for pair in pairs:
-                paths, kept, done, used = _budget_search(ws, pair, 0.0, left) if left > 0 else _NOT_RUN
+                paths, kept, done, used, F = _budget_search(ws, pair, 0.0, left) if left > 0 else _NOT_RUN
                 left = left - used if done else 0
                 self.face_sizes.append((pair, kept, done))
+                if done:
+                    face_F[frozenset(pair)] = (pair, F)
                 subs += paths
             if self.approx > 0:
                 # not run where a face stopped short: it costs more than the faces there
                 fit = all(done for _, _, done in self.face_sizes)
                 budget = self._approx_expansions()
                 if not fit or budget <= 0:
-                    paths, kept, done, _ = _NOT_RUN
+                    paths, kept, done, _, F = _NOT_RUN
                 elif background is not None:
-                    paths, kept, done, _ = background.result()
+                    paths, kept, done, _, F = background.result()
                 else:
-                    paths, kept, done, _ = _budget_search(ws, three, self.approx, budget)
+                    paths, kept, done, _, F = _budget_search(ws, three, self.approx, budget)
                 self.face_sizes.append((three, kept, done))
                 subs += paths
+                if done:
+                    subs += self._retry(F, face_F.get(frozenset(("length", "vulnerability"))), budget)
         finally:
             if background is not None:
                 background.cancel()
@@ -637,6 +661,28 @@ class FreePathArchive(PathArchive):
         k = len(flat_paths)
         self.n_eval += k
         self._merge(flat, offsets, keys, np.full((k, self._X.shape[1]), np.nan), np.zeros(k, bool))
+
+    def _retry(self, F, face, budget) -> list:
+        """The paths of the approximate search run again at
+        :data:`APPROX_RETRY_EPSILON` when its first front ``F``, projected on
+        the exact (length, vulnerability) face ``(pair, F)``, scores an HV
+        ratio below ``approx_retry`` (recorded in ``approx_shortfall``,
+        ``retry_size``): where the default epsilon leaves much of the front
+        uncovered. Decided from the fronts alone, so the same on any
+        machine and with any number of threads."""
+        if face is None or F is None or not len(F) or self.approx_retry <= 0:
+            return []
+        pair, FF = face
+        if not len(FF) or self.approx <= APPROX_RETRY_EPSILON:
+            return []
+        cols = [self.problem.objectives.index(o) for o in pair]
+        self.approx_shortfall = float(hv_ratio(F[:, cols], FF))
+        if self.approx_shortfall >= self.approx_retry:
+            return []
+        three = tuple(self.problem.objectives)
+        paths, kept, done, _, _ = _budget_search(self.problem.workspace, three, APPROX_RETRY_EPSILON, budget)
+        self.retry_size = (kept, done)
+        return paths
 
     def add(self, X) -> None:
         """Archive the decoded paths of genomes ``X`` (those non-dominated)."""
@@ -884,11 +930,11 @@ class _Cancelled(Exception):
 
 
 #: What :func:`_budget_search` gives for a search that did not run.
-_NOT_RUN: tuple[list, None, bool, int] = ([], None, False, 0)
+_NOT_RUN: tuple[list, None, bool, int, None] = ([], None, False, 0, None)
 
 
 def _budget_search(ws, objectives, eps, budget, cancel=None):
-    """``(paths, points kept, finished within the budget, expansions)`` of
+    """``(paths, points kept, finished within the budget, expansions, F)`` of
     ``free_front(ws, objectives, epsilon=eps, max_expansions=budget)``;
     :data:`_NOT_RUN` when the goal cannot be reached. With a ``cancel``
     event the search ends with :class:`_Cancelled` between two kernel calls
@@ -907,7 +953,13 @@ def _budget_search(ws, objectives, eps, budget, cancel=None):
         front = free_front(ws, objectives, epsilon=eps, max_expansions=budget, progress=hook)
     except NoPathError:
         return _NOT_RUN
-    return list(front.paths), len(front.paths), bool(front.stats["complete"]), int(front.stats["expansions"])
+    return (
+        list(front.paths),
+        len(front.paths),
+        bool(front.stats["complete"]),
+        int(front.stats["expansions"]),
+        np.asarray(front.F, dtype=float),
+    )
 
 
 class _Background:
