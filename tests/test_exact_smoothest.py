@@ -206,7 +206,7 @@ def _searched(ws: Workspace):
 
 
 def test_smoothest_in_the_label_tables_equals_fresh_arrays():
-    """``_smoothest`` carves its arrays out of the dead label tables (``ehead``
+    """``_smoothest`` carves its arrays out of the dead label tables (``off``
     and ``idx`` out of ``lf``; the rows' parents, cells and headings, copied
     over ``li``'s first rows, and the programme's arrays after them) when
     they fit:
@@ -234,43 +234,3 @@ def test_smoothest_in_the_label_tables_equals_fresh_arrays():
         assert reused[6] < fresh[6]
         carved += fresh[6] - reused[6] > 20 * n_rows + 4  # the programme's arrays went into li too
     assert carved >= 20
-
-
-def test_smoothest_ignores_leftover_edge_heads():
-    """``_smoothest`` gives a node's recorded in-edges a linked list whose
-    head (``ehead``, in the dead float table ``lf``) is written only for the
-    nodes with an edge; the others keep whatever the table held. Leftovers
-    that name real edges, into other nodes or into the same node after its
-    first, must change nothing: the same result as with fresh arrays, with
-    ``lf`` filled with edge numbers (every one in range) before the call."""
-    from gapath.loaders import load_movingai, load_scenarios
-    from gapath.planners._boa_kernels import E_NODE, _smoothest
-
-    mp = data_path("movingai/mapf/den312d.map")
-    sc = load_scenarios(data_path("movingai/mapf/den312d-random-1.scen"))[749]
-    cases = [_case(seed) for seed in range(N_CASES)]
-    cases.append(load_movingai(mp, sc.start, sc.goal, corner_cutting=False))
-    rng = np.random.default_rng(7)
-    checked = 0
-    for ws in cases:
-        s = _searched(ws)
-        if s is None or s[5] < 2:
-            continue
-        li, lf, n_rows, sols, edges, n_edges, pot, w = s
-        fresh = _smoothest(li.copy(), lf.copy(), n_rows, sols, edges, n_edges, pot, w, False)
-        fb = lf.reshape(lf.size).view(np.int32)
-        # the last edge into each node (a leftover that names an edge into the
-        # node, not its first) or a random edge, everywhere in lf
-        last = np.full(n_rows, -1, np.int64)
-        last[edges[:n_edges, E_NODE]] = np.arange(n_edges)
-        for fill in (last, rng.integers(0, n_edges, n_rows)):
-            lf2 = lf.copy()
-            fb2 = lf2.reshape(lf2.size).view(np.int32)
-            fb2[:] = rng.integers(0, n_edges, fb.size)
-            fb2[:n_rows] = np.where(fill >= 0, fill, fb2[:n_rows])
-            fb2[n_rows : 2 * n_rows] = fb2[:n_rows]
-            got = _smoothest(li.copy(), lf2, n_rows, sols, edges, n_edges, pot, w, True)
-            for a, b in zip(fresh[:6], got[:6], strict=True):
-                np.testing.assert_array_equal(a, b)
-        checked += 1
-    assert checked >= 20

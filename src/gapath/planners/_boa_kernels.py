@@ -670,20 +670,9 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
     for most nodes, where an 8-heading table per node took 8 times the
     memory and most of the programme's time in page faults and cache misses.
 
-    The recorded in-edges of a node are a singly linked list through the
-    edge table's rows (``enext``), in recording order, its head indexed by
-    row (``ehead``). Only the nodes with an edge get a head, and no pass
-    over every row clears the others: a head is used only when the edge it
-    names enters the node, which a leftover value cannot fake. The lists
-    are built from the last edge back. While edge ``e`` into ``v`` is linked,
-    every edge into ``v`` after ``e`` was linked before and wrote ``v``'s
-    head, so a value naming such an edge is a written head; after the
-    build, the head of a node with edges names its first edge, and a node
-    without edges has no edge a leftover could name.
-
     The label tables are dead by then and their first ``n_rows`` rows are
     already in memory (written by the search), so the arrays indexed by row
-    (``ehead``, ``idx``) are carved out of the float table ``lf``, each row's
+    (``off``, ``idx``) are carved out of the float table ``lf``, each row's
     parent, cell and heading are copied, in one pass in row order, into
     ``li``'s first rows (the depth-first search then reads them from there
     instead of rows scattered over the table, a cache miss each), and the
@@ -698,41 +687,45 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
     along it in path order from the start cell; ``scratch_bytes``, the memory
     of the programme's fresh arrays.
     """
-    # alternative in-edges by node: a singly linked list per node through
-    # enext, in the order they were recorded (built from the last edge back),
-    # its head (ehead) in lf's rows with idx; a head is used only when the
-    # edge table confirms it (see the docstring): no pass over every row
+    # alternative in-edges by node (counting sort); off and idx in lf's rows
     scratch = 0
     fb = lf.reshape(lf.size).view(np.int32)  # two int32 a row
-    if reuse and 2 * n_rows <= fb.shape[0]:
-        ehead = fb[:n_rows]
-        idx = fb[n_rows : 2 * n_rows]
+    if reuse and 2 * n_rows + 1 <= fb.shape[0]:  # (row n_rows's first half: one page at most)
+        off = fb[: n_rows + 1]
+        idx = fb[n_rows + 1 : 2 * n_rows + 1]
     else:
-        ehead = np.empty(n_rows, np.int32)
+        off = np.empty(n_rows + 1, np.int32)
         idx = np.empty(n_rows, np.int32)
-        scratch += ehead.nbytes + idx.nbytes
-    enext = np.empty(n_edges, np.int32)
-    for e in range(n_edges - 1, -1, -1):
+        scratch += off.nbytes + idx.nbytes
+    off[:] = 0
+    for e in range(n_edges):
+        off[edges[e, E_NODE] + 1] += 1
+    for v in range(n_rows):
+        off[v + 1] += off[v]
+    ep = np.empty(n_edges, np.int32)
+    edir = np.empty(n_edges, np.int8)
+    for e in range(n_edges):  # off[v] is v's fill pointer, then its end
         v = edges[e, E_NODE]
-        h = ehead[v]
-        # a head written by an edge into v after e (every such edge is linked
-        # before e), or a leftover, whatever its value
-        if not (e < h < n_edges and edges[h, E_NODE] == v):
-            h = -1
-        enext[e] = h
-        ehead[v] = e
+        k = off[v]
+        ep[k] = edges[e, E_PARENT]
+        edir[k] = edges[e, E_DIR]
+        off[v] = k + 1
+    for v in range(n_rows, 0, -1):  # back to the starts
+        off[v] = off[v - 1]
+    off[0] = 0
 
-    # post-order of the nodes reachable from the solutions; idx: -1 unseen,
-    # -2 open, else the node's place in the order. A node is finished after
-    # its parents, so when it is, its in-edges are written out in that order's
-    # numbers (kin_p, kin_d: its own first, then the recorded ones in the
-    # order they were recorded; none for the start label) with its cell and
-    # its slots (below): the programme then reads these compact arrays in
-    # order instead of label rows scattered over the table.
-    # Each row's parent, cell and heading, compact, in one pass in row order
-    # (idx set to -1 in the same pass): the search's reads of label rows
-    # scattered over the table were a cache miss each. Written over li's first
-    # rows, already read (row v's three entries below row v), when reuse
+    # post-order of the nodes reachable from the solutions; idx: -1 unseen (set
+    # in the copy pass below), -2 open, else the node's place in the order. A
+    # node is finished after its parents, so when it is, its in-edges are
+    # written out in that order's numbers (kin_p, kin_d: its own first, then
+    # the recorded ones in the order they were recorded; none for the start
+    # label) with its cell and its slots (below): the programme then reads
+    # these compact arrays in order instead of label rows scattered over the
+    # table
+    # each row's parent, cell and heading, compact, in one pass in row order:
+    # the search's reads of label rows scattered over the table were a cache
+    # miss each. Written over li's first rows, already read (row v's three
+    # entries below row v), when reuse
     n_sols = len(sols)
     total = 0  # (the labels' step counts are read before)
     for si in range(n_sols):
@@ -780,15 +773,11 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
                 if p >= 0 and idx[p] == -1:
                     stack[sp] = p
                     sp += 1
-                e = ehead[v]  # v's first recorded in-edge, if the edge table confirms it
-                if not (0 <= e < n_edges and edges[e, E_NODE] == v):
-                    e = -1
-                while e >= 0:
-                    p = edges[e, E_PARENT]
+                for e in range(off[v], off[v + 1]):
+                    p = ep[e]
                     if idx[p] == -1:
                         stack[sp] = p
                         sp += 1
-                    e = enext[e]
             else:
                 idx[v] = k
                 ncell[k] = pch[3 * v + 1]
@@ -801,16 +790,11 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
                     kin_d[t] = d
                     t += 1
                     bits = 1 << d
-                    e = ehead[v]
-                    if not (0 <= e < n_edges and edges[e, E_NODE] == v):
-                        e = -1
-                    while e >= 0:
-                        d = edges[e, E_DIR]
-                        kin_p[t] = idx[edges[e, E_PARENT]]
-                        kin_d[t] = d
+                    for e in range(off[v], off[v + 1]):
+                        kin_p[t] = idx[ep[e]]
+                        kin_d[t] = edir[e]
                         t += 1
-                        bits |= 1 << d
-                        e = enext[e]
+                        bits |= 1 << edir[e]
                 kin_off[k + 1] = t
                 hm[k] = bits
                 hoff[k + 1] = hoff[k] + (_POPCOUNT[bits] if bits else 1)
@@ -945,7 +929,7 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
         out_turns[si] = eighths
         out_vul[si] = vul
     cells = cells[: offsets[n_sols]]
-    for arr_bytes in (enext.nbytes, ncell.nbytes, kin_off.nbytes, stack.nbytes):
+    for arr_bytes in (ep.nbytes, edir.nbytes, ncell.nbytes, kin_off.nbytes, stack.nbytes):
         scratch += arr_bytes
     scratch += kin_p.nbytes + kin_d.nbytes + hm.nbytes + hoff.nbytes + buf.nbytes + cells.nbytes
     return cells, offsets, out_ns, out_nd, out_turns, out_vul, scratch
