@@ -175,10 +175,11 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
     when reached, is cleared from its neighbours' moves (``rem``; the moves
     are symmetric, and the goal is cleared first), and a settled cell relaxes
     the moves left with no test of the key: each cell is reached and pushed
-    once (the stale-entry test below never fires; kept for safety). A cell
-    whose potential is 0 (a third of Berlin_1_256's free cells: no obstacle
-    within the kernel's window) gets the key of the cell that reaches it, the
-    least key there is, so it is settled next without entering the heap. The settling order stays
+    once (its moves in are cleared when it is), so the heap needs one entry
+    a cell and has no stale ones. A cell whose potential is 0 (a third of
+    Berlin_1_256's free cells: no obstacle within the kernel's window) gets
+    the key of the cell that reaches it, the least key there is, so it is
+    settled next without entering the heap. The settling order stays
     non-decreasing in key, so the values are those of any Dijkstra: ``hv``
     of a cell is the key of the first neighbour to reach its least ``D``,
     and neighbours with different keys are settled in key order."""
@@ -188,9 +189,8 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
         off[d] = DR[d] * w + DC[d]
     pf = pot.reshape(n)
     D = np.full(n, np.inf)
-    cap = 8 * n + 1  # one entry per successful relaxation, at most one per arc
-    keys = np.empty(cap)
-    ids = np.empty(cap, np.int32)
+    keys = np.empty(n)  # each cell is pushed at most once (see above)
+    ids = np.empty(n, np.int32)
     D[goal] = pf[goal]
     hv[goal] = 0.0
     keys[0] = D[goal]
@@ -261,8 +261,6 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
                     i = p
                 keys[i] = key
                 ids[i] = x
-            if du > D[u]:  # stale: u was pushed again with a smaller key
-                continue
         mk = rem[u]
         for j in range(COUNT[mk]):
             v = u + off[MOVES[mk, j]]
