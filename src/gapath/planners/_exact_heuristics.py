@@ -176,7 +176,8 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
     are symmetric, and the goal is cleared first), and a settled cell relaxes
     the moves left with no test of the key: each cell is reached and pushed
     once (its moves in are cleared when it is), so the heap needs one entry
-    a cell and has no stale ones. A cell whose potential is 0 (a third of
+    a cell and has no stale ones, and ``D`` is not stored: ``D(u)`` is
+    ``pot(u) + hv(u)``, the sum that set it. A cell whose potential is 0 (a third of
     Berlin_1_256's free cells: no obstacle within the kernel's window) gets
     the key of the cell that reaches it, the least key there is, so it is
     settled next without entering the heap. The settling order stays
@@ -188,12 +189,10 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
     for d in range(8):
         off[d] = DR[d] * w + DC[d]
     pf = pot.reshape(n)
-    D = np.full(n, np.inf)
     keys = np.empty(n)  # each cell is pushed at most once (see above)
     ids = np.empty(n, np.int32)
-    D[goal] = pf[goal]
     hv[goal] = 0.0
-    keys[0] = D[goal]
+    keys[0] = pf[goal]  # D(goal)
     ids[0] = goal
     size = 1
     # the moves not yet known useless: a move into a reached cell (its key is
@@ -214,7 +213,7 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
         if sp > 0:
             sp -= 1
             u = stack[sp]
-            du = D[u]
+            du = pf[u] + hv[u]  # D(u), the sum that set it
         else:
             # pop the smallest entry
             u = ids[0]
@@ -264,8 +263,7 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
         mk = rem[u]
         for j in range(COUNT[mk]):
             v = u + off[MOVES[mk, j]]
-            val = pf[v] + du  # v is reached now: D[v] is inf
-            D[v] = val
+            val = pf[v] + du  # D(v): v is reached now, for good
             hv[v] = du
             mv = mask[v]
             for jj in range(COUNT[mv]):
