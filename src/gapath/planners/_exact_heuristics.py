@@ -177,10 +177,10 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
     the moves left with no test of the key: each cell is reached and pushed
     once (its moves in are cleared when it is), so the heap needs one entry
     a cell and has no stale ones, and ``D`` is not stored: ``D(u)`` is
-    ``pot(u) + hv(u)``, the sum that set it. A cell whose potential is 0 (a third of
-    Berlin_1_256's free cells: no obstacle within the kernel's window) gets
-    the key of the cell that reaches it, the least key there is, so it is
-    settled next without entering the heap. The settling order stays
+    ``pot(u) + hv(u)``, the sum that set it. A cell whose potential is 0 (a
+    third of Berlin_1_256's free cells: no obstacle within the kernel's
+    window) gets the key of the cell that reaches it, the least key there
+    is, so it is settled next without entering the heap. The settling order stays
     non-decreasing in key, so the values are those of any Dijkstra: ``hv``
     of a cell is the key of the first neighbour to reach its least ``D``,
     and neighbours with different keys are settled in key order."""
