@@ -714,14 +714,14 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
         off[v] = off[v - 1]
     off[0] = 0
 
-    # post-order of the nodes reachable from the solutions; idx: -1 unseen,
-    # -2 open, else the node's place in the order. A node is finished after
-    # its parents, so when it is, its in-edges are written out in that order's
-    # numbers (kin_p, kin_d: its own first, then the recorded ones in the
-    # order they were recorded; none for the start label) with its cell and
-    # its slots (below): the programme then reads these compact arrays in
-    # order instead of label rows scattered over the table
-    idx[:] = -1
+    # post-order of the nodes reachable from the solutions; idx: -1 unseen (set
+    # in the copy pass below), -2 open, else the node's place in the order. A
+    # node is finished after its parents, so when it is, its in-edges are
+    # written out in that order's numbers (kin_p, kin_d: its own first, then
+    # the recorded ones in the order they were recorded; none for the start
+    # label) with its cell and its slots (below): the programme then reads
+    # these compact arrays in order instead of label rows scattered over the
+    # table
     # each row's parent, cell and heading, compact, in one pass in row order:
     # the search's reads of label rows scattered over the table were a cache
     # miss each. Written over li's first rows, already read (row v's three
@@ -743,6 +743,7 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
         pch[3 * v] = p
         pch[3 * v + 1] = cv
         pch[3 * v + 2] = hd_v
+        idx[v] = -1
     ncell = np.empty(n_rows, np.int32)
     kin_off = np.empty(n_rows + 1, np.int32)
     kin_p = np.empty(n_rows + n_edges, np.int32)
@@ -863,6 +864,9 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
     out_turns = np.zeros(n_sols, np.int64)
     out_vul = np.zeros(n_sols)
     buf = np.empty(k, np.int32)  # the nodes of one path, goal first (distinct nodes)
+    dtab = np.zeros(2 * w + 3, np.int64)  # heading of a step by its cell difference + w + 1
+    for d in range(8):
+        dtab[DR[d] * w + DC[d] + w + 1] = d
     cells = np.empty((total, 2), np.int64)
     for si in range(n_sols):
         i = idx[sols[si]]
@@ -885,19 +889,33 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
             grown = np.empty((max(b, 2 * cells.shape[0]), 2), np.int64)
             grown[:a] = cells[:a]
             cells = grown
-        for t in range(m):
-            c = ncell[buf[m - 1 - t]]
-            cells[a + t, 0] = c // w
-            cells[a + t, 1] = c % w
-        # the objectives along the path, in path order (as gapath.objectives does)
-        vul = pot[cells[a, 0], cells[a, 1]]
+        # the cells and the objectives along the path, in path order (as
+        # gapath.objectives does); a step's heading from the difference of the
+        # cell numbers (dtab), the row and column by steps from the first cell's
+        c = np.int64(ncell[buf[m - 1]])
+        r0 = c // w
+        c0 = c - r0 * w
+        cells[a, 0] = r0
+        cells[a, 1] = c0
+        vul = pf[c]
         ns = 0
         nd = 0
         eighths = 0
         prev = -1
-        for t in range(a + 1, b):
-            vul += pot[cells[t, 0], cells[t, 1]]
-            d = DIRECTION[cells[t, 0] - cells[t - 1, 0] + 1, cells[t, 1] - cells[t - 1, 1] + 1]
+        for t in range(1, m):
+            cn = np.int64(ncell[buf[m - 1 - t]])
+            if w >= 3:
+                d = dtab[cn - c + w + 1]
+                r0 += DR[d]
+                c0 += DC[d]
+            else:  # (the differences are not distinct)
+                r1 = cn // w
+                c1 = cn - r1 * w
+                d = DIRECTION[r1 - r0 + 1, c1 - c0 + 1]
+                r0, c0 = r1, c1
+            cells[a + t, 0] = r0
+            cells[a + t, 1] = c0
+            vul += pf[cn]
             if d % 2 == 1:
                 nd += 1
             else:
@@ -905,6 +923,7 @@ def _smoothest(li, lf, n_rows, sols, edges, n_edges, pot, w, reuse):
             if prev >= 0:
                 eighths += turn(prev, d)
             prev = d
+            c = cn
         out_ns[si] = ns
         out_nd[si] = nd
         out_turns[si] = eighths

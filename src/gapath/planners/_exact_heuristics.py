@@ -168,13 +168,19 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
 
     Dijkstra on ``D(u) = pot(u) + min_v D(v)``, ``D(goal) = pot(goal)``,
     ``hv(u) = min_v D(v)`` over the allowed moves ``u -> v``, with a 4-ary
-    heap of (key, cell) entries, sifting a hole; a cell is pushed again when
-    its key falls and the stale entries are skipped when popped (measured
-    faster than an indexed binary heap with decrease-key: no position
-    updates, half the depth). A cell whose potential is 0 (a third of
-    Berlin_1_256's free cells: no obstacle within the kernel's window) gets
-    the key of the cell that reaches it, the least key there is, so it is
-    settled next without entering the heap. The settling order stays
+    heap of (key, cell) entries, sifting a hole. The cost of entering a cell
+    is its own potential, so a cell's key is final when it is first reached:
+    the first neighbour settled next to it gives the least ``D`` (one settled
+    later has a key at least as large, and rounding is monotone). So a cell,
+    when reached, is cleared from its neighbours' moves (``rem``; the moves
+    are symmetric, and the goal is cleared first), and a settled cell relaxes
+    the moves left with no test of the key: each cell is reached and pushed
+    once (its moves in are cleared when it is), so the heap needs one entry
+    a cell and has no stale ones, and ``D`` is not stored: ``D(u)`` is
+    ``pot(u) + hv(u)``, the sum that set it. A cell whose potential is 0 (a
+    third of Berlin_1_256's free cells: no obstacle within the kernel's
+    window) gets the key of the cell that reaches it, the least key there
+    is, so it is settled next without entering the heap. The settling order stays
     non-decreasing in key, so the values are those of any Dijkstra: ``hv``
     of a cell is the key of the first neighbour to reach its least ``D``,
     and neighbours with different keys are settled in key order."""
@@ -183,15 +189,21 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
     for d in range(8):
         off[d] = DR[d] * w + DC[d]
     pf = pot.reshape(n)
-    D = np.full(n, np.inf)
-    cap = 8 * n + 1  # one entry per successful relaxation, at most one per arc
-    keys = np.empty(cap)
-    ids = np.empty(cap, np.int32)
-    D[goal] = pf[goal]
+    keys = np.empty(n)  # each cell is pushed at most once (see above)
+    ids = np.empty(n, np.int32)
     hv[goal] = 0.0
-    keys[0] = D[goal]
+    keys[0] = pf[goal]  # D(goal)
     ids[0] = goal
     size = 1
+    # the moves not yet known useless: a move into a reached cell (its key is
+    # final when first reached, see above) or into the goal relaxes nothing,
+    # so a cell, when reached, is cleared from its neighbours' moves (the
+    # moves are symmetric), and the loop below tests no key
+    rem = mask.copy()
+    mk = mask[goal]
+    for j in range(COUNT[mk]):
+        d = MOVES[mk, j]
+        rem[goal + off[d]] &= ~np.uint8(1 << ((d + 4) & 7))
     # a cell reached through a zero potential gets the key of the cell being
     # settled, the least there is: it waits on a stack (each cell at most
     # once, its key falls no further), emptied before the heap is popped
@@ -201,7 +213,7 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
         if sp > 0:
             sp -= 1
             u = stack[sp]
-            du = D[u]
+            du = pf[u] + hv[u]  # D(u), the sum that set it
         else:
             # pop the smallest entry
             u = ids[0]
@@ -248,32 +260,30 @@ def _vulnerability_to_go(mask, pot, w, goal, hv):
                     i = p
                 keys[i] = key
                 ids[i] = x
-            if du > D[u]:  # stale: u was pushed again with a smaller key
-                continue
-        mk = mask[u]
+        mk = rem[u]
         for j in range(COUNT[mk]):
             v = u + off[MOVES[mk, j]]
-            if v == goal:
+            val = pf[v] + du  # D(v): v is reached now, for good
+            hv[v] = du
+            mv = mask[v]
+            for jj in range(COUNT[mv]):
+                dd = MOVES[mv, jj]
+                rem[v + off[dd]] &= ~np.uint8(1 << ((dd + 4) & 7))
+            if val == du:  # a zero potential: settled next, from the stack
+                stack[sp] = v
+                sp += 1
                 continue
-            val = pf[v] + du
-            if val < D[v]:
-                D[v] = val
-                hv[v] = du
-                if val == du:  # a zero potential: settled next, from the stack
-                    stack[sp] = v
-                    sp += 1
-                    continue
-                i = size  # push: sift the hole up
-                size += 1
-                while i > 0:
-                    p = (i - 1) >> 2
-                    if not val < keys[p]:
-                        break
-                    keys[i] = keys[p]
-                    ids[i] = ids[p]
-                    i = p
-                keys[i] = val
-                ids[i] = v
+            i = size  # push: sift the hole up
+            size += 1
+            while i > 0:
+                p = (i - 1) >> 2
+                if not val < keys[p]:
+                    break
+                keys[i] = keys[p]
+                ids[i] = ids[p]
+                i = p
+            keys[i] = val
+            ids[i] = v
 
 
 @numba.njit(cache=True)
