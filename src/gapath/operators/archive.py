@@ -628,13 +628,13 @@ class FreePathArchive(PathArchive):
         subs: list[np.ndarray] = []
         try:
             left = self.faces * enc.n_reachable
-            face_F = {}
+            lv_face = None  # the exact (length, vulnerability) face, for _retry
             for pair in pairs:
                 paths, kept, done, used, F = _budget_search(ws, pair, 0.0, left) if left > 0 else _NOT_RUN
                 left = left - used if done else 0
                 self.face_sizes.append((pair, kept, done))
-                if done:
-                    face_F[frozenset(pair)] = (pair, F)
+                if done and set(pair) == {"length", "vulnerability"}:
+                    lv_face = (pair, F)
                 subs += paths
             if self.approx > 0:
                 # not run where a face stopped short: it costs more than the faces there
@@ -649,7 +649,7 @@ class FreePathArchive(PathArchive):
                 self.face_sizes.append((three, kept, done))
                 subs += paths
                 if done:
-                    subs += self._retry(F, face_F.get(frozenset(("length", "vulnerability"))), budget)
+                    subs += self._retry(F, lv_face, budget)
         finally:
             if background is not None:
                 background.cancel()
