@@ -28,7 +28,10 @@ Instances (``--instances``, comma-separated)::
     random512-40  MovingAI random512-40-0 (dense: 40 % obstacles), the same
     8room       MovingAI 8room_000 (512 x 512 rooms), the same
     maze512     MovingAI maze512-1-0, the same
-    NAME-qK     one of the four above, its K-th longest query (``8room-q2``)
+    berlin0     MovingAI Berlin_0_256, its longest .scen query
+    NAME-qK     one of the five above, its K-th longest query (``8room-q2``)
+    willow      the ROS map willow_full (584 x 526, an office floor), the
+                double-sweep diameter query (``_diameter``)
 
 (MovingAI maps with ``corner_cutting=False``.) One JSON line per instance:
 exact front size and seconds (or ``exact_finished: false``), the GA's
@@ -77,7 +80,7 @@ from pymoo.core.callback import Callback
 
 from gapath.convergence import HypervolumeRatioCallback
 from gapath.generators import random_workspace
-from gapath.loaders import load_movingai, load_scenarios
+from gapath.loaders import _read_ros, load_movingai, load_ros, load_scenarios
 from gapath.metrics import coverage, hv_ratio
 from gapath.operators.archive import run_archive
 from gapath.planners.exact import free_front
@@ -113,7 +116,44 @@ GRID_MAPS = {
     "random512-40": "random512-40-0",
     "8room": "8room_000",
     "maze512": "maze512-1-0",
+    "berlin0": "Berlin_0_256",
 }
+
+#: ROS maps (``ros/``): no queries ship with them, so the query is the
+#: double-sweep diameter (:func:`_diameter`).
+ROS_MAPS = {"willow": "willow_full/willow-full.yaml"}
+
+
+def _diameter(occ):
+    """A long query on a map without ``.scen`` file, chosen by rule: from
+    the free cell nearest the centre, the cell farthest from it in 8-connected
+    steps (no corner cutting), then the cell farthest from that one (a double
+    sweep; ties go to the lowest row-major index). Returns ``(a, b)``."""
+    from collections import deque
+
+    h, w = occ.shape
+    free = np.argwhere(~occ)
+    c = free[np.argmin(((free - np.array([h / 2, w / 2])) ** 2).sum(1))]
+
+    def farthest(src):
+        dist = np.full(occ.shape, -1, np.int64)
+        dist[tuple(src)] = 0
+        q = deque([tuple(src)])
+        while q:
+            r, k = q.popleft()
+            for dr in (-1, 0, 1):
+                for dk in (-1, 0, 1):
+                    rr, kk = r + dr, k + dk
+                    if (dr or dk) and 0 <= rr < h and 0 <= kk < w and not occ[rr, kk] and dist[rr, kk] < 0:
+                        if dr and dk and (occ[r, kk] or occ[rr, k]):
+                            continue
+                        dist[rr, kk] = dist[r, k] + 1
+                        q.append((rr, kk))
+        flat = int(np.argmax(dist))
+        return divmod(flat, w)
+
+    a = farthest(c)
+    return a, farthest(a)
 
 
 def _longest(scen_path, rank=1):
@@ -137,6 +177,11 @@ def workspace(name: str, data: Path):
         d = data / "movingai" / "grid"
         sc = _longest(d / f"{GRID_MAPS[base]}.map.scen", rank)
         return load_movingai(d / f"{GRID_MAPS[base]}.map", start=sc.start, goal=sc.goal, corner_cutting=False)
+    if name in ROS_MAPS:
+        path = data / "ros" / ROS_MAPS[name]
+        occ = _read_ros(path).occupancy("blocked")  # as load_ros reads it, before start and goal
+        a, b = _diameter(occ)
+        return load_ros(path, start=a, goal=b, corner_cutting=False, name=name)
     raise SystemExit(f"unknown instance {name!r}")
 
 
