@@ -303,6 +303,11 @@ def anytime(ws, F, pop, gen, seed, cap, progress=None, keep=5, save=None, refere
     tracker = _Trace(F if save is None else None, cap, keep=keep, progress=progress, save=save)
     res = solve(ws, objectives=OBJECTIVES, paths="free", pop_size=pop, n_gen=gen, seed=seed, callback=tracker)
     tr = tracker.trace
+    arch = run_archive(res.pymoo_result.algorithm)
+    retry = dict(
+        approx_shortfall=getattr(arch, "approx_shortfall", None),  # the second search's test
+        retry_size=getattr(arch, "retry_size", None),  # (points, finished) when it fired
+    )
     if save is not None:
         tracker.dump(res.front.F)
         if F is not None:
@@ -340,6 +345,7 @@ def anytime(ws, F, pop, gen, seed, cap, progress=None, keep=5, save=None, refere
         n_eval=res.n_eval,
         to_095=reach(0.95),
         to_099=reach(0.99),
+        **retry,
         trace=tr,
     )
 
