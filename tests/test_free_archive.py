@@ -572,7 +572,10 @@ def test_approximate_search_in_a_second_thread_gives_the_serial_archive(monkeypa
     serial = run()
     started = _two_threads(monkeypatch)
     threaded = run()
-    assert len(started) == 1 and not started[0]._thread.is_alive()
+    # the approximate search, and the second one beside it (approx_retry's,
+    # cancelled here: this front is not coarse) unless a face stopped short
+    assert len(started) == (2 if faces is None else 1)
+    assert not any(s._thread.is_alive() for s in started)
     assert threaded.face_sizes == serial.face_sizes
     assert (serial.face_sizes[-1][1] is None) == (faces is not None)  # both cases are exercised
     np.testing.assert_array_equal(threaded.F, serial.F)
@@ -612,20 +615,21 @@ def test_search_started_before_sampling_gives_the_serial_run(monkeypatch):
 
     monkeypatch.setattr(FreePathProblem, "_evaluate", logged)
     threaded = solve(ws, objectives=OBJ3, paths="free", pop_size=10, n_gen=2, seed=3)
-    assert len(started) == 1 and not started[0]._thread.is_alive()
+    assert len(started) == 2  # the approximate search, and approx_retry's beside it
+    assert not any(s._thread.is_alive() for s in started)
     assert log[0] == "search" and "evaluate" in log  # before the first population
     np.testing.assert_array_equal(threaded.front.F, serial.front.F)
     p = FreePathProblem(ws, OBJ3)
     archive = FreePathArchive(p, n_refine=0, extremes=0)
     archive.start()
     archive.start()  # once
-    assert len(started) == 2
-    archive.close()
-    assert started[1]._event.is_set() and not started[1]._thread.is_alive()
-    archive.add_faces()
-    assert len(started) == 3 and archive.face_sizes[-1][0] == OBJ3 and archive.face_sizes[-1][1]
-    archive.start()  # after the faces: nothing
     assert len(started) == 3
+    archive.close()
+    assert started[2]._event.is_set() and not started[2]._thread.is_alive()
+    archive.add_faces()  # the approximate search again, and approx_retry's beside it
+    assert len(started) == 5 and archive.face_sizes[-1][0] == OBJ3 and archive.face_sizes[-1][1]
+    archive.start()  # after the faces: nothing
+    assert len(started) == 5
 
 
 def test_second_thread_errors_and_interrupts_end_both_searches(monkeypatch):
@@ -658,7 +662,9 @@ def test_second_thread_errors_and_interrupts_end_both_searches(monkeypatch):
     monkeypatch.setattr(A, "_budget_search", interrupted)
     with pytest.raises(KeyboardInterrupt):
         FreePathArchive(p, n_refine=0, extremes=0).add_faces()
-    assert len(started) == 2 and all(not b._thread.is_alive() for b in started)
+    # the failing run: the approximate search and approx_retry's beside it;
+    # the interrupted one: the approximate search (the faces never ended)
+    assert len(started) == 3 and all(not b._thread.is_alive() for b in started)
 
 
 def test_second_thread_search_holds_a_thread_until_it_ends(monkeypatch):
@@ -719,7 +725,11 @@ def test_coarse_approximation_is_searched_again_at_a_smaller_epsilon(monkeypatch
     the two fronts, every point of the second front is matched in the
     archive, the front stays valid, and two threads give the serial
     archive. Above the bound (or with ``approx_retry=0``) nothing more runs
-    and the archive is the one without the rule."""
+    and the archive is the one without the rule. With two threads the
+    second search starts in its own thread while the first runs (never in
+    the main thread) and is cancelled when it is not wanted."""
+    from gapath.operators import archive as A
+
     ws = room(h=14, w=16, seed=44)
     p = FreePathProblem(ws, OBJ3)
     lv = ("length", "vulnerability")
@@ -733,11 +743,26 @@ def test_coarse_approximation_is_searched_again_at_a_smaller_epsilon(monkeypatch
         return a
 
     serial = {b: run(b) for b in (0, shortfall - 1e-6, shortfall + 1e-6)}
+    started: list = []
+    in_main: list = []
     if threads == 2:
-        _two_threads(monkeypatch)
+        started = _two_threads(monkeypatch)
+        search = A._budget_search
+
+        def spy(ws, objectives, eps, budget, cancel=None):
+            if threading.current_thread() is threading.main_thread():
+                in_main.append(eps)
+            return search(ws, objectives, eps, budget, cancel)
+
+        monkeypatch.setattr(A, "_budget_search", spy)
     second = free_front(ws, OBJ3, epsilon=APPROX_RETRY_EPSILON)
     for bound, a in serial.items():
+        n = len(started)
         b = run(bound) if threads == 2 else a
+        if threads == 2:  # the first search, and the second one beside it unless the rule is off
+            assert len(started) - n == (1 if bound == 0 else 2)
+            assert not any(s._thread.is_alive() for s in started)
+            assert APPROX_RETRY_EPSILON not in in_main
         assert b.approx_shortfall == (None if bound == 0 else pytest.approx(shortfall, abs=1e-12))
         fired = bound > shortfall
         assert b.retry_size == ((len(second), True) if fired else None)

@@ -615,7 +615,11 @@ class FreePathArchive(PathArchive):
         search runs in a second thread while the faces run in this one (the
         kernels release the GIL), started here or already by :meth:`start`,
         and is cancelled if a face stops short; the archive receives the
-        same paths in the same order either way."""
+        same paths in the same order either way. With ``approx_retry`` on,
+        a third thread runs the search at :data:`APPROX_RETRY_EPSILON`
+        beside the first one as soon as the faces are done (this thread
+        only waits then), and is cancelled when :meth:`_retry` does not
+        want it."""
         from gapath.operators._archive_kernels import keyed
 
         enc = self.problem.encoding
@@ -625,6 +629,7 @@ class FreePathArchive(PathArchive):
         three = tuple(self.problem.objectives)
         self.start()
         background, self._background = self._background, None
+        ahead = None  # the second search, started before it is known to be needed
         subs: list[np.ndarray] = []
         try:
             left = self.faces * enc.n_reachable
@@ -643,16 +648,23 @@ class FreePathArchive(PathArchive):
                 if not fit or budget <= 0:
                     paths, kept, done, _, F = _NOT_RUN
                 elif background is not None:
+                    if lv_face is not None and self._retries():
+                        # this thread would wait for the first search: start the
+                        # second one now, and cancel it if _retry does not want it
+                        ahead = _Background(
+                            lambda cancel: _budget_search(ws, three, APPROX_RETRY_EPSILON, budget, cancel)
+                        )
                     paths, kept, done, _, F = background.result()
                 else:
                     paths, kept, done, _, F = _budget_search(ws, three, self.approx, budget)
                 self.face_sizes.append((three, kept, done))
                 subs += paths
                 if done:
-                    subs += self._retry(F, lv_face, budget)
+                    subs += self._retry(F, lv_face, budget, ahead)
         finally:
-            if background is not None:
-                background.cancel()
+            for search in (background, ahead):
+                if search is not None:
+                    search.cancel()
         if not subs:
             return
         flat_paths = [p[:, 0].astype(np.int64) * w + p[:, 1] for p in subs]
@@ -662,25 +674,37 @@ class FreePathArchive(PathArchive):
         self.n_eval += k
         self._merge(flat, offsets, keys, np.full((k, self._X.shape[1]), np.nan), np.zeros(k, bool))
 
-    def _retry(self, F, face, budget) -> list:
+    def _retries(self) -> bool:
+        """Whether :meth:`_retry` may run the search again at all."""
+        return self.approx_retry > 0 and self.approx > APPROX_RETRY_EPSILON
+
+    def _retry(self, F, face, budget, ahead=None) -> list:
         """The paths of the approximate search run again at
         :data:`APPROX_RETRY_EPSILON` when its first front ``F``, projected on
         the exact (length, vulnerability) face ``(pair, F)``, scores an HV
         ratio below ``approx_retry`` (recorded in ``approx_shortfall``,
         ``retry_size``): where the default epsilon leaves much of the front
         uncovered. Decided from the fronts alone, so the same on any
-        machine and with any number of threads."""
-        if face is None or F is None or not len(F) or self.approx_retry <= 0:
+        machine and with any number of threads. ``ahead``: that search,
+        already started in a background thread (:meth:`add_faces`, with two
+        threads); its result is taken when it is wanted, else it is
+        cancelled."""
+        if face is None or F is None or not len(F) or not self._retries():
             return []
         pair, FF = face
-        if not len(FF) or self.approx <= APPROX_RETRY_EPSILON:
+        if not len(FF):
             return []
         cols = [self.problem.objectives.index(o) for o in pair]
         self.approx_shortfall = float(hv_ratio(F[:, cols], FF))
         if self.approx_shortfall >= self.approx_retry:
             return []
-        three = tuple(self.problem.objectives)
-        paths, kept, done, _, _ = _budget_search(self.problem.workspace, three, APPROX_RETRY_EPSILON, budget)
+        if ahead is not None:
+            paths, kept, done, _, _ = ahead.result()
+        else:
+            three = tuple(self.problem.objectives)
+            paths, kept, done, _, _ = _budget_search(
+                self.problem.workspace, three, APPROX_RETRY_EPSILON, budget
+            )
         self.retry_size = (kept, done)
         return paths
 
