@@ -12,7 +12,13 @@ vulnerabilities are common:
    1.6 or -0.7 tolerances (times 1, 3 or 0.5 by case);
 2. the same up to 29x29, perturbations of 0.4 to 1.9 tolerances either way;
 3. 5x5 to 21x21, 0-20 % obstacles, 30-80 % zeros, the others 1 or 2 plus
-   -1 to 1.5 times 0.5e-9 scaled by 1, 2, 4 or 8.
+   -1 to 1.5 times 0.5e-9 scaled by 1, 2, 4 or 8;
+4. 4x4 to 11x11, 0-20 % obstacles, potential 0 but for 1-4 cells of 1e-5
+   to 4e-5 and the goal's 1e12: every vulnerability-to-go is about 1e12,
+   so g2 values 1e-5 apart (far beyond the tolerance) give the same
+   f_vulnerability;
+5. 10x10 to 39x39, 1-8 % obstacles, SPEC's own potential (exact zeros
+   away from obstacles, terms down to exp(-50) near them).
 
 For each case: :func:`free_front` on (length, vulnerability) with the
 smoothest tie-break; ``F`` and smoothness as bytes, the expansions and tie
@@ -39,7 +45,15 @@ LV = ("length", "vulnerability")
 def case(design: int, i: int):
     from gapath import Workspace
 
-    if design == 3:
+    if design == 5:
+        rng = np.random.default_rng(110000 + i)
+        h, w = int(rng.integers(10, 40)), int(rng.integers(10, 40))
+        occ = rng.random((h, w)) < rng.uniform(0.01, 0.08)
+    elif design == 4:
+        rng = np.random.default_rng(90000 + i)
+        h, w = int(rng.integers(4, 12)), int(rng.integers(4, 12))
+        occ = rng.random((h, w)) < rng.uniform(0, 0.2)
+    elif design == 3:
         rng = np.random.default_rng(70000 + i)
         h, w = int(rng.integers(5, 22)), int(rng.integers(5, 22))
         occ = rng.random((h, w)) < rng.uniform(0, 0.2)
@@ -60,7 +74,15 @@ def case(design: int, i: int):
         goal=tuple(int(x) for x in free[b]),
         corner_cutting=bool(rng.integers(2)),
     )
-    if design == 3:
+    if design == 5:
+        return ws
+    if design == 4:
+        pot = np.zeros((h, w))
+        cells = np.argwhere(~occ)
+        for r, c in cells[rng.choice(len(cells), min(len(cells), int(rng.integers(1, 5))), replace=False)]:
+            pot[r, c] = 1e-5 * int(rng.integers(1, 5))
+        pot[ws.goal] = 1e12
+    elif design == 3:
         pz = rng.uniform(0.3, 0.8)
         base = np.where(rng.random((h, w)) < pz, 0.0, rng.choice([1.0, 1.0, 2.0], size=(h, w)))
         scale = rng.choice([1.0, 2.0, 4.0, 8.0])
@@ -124,7 +146,7 @@ if __name__ == "__main__":
     sub = ap.add_subparsers(dest="cmd", required=True)
     d = sub.add_parser("dump")
     d.add_argument("out")
-    d.add_argument("--design", type=int, choices=(1, 2, 3), default=2)
+    d.add_argument("--design", type=int, choices=(1, 2, 3, 4, 5), default=2)
     d.add_argument("--cases", default="0:1000", help="first:last (exclusive)")
     c = sub.add_parser("compare")
     c.add_argument("a")
