@@ -37,14 +37,13 @@ import argparse
 import pickle
 
 import numpy as np
+from _fixtures import load_pair, random_query
 
 TOL = 1e-9
 LV = ("length", "vulnerability")
 
 
 def case(design: int, i: int):
-    from gapath import Workspace
-
     if design == 5:
         rng = np.random.default_rng(110000 + i)
         h, w = int(rng.integers(10, 40)), int(rng.integers(10, 40))
@@ -63,17 +62,7 @@ def case(design: int, i: int):
         lo = 4 if design == 1 else 6
         h, w = int(rng.integers(lo, hi)), int(rng.integers(lo, hi))
         occ = rng.random((h, w)) < rng.uniform(0, 0.25)
-    free = np.argwhere(~occ)
-    if len(free) < 2:
-        occ[:] = False
-        free = np.argwhere(~occ)
-    a, b = rng.choice(len(free), 2, replace=False)
-    ws = Workspace(
-        occ,
-        start=tuple(int(x) for x in free[a]),
-        goal=tuple(int(x) for x in free[b]),
-        corner_cutting=bool(rng.integers(2)),
-    )
+    ws = random_query(occ, rng)
     if design == 5:
         return ws
     if design == 4:
@@ -122,10 +111,7 @@ def dump(out: str, design: int, lo: int, hi: int) -> None:
 
 
 def compare(fa: str, fb: str) -> int:
-    with open(fa, "rb") as fh:
-        a = pickle.load(fh)
-    with open(fb, "rb") as fh:
-        b = pickle.load(fh)
+    a, b = load_pair(fa, fb)
     if a.keys() != b.keys():
         print("different cases")
         return 1

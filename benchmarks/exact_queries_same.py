@@ -27,9 +27,11 @@ from pathlib import Path
 
 import numpy as np
 
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _fixtures import load_pair  # noqa: E402
+
 
 def dump(out: str) -> None:
-    sys.path.insert(0, str(Path(__file__).resolve().parent))
     from bench_exact_peers import MAPF, MAPS2, queries
 
     from gapath.loaders import load_movingai
@@ -50,10 +52,7 @@ def dump(out: str) -> None:
 
 
 def compare(fa: str, fb: str) -> int:
-    with open(fa, "rb") as fh:
-        a = pickle.load(fh)
-    with open(fb, "rb") as fh:
-        b = pickle.load(fh)
+    a, b = load_pair(fa, fb)
     if a.keys() != b.keys():
         print("different runs")
         return 1

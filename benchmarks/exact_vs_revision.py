@@ -30,13 +30,12 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+from _fixtures import random_query
 
 ROOT = Path(__file__).resolve().parents[1]
 
 
 def make(i: int):
-    from gapath import Workspace
-
     rng = np.random.default_rng(1000 + i)
     kind = i % 3
     h, w = int(rng.integers(4, 25)), int(rng.integers(4, 25))
@@ -45,18 +44,7 @@ def make(i: int):
         p = rng.uniform(0.0, 0.04)
     else:
         p = rng.uniform(0.0, 0.3)
-    occ = rng.random((h, w)) < p
-    free = np.argwhere(~occ)
-    if len(free) < 2:
-        occ[:] = False
-        free = np.argwhere(~occ)
-    a, b = rng.choice(len(free), 2, replace=False)
-    ws = Workspace(
-        occ,
-        start=tuple(int(x) for x in free[a]),
-        goal=tuple(int(x) for x in free[b]),
-        corner_cutting=bool(rng.integers(2)),
-    )
+    ws = random_query(rng.random((h, w)) < p, rng)
     if kind == 1:
         pot = rng.choice([0.0, 0.0, 0.0, 0.25, 0.5, 1.0], size=(h, w))
         pot.setflags(write=False)
