@@ -28,6 +28,13 @@ def random_query(occ: np.ndarray, rng: np.random.Generator):
     )
 
 
+def save_dump(runs: dict, out: str, what: str) -> None:
+    """Pickle ``runs`` to ``out`` and say how many ``what`` it holds."""
+    with open(out, "wb") as fh:
+        pickle.dump(runs, fh)
+    print(len(runs), what)
+
+
 def load_pair(fa: str, fb: str) -> tuple[dict, dict]:
     """The two pickled dumps to compare."""
     with open(fa, "rb") as fh:

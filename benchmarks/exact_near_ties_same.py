@@ -34,10 +34,9 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import pickle
 
 import numpy as np
-from _fixtures import load_pair, random_query
+from _fixtures import load_pair, random_query, save_dump
 
 TOL = 1e-9
 LV = ("length", "vulnerability")
@@ -105,9 +104,7 @@ def dump(out: str, design: int, lo: int, hi: int) -> None:
             f.stats["expansions"],
             f.stats["tie_edges"],
         )
-    with open(out, "wb") as fh:
-        pickle.dump(runs, fh)
-    print(len(runs), "cases")
+    save_dump(runs, out, "cases")
 
 
 def compare(fa: str, fb: str) -> int:

@@ -21,14 +21,13 @@ Usage::
 
 from __future__ import annotations
 
-import pickle
 import sys
 from pathlib import Path
 
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _fixtures import load_pair  # noqa: E402
+from _fixtures import load_pair, save_dump  # noqa: E402
 
 
 def dump(out: str) -> None:
@@ -46,9 +45,7 @@ def dump(out: str) -> None:
                 stats = {k: v for k, v in f.stats.items() if "seconds" not in k}
                 paths = [np.asarray(p).tobytes() for p in f.paths]
                 runs[(name, qi, tb)] = (f.F.tobytes(), np.asarray(f.smoothness).tobytes(), paths, stats)
-    with open(out, "wb") as fh:
-        pickle.dump(runs, fh)
-    print(len(runs), "runs")
+    save_dump(runs, out, "runs")
 
 
 def compare(fa: str, fb: str) -> int:
