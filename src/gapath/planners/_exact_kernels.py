@@ -402,43 +402,96 @@ def _three_insert(sp, first, gmin, s, t, v):
     gmin[c * THREE_BLOCK] = min(gmin[c * THREE_BLOCK], gmin[b])
 
 
+#: MODE_HEADING's floats per state in ``gmin`` (:func:`_state_covered`): the
+#: charged turns of every state first (read at every check), then a ``(P, third
+#: objective)`` pair per state (read on a tie).
+HEADING_BLOCK = 3
+
+
 @numba.njit(cache=True, inline="always")
-def _state_covered(li, x, gmin):
-    """MODE_HEADING: True if a label already expanded at the cell of ``x``
-    covers ``x``.
+def _state_covered(gmin, s, t, gp, gr):
+    """MODE_HEADING: True if a label already expanded at the cell of state
+    ``s`` covers a label at ``s`` with ``t`` turns, ``P`` value ``gp`` and
+    third objective ``gr`` (:func:`_third`).
 
     BOA* with ``Q`` = turns: every expanded label ``a`` at the cell left the
     open list before ``x`` (or before ``x``'s parent), so ``P(a) <= P(x)``;
     ``a`` covers ``x`` when its turns, charged with the most by which the
     next turn after ``a``'s heading may exceed the one after ``x``'s
-    (``_heading_gap``, 0 for ``x``'s own state), are not above ``x``'s.
-    :func:`_state_expand` keeps, for each heading of the cell, the least of
-    those charged turns over the expanded labels: one entry decides.
+    (``_heading_gap``, 0 for ``x``'s own state), are below ``x``'s, or equal
+    with ``P(a) < P(x)`` or, ``P`` tied too, with a third objective not
+    above ``x``'s: among paths with equal ``(P, Q)`` the one best in the
+    third objective is kept, so the front's paths are points of the
+    three-objective front. :func:`_state_expand` keeps, for each heading of
+    the cell, the least of those charged turns over the expanded labels,
+    the ``P`` of the first label that reached it (the least) and the least
+    third objective among those with that ``P``: one entry decides.
     """
-    return gmin[li[x, CELL] * N_SLOTS + _slot(li[x, F_HEAD])] <= li[x, TURNS]
+    m = gmin[s]
+    if m < t:
+        return True
+    if m != t:
+        return False
+    b = gmin.shape[0] // HEADING_BLOCK + 2 * s
+    return not _eq(gmin[b], gp) or _le(gmin[b + 1], gr)
 
 
 @numba.njit(cache=True, inline="always")
-def _state_expand(gmin, c, ha, t):
-    """MODE_HEADING: label with heading ``ha`` and ``t`` turns expanded at
-    cell ``c``: each heading's entry of the cell (see :func:`_state_covered`)
-    takes ``t`` charged with :func:`_heading_gap` from ``ha`` to it."""
+def _state_expand(gmin, c, ha, t, gp, gr):
+    """MODE_HEADING: label with heading ``ha``, ``t`` turns, ``P`` value ``gp``
+    and third objective ``gr`` expanded at cell ``c``: each heading's entry of
+    the cell (see :func:`_state_covered`) takes ``t`` charged with
+    :func:`_heading_gap` from ``ha`` to it."""
     base = c * N_SLOTS
+    pairs = gmin.shape[0] // HEADING_BLOCK + 2 * base
     for k in range(N_SLOTS):
         e = t + _heading_gap(ha, k if k < 8 else NO_HEADING)
-        if e < gmin[base + k]:
+        m = gmin[base + k]
+        if e < m:
             gmin[base + k] = e
+            gmin[pairs + 2 * k] = gp
+            gmin[pairs + 2 * k + 1] = gr
+        elif e == m and gr < gmin[pairs + 2 * k + 1] and _eq(gp, gmin[pairs + 2 * k]):
+            gmin[pairs + 2 * k + 1] = gr
 
 
 @numba.njit(cache=True, inline="always")
-def _goal_covered(li, lf, x, Q, goal_min, cell_size, hs, hd, hv, ht):
-    """MODE_HEADING: True if a solution already found covers the f-vector of
-    ``x`` (its lower bound at the goal). Q is the (integer) turn count, so a
-    tie within the tolerance is an equal turn count: covered."""
+def _third(P):
+    """MODE_HEADING (``Q`` = turns): the objective that breaks ``(P, Q)``
+    ties, the vulnerability when ``P`` is the length, else the length."""
+    return OBJ_VUL if P == OBJ_LEN else OBJ_LEN
+
+
+@numba.njit(cache=True, inline="always")
+def _goal_covers(goal_min, goal_p, goal_r, fq, fp, fr):
+    """MODE_HEADING: True if a solution already found covers the f-vector
+    ``(fp, fq, fr)`` of a label (its lower bound at the goal; ``fr`` the
+    third objective's, :func:`_third`). ``goal_min`` is the least turn count
+    of the solutions, ``goal_p`` the ``P`` of the first one with it (the
+    least: they leave the open list in ``P`` order) and ``goal_r`` the least
+    third objective of those with that ``P``. Q is the (integer) turn count,
+    so a tie within the tolerance is an equal turn count: covered when the
+    ``P`` is larger or, tied too, the third objective is not smaller (the
+    sums of float potentials behind a vulnerability tie differ in their
+    rounding, so the open list's order alone cannot decide it)."""
+    if goal_min == np.inf or (fq < goal_min and not _eq(fq, goal_min)):
+        return False
+    if not _eq(fq, goal_min):
+        return True
+    return not _eq(goal_p, fp) or _le(goal_r, fr)
+
+
+@numba.njit(cache=True, inline="always")
+def _goal_covered(li, lf, x, P, Q, goal_min, goal_p, goal_r, cell_size, hs, hd, hv, ht):
+    """MODE_HEADING: :func:`_goal_covers` for label ``x``."""
     if goal_min == np.inf:
         return False
     fq = _f(li, lf, x, Q, cell_size, hs, hd, hv, ht)
-    return not (fq < goal_min and not _eq(fq, goal_min))
+    if not _eq(fq, goal_min):  # (the P and third objective only on a tie)
+        return fq > goal_min
+    fp = _f(li, lf, x, P, cell_size, hs, hd, hv, ht)
+    fr = _f(li, lf, x, _third(P), cell_size, hs, hd, hv, ht)
+    return _goal_covers(goal_min, goal_p, goal_r, fq, fp, fr)
 
 
 # -- the search -------------------------------------------------------------------
@@ -450,6 +503,9 @@ S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_FREE, S_N_FREE, S_
 S_SEARCHES = 9
 N_ST = 10
 SF_GOAL_MIN = 0
+#: MODE_HEADING: the ``P`` and the least third objective of the solutions with
+#: ``SF_GOAL_MIN`` turns (:func:`_goal_covers`)
+SF_GOAL_P, SF_GOAL_R = 1, 2
 
 
 @numba.njit(cache=True)
@@ -459,8 +515,10 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
 
     Returns ``(gmin, first, li, lf, sols, hk, hid, st, stf)``, the arrays
     :func:`_free_run` resumes from."""
-    # BOA*: g2_min of each state; MODE_THREE: staircase summaries and goal front (THREE_BLOCK)
-    gmin = np.full(n_states * (4 if mode == MODE_THREE else 1), np.inf)
+    # BOA*: g2_min of each state; MODE_HEADING: HEADING_BLOCK floats per state;
+    # MODE_THREE: staircase summaries and goal front (THREE_BLOCK)
+    per_state = 4 if mode == MODE_THREE else (HEADING_BLOCK if mode == MODE_HEADING else 1)
+    gmin = np.full(n_states * per_state, np.inf)
     first = np.full(n_states + 1, -1, np.int32)  # MODE_THREE: staircase block (_stair_pool)
     li = np.empty((1024, 7), np.int32)
     lf = np.empty((1024, 1))
@@ -482,15 +540,16 @@ def _free_init(pot, sr, sc, w, cell_size, mode, P, Q, hs, hd, hv, ht, n_states):
     st[S_GENERATED] = 1
     st[S_GOAL_FIRST] = -1
     st[S_FREE] = -1
-    stf = np.full(1, np.inf)
+    stf = np.full(3, np.inf)
     second = OBJ_VUL if mode == MODE_THREE else Q
+    third = _third(P) if mode == MODE_HEADING else OBJ_SMOOTH
     _heap_push(
         hk,
         hid,
         0,
         _f(li, lf, 0, P, cell_size, hs, hd, hv, ht),
         _f(li, lf, 0, second, cell_size, hs, hd, hv, ht),
-        _f(li, lf, 0, OBJ_SMOOTH, cell_size, hs, hd, hv, ht),
+        _f(li, lf, 0, third, cell_size, hs, hd, hv, ht),
         0,
     )
     return gmin, first, li, lf, sols, hk, hid, st, stf
@@ -660,6 +719,8 @@ def _free_steps(
     free = st[S_FREE]
     n_free = st[S_N_FREE]
     goal_min = stf[SF_GOAL_MIN]
+    goal_p = stf[SF_GOAL_P]
+    goal_r = stf[SF_GOAL_R]
     status = DONE
     steps = 0
     pops0 = st[S_POPS]
@@ -714,8 +775,22 @@ def _free_steps(
                 m = gmin[goal_base + min(bound, tmax)]
                 covered = m < np.inf and _le(m, v + hv[c])
         else:
-            covered = (c != goal and _state_covered(li, x, gmin)) or _goal_covered(
-                li, lf, x, Q, goal_min, cell_size, hs, hd, hv, ht
+            covered = False
+            if c != goal:
+                s_x = c * N_SLOTS + _slot(li[x, F_HEAD])
+                covered = gmin[s_x] < li[x, TURNS]
+                if gmin[s_x] == li[x, TURNS]:  # a tie: the P and third objective decide
+                    x_len = (li[x, NS] + SQRT2 * li[x, ND]) * cell_size
+                    x_vul = lf[x, F_VUL]
+                    covered = _state_covered(
+                        gmin,
+                        s_x,
+                        li[x, TURNS],
+                        x_len if P == OBJ_LEN else x_vul,
+                        x_vul if P == OBJ_LEN else x_len,
+                    )
+            covered = covered or _goal_covered(
+                li, lf, x, P, Q, goal_min, goal_p, goal_r, cell_size, hs, hd, hv, ht
             )
         if covered:
             li[x, NEXT] = free  # recycle the row
@@ -728,7 +803,13 @@ def _free_steps(
             if mode == MODE_THREE:
                 _goal_insert(li, lf, gmin, goal_base, first, goal_state, x)
             else:
-                goal_min = min(goal_min, _g(li, lf, x, Q, cell_size))
+                gq = _g(li, lf, x, Q, cell_size)
+                gp = _g(li, lf, x, P, cell_size)
+                gr = _g(li, lf, x, _third(P), cell_size)
+                if gq < goal_min:
+                    goal_min, goal_p, goal_r = gq, gp, gr
+                elif gq == goal_min and gr < goal_r and _eq(gp, goal_p):
+                    goal_r = gr
             sols[n_sols] = x
             n_sols += 1
             continue
@@ -738,8 +819,17 @@ def _free_steps(
         s = c * N_SLOTS + _slot(li[x, F_HEAD])
         if mode == MODE_THREE:
             _three_insert(sp, first, gmin, s, li[x, TURNS], lf[x, F_VUL])
-        else:
-            _state_expand(gmin, c, li[x, F_HEAD], li[x, TURNS])  # MODE_HEADING: charged g2_min
+        else:  # MODE_HEADING: charged g2_min, and the P and third objective at it
+            x_len = (li[x, NS] + SQRT2 * li[x, ND]) * cell_size
+            x_vul = lf[x, F_VUL]
+            _state_expand(
+                gmin,
+                c,
+                li[x, F_HEAD],
+                li[x, TURNS],
+                x_len if P == OBJ_LEN else x_vul,
+                x_vul if P == OBJ_LEN else x_len,
+            )
         r, col = c // w, c % w
         head = li[x, F_HEAD]
         x_ns, x_nd, x_t, x_v = li[x, NS], li[x, ND], li[x, TURNS], lf[x, F_VUL]
@@ -794,9 +884,14 @@ def _free_steps(
                 if covered:
                     continue
             else:  # _state_covered and _goal_covered on the values (Q = turns)
-                if cell != goal and gmin[cell * N_SLOTS + d] <= t:
-                    continue
-                if goal_min < np.inf and not (f_turn < goal_min and not _eq(f_turn, goal_min)):
+                if cell != goal:
+                    g_len = (ns_j + SQRT2 * nd_j) * cell_size
+                    gp = g_len if P == OBJ_LEN else v
+                    gr = v if P == OBJ_LEN else g_len
+                    if _state_covered(gmin, cell * N_SLOTS + d, t, gp, gr):
+                        continue
+                fp = f_len if P == OBJ_LEN else f_vul
+                if _goal_covers(goal_min, goal_p, goal_r, f_turn, fp, f_vul if P == OBJ_LEN else f_len):
                     continue
             if j == free:
                 free = li[j, NEXT]
@@ -813,7 +908,9 @@ def _free_steps(
             li[j, NEXT] = -1
             k1 = f_len if P == OBJ_LEN else (f_vul if P == OBJ_VUL else f_turn)
             k2 = f_len if second == OBJ_LEN else (f_vul if second == OBJ_VUL else f_turn)
-            _heap4_push(hk, size, k1, k2, f_turn, j)
+            # MODE_HEADING: (P, turns, the third objective); MODE_THREE: (length, vul, turns)
+            k3 = f_turn if mode == MODE_THREE else (f_vul if P == OBJ_LEN else f_len)
+            _heap4_push(hk, size, k1, k2, k3, j)
             size += 1
     st[S_N] = n
     st[S_SIZE] = size
@@ -825,6 +922,8 @@ def _free_steps(
     st[S_POPS] = pops0 + steps
     st[S_SEARCHES] = n_searches
     stf[SF_GOAL_MIN] = goal_min
+    stf[SF_GOAL_P] = goal_p
+    stf[SF_GOAL_R] = goal_r
     return status
 
 

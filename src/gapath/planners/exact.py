@@ -716,7 +716,16 @@ def free_front(
         vulnerable (default), or the first found ("none": BOA* as published;
         the same ``F`` up to the tolerance, a little faster on maps with many
         exact ties, and ``smoothness`` is that of the returned path). Ignored
-        when smoothness is an objective.
+        when smoothness is an objective: with smoothness and one other
+        objective (or alone), the returned path of each point is the one
+        best in the third objective among the paths with that vector (the
+        least vulnerable for (length, smoothness) and smoothness alone, the
+        shortest for (vulnerability, smoothness)), so that each is a point
+        of the three-objective front. This holds for vectors the search
+        compares as equal along the whole path: SPEC's tolerance is not
+        transitive, and a path whose vulnerability is within it of the
+        returned one's at the goal but not at some cell before it may be
+        shorter.
     search : {"auto", "k"}, optional
         ``"auto"`` (default): the specialised searches above for at most
         three of length, vulnerability, smoothness, the k-objective search
@@ -992,8 +1001,9 @@ def free_front(
         "smoothness": turns * QUARTER_PI,
     }
     F = np.column_stack([values[name] for name in names])
-    # among tolerance-equal vectors prefer the smoothest path, then the shortest
-    order = np.lexsort((ns + SQRT2 * nd, turns))
+    # among tolerance-equal vectors prefer the smoothest path, then the shortest, then
+    # the least vulnerable
+    order = np.lexsort((vul, ns + SQRT2 * nd, turns))
     keep = _tolerant_front(np.ascontiguousarray(F), order)
     keep = keep[np.lexsort(F[keep].T[::-1])]
     paths = [cells[offsets[i] : offsets[i + 1]] for i in keep]
