@@ -33,8 +33,9 @@ search first, the cheapest on every map measured). A search that reaches
 what is left of the budget stops there and gives the points it has found,
 each on the exact front (``free_front(..., max_expansions=)``); the ones
 after it do not run. Each such
-path is best in its pair, so its objective vector lies on the boundary of
-the full front (or next to it: its third objective is not optimised); the
+path is best in its pair and, among the paths tied with it in the pair,
+best in the third objective (:func:`gapath.planners.exact.free_front`), so
+its objective vector is a point on the boundary of the full front; the
 refinement then works inwards from them.
 
 When the objectives are length, vulnerability and smoothness, the faces

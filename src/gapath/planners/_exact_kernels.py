@@ -587,7 +587,9 @@ def _free_run(
     by at most ``n_steps`` pops of the open list.
 
     ``mode`` is ``MODE_HEADING`` (``P`` = length or vulnerability, ``Q`` =
-    smoothness, states = (cell, heading)) or ``MODE_THREE`` (length,
+    smoothness, states = (cell, heading); the open list's third key and
+    the ties of ``(P, Q)`` go to the other of length and vulnerability,
+    :func:`_third`) or ``MODE_THREE`` (length,
     vulnerability, smoothness, states = (cell, heading)); ``MODE_CELL``
     (length, vulnerability) is BOA* in :mod:`gapath.planners._boa_kernels`.
     ``mask``: the allowed moves of each cell
