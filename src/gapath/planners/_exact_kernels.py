@@ -428,10 +428,15 @@ def _state_covered(gmin, s, t, gp, gr):
     third objective among those with that ``P``: one entry decides.
     """
     m = gmin[s]
-    if m < t:
-        return True
     if m != t:
-        return False
+        return m < t
+    return _tie_covered(gmin, s, gp, gr)
+
+
+@numba.njit(cache=True, inline="always")
+def _tie_covered(gmin, s, gp, gr):
+    """MODE_HEADING: :func:`_state_covered` for a label whose turn count
+    equals state ``s``'s least charged one."""
     b = gmin.shape[0] // HEADING_BLOCK + 2 * s
     return not _eq(gmin[b], gp) or _le(gmin[b + 1], gr)
 
@@ -463,6 +468,15 @@ def _third(P):
 
 
 @numba.njit(cache=True, inline="always")
+def _p_third(P, length, vul):
+    """MODE_HEADING: ``(P value, third objective's value)`` of a length and a
+    vulnerability (:func:`_third`)."""
+    if P == OBJ_LEN:
+        return length, vul
+    return vul, length
+
+
+@numba.njit(cache=True, inline="always")
 def _goal_covers(goal_min, goal_p, goal_r, fq, fp, fr):
     """MODE_HEADING: True if a solution already found covers the f-vector
     ``(fp, fq, fr)`` of a label (its lower bound at the goal; ``fr`` the
@@ -474,10 +488,10 @@ def _goal_covers(goal_min, goal_p, goal_r, fq, fp, fr):
     ``P`` is larger or, tied too, the third objective is not smaller (the
     sums of float potentials behind a vulnerability tie differ in their
     rounding, so the open list's order alone cannot decide it)."""
-    if goal_min == np.inf or (fq < goal_min and not _eq(fq, goal_min)):
+    if goal_min == np.inf:
         return False
     if not _eq(fq, goal_min):
-        return True
+        return fq > goal_min
     return not _eq(goal_p, fp) or _le(goal_r, fr)
 
 
@@ -487,7 +501,7 @@ def _goal_covered(li, lf, x, P, Q, goal_min, goal_p, goal_r, cell_size, hs, hd, 
     if goal_min == np.inf:
         return False
     fq = _f(li, lf, x, Q, cell_size, hs, hd, hv, ht)
-    if not _eq(fq, goal_min):  # (the P and third objective only on a tie)
+    if not _eq(fq, goal_min):  # (as _goal_covers; the P and third objective only on a tie)
         return fq > goal_min
     fp = _f(li, lf, x, P, cell_size, hs, hd, hv, ht)
     fr = _f(li, lf, x, _third(P), cell_size, hs, hd, hv, ht)
@@ -782,15 +796,8 @@ def _free_steps(
                 s_x = c * N_SLOTS + _slot(li[x, F_HEAD])
                 covered = gmin[s_x] < li[x, TURNS]
                 if gmin[s_x] == li[x, TURNS]:  # a tie: the P and third objective decide
-                    x_len = (li[x, NS] + SQRT2 * li[x, ND]) * cell_size
-                    x_vul = lf[x, F_VUL]
-                    covered = _state_covered(
-                        gmin,
-                        s_x,
-                        li[x, TURNS],
-                        x_len if P == OBJ_LEN else x_vul,
-                        x_vul if P == OBJ_LEN else x_len,
-                    )
+                    gp, gr = _p_third(P, _g(li, lf, x, OBJ_LEN, cell_size), lf[x, F_VUL])
+                    covered = _tie_covered(gmin, s_x, gp, gr)
             covered = covered or _goal_covered(
                 li, lf, x, P, Q, goal_min, goal_p, goal_r, cell_size, hs, hd, hv, ht
             )
@@ -806,8 +813,7 @@ def _free_steps(
                 _goal_insert(li, lf, gmin, goal_base, first, goal_state, x)
             else:
                 gq = _g(li, lf, x, Q, cell_size)
-                gp = _g(li, lf, x, P, cell_size)
-                gr = _g(li, lf, x, _third(P), cell_size)
+                gp, gr = _p_third(P, _g(li, lf, x, OBJ_LEN, cell_size), lf[x, F_VUL])
                 if gq < goal_min:
                     goal_min, goal_p, goal_r = gq, gp, gr
                 elif gq == goal_min and gr < goal_r and _eq(gp, goal_p):
@@ -822,16 +828,8 @@ def _free_steps(
         if mode == MODE_THREE:
             _three_insert(sp, first, gmin, s, li[x, TURNS], lf[x, F_VUL])
         else:  # MODE_HEADING: charged g2_min, and the P and third objective at it
-            x_len = (li[x, NS] + SQRT2 * li[x, ND]) * cell_size
-            x_vul = lf[x, F_VUL]
-            _state_expand(
-                gmin,
-                c,
-                li[x, F_HEAD],
-                li[x, TURNS],
-                x_len if P == OBJ_LEN else x_vul,
-                x_vul if P == OBJ_LEN else x_len,
-            )
+            gp, gr = _p_third(P, _g(li, lf, x, OBJ_LEN, cell_size), lf[x, F_VUL])
+            _state_expand(gmin, c, li[x, F_HEAD], li[x, TURNS], gp, gr)
         r, col = c // w, c % w
         head = li[x, F_HEAD]
         x_ns, x_nd, x_t, x_v = li[x, NS], li[x, ND], li[x, TURNS], lf[x, F_VUL]
@@ -887,13 +885,11 @@ def _free_steps(
                     continue
             else:  # _state_covered and _goal_covered on the values (Q = turns)
                 if cell != goal:
-                    g_len = (ns_j + SQRT2 * nd_j) * cell_size
-                    gp = g_len if P == OBJ_LEN else v
-                    gr = v if P == OBJ_LEN else g_len
+                    gp, gr = _p_third(P, (ns_j + SQRT2 * nd_j) * cell_size, v)
                     if _state_covered(gmin, cell * N_SLOTS + d, t, gp, gr):
                         continue
-                fp = f_len if P == OBJ_LEN else f_vul
-                if _goal_covers(goal_min, goal_p, goal_r, f_turn, fp, f_vul if P == OBJ_LEN else f_len):
+                fp, fr = _p_third(P, f_len, f_vul)
+                if _goal_covers(goal_min, goal_p, goal_r, f_turn, fp, fr):
                     continue
             if j == free:
                 free = li[j, NEXT]
@@ -911,7 +907,7 @@ def _free_steps(
             k1 = f_len if P == OBJ_LEN else (f_vul if P == OBJ_VUL else f_turn)
             k2 = f_len if second == OBJ_LEN else (f_vul if second == OBJ_VUL else f_turn)
             # MODE_HEADING: (P, turns, the third objective); MODE_THREE: (length, vul, turns)
-            k3 = f_turn if mode == MODE_THREE else (f_vul if P == OBJ_LEN else f_len)
+            k3 = f_turn if mode == MODE_THREE else _p_third(P, f_len, f_vul)[1]
             _heap4_push(hk, size, k1, k2, k3, j)
             size += 1
     st[S_N] = n
