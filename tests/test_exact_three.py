@@ -36,10 +36,12 @@ def _run(ws: Workspace, n_steps: int = 1 << 30):
     state = K._free_init(pot, sr, sc, w, 1.0, mode, P, Q, hs, hd, hv, ht, h * w * K.N_SLOTS)
     gmin, first, li, lf, sols, hk, hid, st, stf = state
     sp = K._stair_pool(16)  # small: the pool grows while the search runs
+    pc = np.empty((4, 2), np.int32)  # the parent table and the free rows' stack too
+    fs = np.empty(4, np.int32)
     while True:
-        li, lf, sols, hk, hid, sp, status = K._free_run(
+        li, lf, sols, hk, hid, sp, pc, fs, status = K._free_run(
             occ, pot, gr, gc, 1.0, mask, mode, P, Q, hs, hd, hv, ht, gmin, first,
-            li, lf, sols, hk, hid, st, stf, sp, n_steps, 1 << 30,
+            li, lf, sols, hk, hid, st, stf, sp, pc, fs, n_steps, 1 << 30,
         )  # fmt: skip
         if status == K.DONE:
             return gmin, first, sp, li, lf, sols[: st[K.S_SOLS]]

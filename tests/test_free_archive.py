@@ -588,6 +588,7 @@ def test_approximate_search_in_a_second_thread_gives_the_serial_archive(monkeypa
     kernels = (
         _apex_kernels._apex_run,
         _exact_kernels._free_run,
+        _exact_kernels._trace_parents,
         _exact_heuristics._free_prepare,
         _boa_kernels._boa_run,
         _boa_kernels._boa_prepare,

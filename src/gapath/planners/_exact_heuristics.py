@@ -34,6 +34,10 @@ from gapath.grid import DC, DR, SQRT2
 from gapath.planners._exact_kernels import _BIG_TURNS as BIG_TURNS
 from gapath.planners._exact_kernels import MODE_CELL, N_SLOTS, _free_init
 
+# _free_prepare calls _free_init: numba's on-disk cache of this file does not see a
+# change there (it is keyed on this file alone), so a change of the search state's
+# layout (N_ST = 11 since the parent table, twentieth session) comes with a change here
+
 
 def _bit_tables():
     """``MOVES[m, :COUNT[m]]``: the moves (set bits) of mask ``m``, in order,

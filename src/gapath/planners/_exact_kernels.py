@@ -88,8 +88,12 @@ CELL, F_HEAD, F_PARENT, NS, ND, TURNS, NEXT = range(7)  # int table
 F_VUL = 0  # float table (one column)
 # CELL: row * W + col; F_HEAD: heading of the last step (-1 at the start);
 # NS/ND: straight/diagonal step counts; TURNS: total turn in eighths; NEXT:
-# link of the free list of recycled rows (MODE_THREE's staircases are in their
-# own pool, :func:`_stair_pool`).
+# link of the apex search's free list of recycled rows (:func:`_free_run` keeps
+# a stack of them instead; MODE_THREE's staircases are in their own pool,
+# :func:`_stair_pool`). F_PARENT: the row of the parent label, except in
+# :func:`_free_run`, where an expanded label leaves its row for an entry of a
+# compact parent table (``pc``: cell, parent entry; 8 bytes instead of the
+# row's 36) and F_PARENT is that entry (:func:`_trace_parents`).
 
 OBJ_LEN, OBJ_VUL, OBJ_SMOOTH = range(3)
 #: Search modes: BOA* on (length, vulnerability) with cells as states and
@@ -515,7 +519,9 @@ S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_FREE, S_N_FREE, S_
 #: MODE_THREE's count of staircase searches (:func:`_stair_covered`: the checks the
 #: summaries could not decide), at pops and at generation
 S_SEARCHES = 9
-N_ST = 10
+#: :func:`_free_run`'s entries in the parent table ``pc`` (its expanded labels)
+S_PC = 10
+N_ST = 11
 SF_GOAL_MIN = 0
 #: MODE_HEADING: the ``P`` and the least third objective of the solutions with
 #: ``SF_GOAL_MIN`` turns (:func:`_goal_covers`)
@@ -594,6 +600,8 @@ def _free_run(
     st,
     stf,
     sp,
+    pc,
+    fs,
     n_steps,
     max_labels,
 ):
@@ -613,9 +621,15 @@ def _free_run(
     ``st``/``stf`` (updated in place) and MODE_THREE's staircase pool ``sp``
     (:func:`_stair_pool`; any small one in the other mode). A label dropped when it leaves the
     open list is referenced by nothing (it has no children and belongs to
-    no state's set): its row is recycled through a free list linked by
-    ``NEXT``. Stops before a pop that could take the label rows in use
-    beyond ``max_labels``. Returns ``(li, lf, sols, hk, hid, sp, status)``,
+    no state's set): its row is recycled, pushed on the stack of free rows
+    ``fs`` (int32, at least as long as ``li``; ``st[S_N_FREE]`` of them),
+    from which new labels take their rows first. An expanded label is
+    needed only as its children's parent: its cell and parent go to the
+    next entry of ``pc`` (int32, 2 columns; ``st[S_PC]`` entries used), its
+    children's F_PARENT is that entry, and its row is recycled too. Only
+    open labels and solutions keep rows. Stops before a pop that could
+    take the labels held (rows in use and entries) beyond ``max_labels``.
+    Returns ``(li, lf, sols, hk, hid, sp, pc, fs, status)``,
     status DONE (open list empty), PAUSED or OVER_BUDGET. The open list
     keeps each label in its heap row (column 3, :func:`_heap4_push`): the
     3-column heap of :func:`_free_init` is widened at the first call (``hid``
@@ -654,12 +668,18 @@ def _free_run(
             st,
             stf,
             sp,
+            pc,
+            fs,
             n_steps - (st[S_POPS] - pops0),
             max_labels,
         )
         if status != NEED_ROOM:
-            return li, lf, sols, hk, hid, sp, status
+            return li, lf, sols, hk, hid, sp, pc, fs, status
         li, lf, sols, hk, hid, sp = _make_room(li, lf, sols, hk, hid, sp, st, mode == MODE_THREE)
+        if st[S_PC] + 1 > pc.shape[0]:
+            pc = _grow(pc, st[S_PC] + 1)
+        if fs.shape[0] < li.shape[0]:
+            fs = _grow1(fs, li.shape[0])
 
 
 @numba.njit(cache=True)
@@ -716,12 +736,15 @@ def _free_steps(
     st,
     stf,
     sp,
+    pc,
+    fs,
     n_steps,
     max_labels,
 ):
     """The search loop of :func:`_free_run`, in arrays it never reallocates:
-    returns NEED_ROOM before a pop when the label tables, the heap or the
-    solution list could overflow."""
+    returns NEED_ROOM before a pop when the label tables, the heap, the
+    solution list or the parent table could overflow (the free rows' stack
+    ``fs`` is as long as the label table)."""
     h, w = occ.shape
     goal = gr * w + gc
     goal_state = first.shape[0] - 1  # MODE_THREE: first[goal_state] = largest solution turns (_goal_insert)
@@ -732,7 +755,6 @@ def _free_steps(
     n_sols = st[S_SOLS]
     n_expanded = st[S_EXPANDED]
     n_generated = st[S_GENERATED]
-    free = st[S_FREE]
     n_free = st[S_N_FREE]
     goal_min = stf[SF_GOAL_MIN]
     goal_p = stf[SF_GOAL_P]
@@ -741,15 +763,19 @@ def _free_steps(
     steps = 0
     pops0 = st[S_POPS]
     n_searches = st[S_SEARCHES]
+    n_pc = st[S_PC]
 
     while size > 0:
         if steps == n_steps:
             status = PAUSED
             break
-        if n - n_free + 8 > max_labels:  # an expansion adds up to 8 labels
+        if n - n_free + n_pc + 8 > max_labels:  # an expansion adds up to 8 labels
             status = OVER_BUDGET
             break
         if n + 8 > li.shape[0] or size + 8 > hid.shape[0] or n_sols + 1 > sols.shape[0]:
+            status = NEED_ROOM
+            break
+        if n_pc + 1 > pc.shape[0]:
             status = NEED_ROOM
             break
         if mode == MODE_THREE and sp[SP_USED] + _stair_room(sp) > sp.shape[0]:
@@ -802,8 +828,7 @@ def _free_steps(
                 li, lf, x, P, Q, goal_min, goal_p, goal_r, cell_size, hs, hd, hv, ht
             )
         if covered:
-            li[x, NEXT] = free  # recycle the row
-            free = x
+            fs[n_free] = x  # recycle the row
             n_free += 1
             continue
 
@@ -822,8 +847,12 @@ def _free_steps(
             n_sols += 1
             continue
 
-        # 4b. expand x: it joins its state's set
+        # 4b. expand x: it joins its state's set, and leaves its row for a parent entry
         n_expanded += 1
+        pc[n_pc, 0] = c
+        pc[n_pc, 1] = li[x, F_PARENT]
+        parent = n_pc
+        n_pc += 1
         s = c * N_SLOTS + _slot(li[x, F_HEAD])
         if mode == MODE_THREE:
             _three_insert(sp, first, gmin, s, li[x, TURNS], lf[x, F_VUL])
@@ -841,8 +870,8 @@ def _free_steps(
             cell = r2 * w + c2
             if hv[cell] == np.inf:  # the goal cannot be reached from there
                 continue
-            if free >= 0:  # a recycled row (its NEXT links the free list)
-                j = free
+            if n_free > 0:  # the row recycled last (the free rows are a stack)
+                j = fs[n_free - 1]
             else:
                 j = n
             # the new label's values; its row is written only once it is kept (most
@@ -891,34 +920,34 @@ def _free_steps(
                 fp, fr = _p_third(P, f_len, f_vul)
                 if _goal_covers(goal_min, goal_p, goal_r, f_turn, fp, fr):
                     continue
-            if j == free:
-                free = li[j, NEXT]
+            if n_free > 0:
                 n_free -= 1
             else:
                 n += 1
             li[j, CELL] = cell
             li[j, F_HEAD] = d
-            li[j, F_PARENT] = x
+            li[j, F_PARENT] = parent
             li[j, NS] = ns_j
             li[j, ND] = nd_j
             li[j, TURNS] = t
             lf[j, F_VUL] = v
-            li[j, NEXT] = -1
             k1 = f_len if P == OBJ_LEN else (f_vul if P == OBJ_VUL else f_turn)
             k2 = f_len if second == OBJ_LEN else (f_vul if second == OBJ_VUL else f_turn)
             # MODE_HEADING: (P, turns, the third objective); MODE_THREE: (length, vul, turns)
             k3 = f_turn if mode == MODE_THREE else _p_third(P, f_len, f_vul)[1]
             _heap4_push(hk, size, k1, k2, k3, j)
             size += 1
+        fs[n_free] = x  # x's values now live in its state's set and in pc
+        n_free += 1
     st[S_N] = n
     st[S_SIZE] = size
     st[S_SOLS] = n_sols
     st[S_EXPANDED] = n_expanded
     st[S_GENERATED] = n_generated
-    st[S_FREE] = free
     st[S_N_FREE] = n_free
     st[S_POPS] = pops0 + steps
     st[S_SEARCHES] = n_searches
+    st[S_PC] = n_pc
     stf[SF_GOAL_MIN] = goal_min
     stf[SF_GOAL_P] = goal_p
     stf[SF_GOAL_R] = goal_r
@@ -950,6 +979,34 @@ def _trace(li, sols, w):
             cells[j, 1] = li[a, CELL] % w
             j -= 1
             a = li[a, F_PARENT]
+    return cells, offsets
+
+
+@numba.njit(cache=True, nogil=True)
+def _trace_parents(li, pc, sols, w):
+    """:func:`_trace` of :func:`_free_run`'s solutions: each solution's row,
+    then its parent entries in ``pc``."""
+    counts = np.empty(len(sols), np.int64)
+    for i in range(len(sols)):
+        k = 1
+        a = li[sols[i], F_PARENT]
+        while a >= 0:
+            k += 1
+            a = pc[a, 1]
+        counts[i] = k
+    offsets = np.zeros(len(sols) + 1, np.int64)
+    offsets[1:] = np.cumsum(counts)
+    cells = np.empty((offsets[-1], 2), np.int64)
+    for i in range(len(sols)):
+        j = offsets[i + 1] - 1
+        cells[j, 0] = li[sols[i], CELL] // w
+        cells[j, 1] = li[sols[i], CELL] % w
+        a = li[sols[i], F_PARENT]
+        while a >= 0:
+            j -= 1
+            cells[j, 0] = pc[a, 0] // w
+            cells[j, 1] = pc[a, 0] % w
+            a = pc[a, 1]
     return cells, offsets
 
 

@@ -93,6 +93,7 @@ from gapath.planners._exact_kernels import (
     S_GENERATED,
     S_N,
     S_N_FREE,
+    S_PC,
     S_POPS,
     S_SEARCHES,
     S_SIZE,
@@ -103,6 +104,7 @@ from gapath.planners._exact_kernels import (
     _stair_pool,
     _tolerant_front,
     _trace,
+    _trace_parents,
 )
 from gapath.planners._monotone_kernels import (
     B_LEN,
@@ -991,9 +993,9 @@ def free_front(
             limit,
         )
         total = {"expansions": 0, "generated": 0, "labels": 0, "peak_bytes": 0}
-        li, lf, sols, st = _search_pass(*args, total, t0)
+        li, lf, sols, st, pc = _search_pass(*args, total, t0)
 
-    cells, offsets = _trace(li, sols, w)
+    cells, offsets = _trace(li, sols, w) if pc is None else _trace_parents(li, pc, sols, w)
     ns, nd, turns, vul = li[sols, NS], li[sols, ND], li[sols, TURNS], lf[sols, F_VUL]
     values = {
         "length": (ns + SQRT2 * nd) * cs,
@@ -1091,7 +1093,8 @@ def _search_stats(st, seconds, total=None) -> dict:
     return {
         "expansions": done["expansions"] + int(st[S_EXPANDED]),
         "generated": done["generated"] + int(st[S_GENERATED]),
-        "labels": int(st[S_N] - st[S_N_FREE]),
+        # (BOA*'s state has no parent table)
+        "labels": int(st[S_N] - st[S_N_FREE] + (st[S_PC] if len(st) > S_PC else 0)),
         "open": int(st[S_SIZE]),
         "solutions": int(st[S_SOLS]),
         "seconds": seconds,
@@ -1176,7 +1179,9 @@ def _search_pass(
     handled between slices) from ``state`` (what :func:`_free_init` returns),
     until done or past ``limit`` expansions; adds its counts to ``total``
     (``complete``: False when stopped at ``limit``). Returns the label
-    tables, the solution labels and the scalar state."""
+    tables, the solution labels, the scalar state and the parent table
+    (:func:`~gapath.planners._exact_kernels._free_run`'s ``pc``; None for
+    the approximate search, whose rows keep their parents)."""
     gr, gc = goal
     hs, hd, hv, ht = heuristics
     gmin, first, li, lf, sols, hk, hid, st, stf = state
@@ -1184,9 +1189,13 @@ def _search_pass(
     slices = _slices(1 << 14, 1 << 10, 1 << 26, limit)
     stop = False
     sp = _stair_pool(1 << 16 if mode == MODE_THREE else 0)  # MODE_THREE's staircases
+    pc = None
     if eps > 0:  # the approximate search: the last open label of each state
         open_at = np.full(first.shape[0] - 1, -1, np.int32)
         fixed += open_at.nbytes
+    else:  # the expanded labels' cells and parents, the stack of free label rows
+        pc = np.empty((1 << 16, 2), np.int32)
+        fs = np.empty(li.shape[0], np.int32)
     while True:
         pops, t1 = st[S_POPS], time.perf_counter()
         if eps > 0:
@@ -1195,9 +1204,9 @@ def _search_pass(
                 li, lf, sols, hk, hid, st, stf, sp, open_at, slices.n, budget, eps,
             )  # fmt: skip
         else:
-            li, lf, sols, hk, hid, sp, status = _free_run(
+            li, lf, sols, hk, hid, sp, pc, fs, status = _free_run(
                 occ, pot, gr, gc, cs, mask, mode, P, Q, hs, hd, hv, ht, gmin, first,
-                li, lf, sols, hk, hid, st, stf, sp, slices.n, budget,
+                li, lf, sols, hk, hid, st, stf, sp, pc, fs, slices.n, budget,
             )  # fmt: skip
         interrupt.check()
         if status == PAUSED:  # a longer search: hold Ctrl-C from now on
@@ -1217,16 +1226,17 @@ def _search_pass(
     total["complete"] = not stop
     total["expansions"] += int(st[S_EXPANDED])
     total["generated"] += int(st[S_GENERATED])
-    total["labels"] = max(total["labels"], int(st[S_N]))  # rows used at the peak
-    total["peak_bytes"] = max(
-        total["peak_bytes"],
-        int(fixed + li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + sp.nbytes),
-    )
+    # rows used at the peak (and the parent entries: an upper bound of the labels held)
+    total["labels"] = max(total["labels"], int(st[S_N] + st[S_PC]))
+    arrays = li.nbytes + lf.nbytes + hk.nbytes + hid.nbytes + sols.nbytes + sp.nbytes
+    if pc is not None:
+        arrays += pc.nbytes + fs.nbytes
+    total["peak_bytes"] = max(total["peak_bytes"], int(fixed + arrays))
     if mode == MODE_THREE:
         if eps == 0:  # (the approximate search does not count them)
             total["stair_searches"] = total.get("stair_searches", 0) + int(st[S_SEARCHES])
         total["stair_floats"] = max(total.get("stair_floats", 0), int(sp[SP_USED]))
-    return li, lf, sols[: st[S_SOLS]], st
+    return li, lf, sols[: st[S_SOLS]], st, pc
 
 
 def _free_budget_error(budget, stats) -> LabelBudgetError:
