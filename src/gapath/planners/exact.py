@@ -199,8 +199,10 @@ class ExactFront:
         Total turn of each path (radians), also when smoothness is not an
         objective.
     stats : dict
-        How the search went: ``seconds``, ``labels`` (label rows held at the
-        end; the free search recycles the rows of the labels it drops),
+        How the search went: ``seconds``, ``labels`` (the free search: its
+        label rows at their peak, plus, with smoothness an objective, one
+        parent entry per expanded label; the rows of dropped labels, and
+        there of expanded ones, are recycled),
         ``peak_bytes`` (the largest memory its arrays held), and
         ``expansions``/``generated`` (free search) or ``columns`` (monotone
         DP). Not part of :meth:`to_dict`.
@@ -703,9 +705,11 @@ def free_front(
         ``solar_rate`` and ``solar_angle0``); same grid as ``workspace``.
     max_labels : int, optional
         Label budget: the most labels held at once (the rows of dropped
-        labels are recycled, so this bounds the memory of the search, about
-        44 bytes a label plus 32 per open-list entry; 36 and 24 for length and
-        vulnerability). None: no budget.
+        labels are recycled, so this bounds the memory of the search: with
+        smoothness an objective, 8 bytes per expanded label and about 72
+        per open one, its row and open-list entry; for length and
+        vulnerability about 36 bytes a label plus 24 per open-list entry).
+        None: no budget.
     progress : callable, optional
         Called about ten times a second, and once at the end, with a dict
         ``phase="free"``, ``expansions``, ``generated``, ``labels``, ``open``
