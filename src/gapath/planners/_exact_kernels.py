@@ -959,33 +959,18 @@ def _free_steps(
 
 @numba.njit(cache=True, nogil=True)
 def _trace(li, sols, w):
-    """Cells of the solution paths, concatenated, and their offsets."""
-    counts = np.empty(len(sols), np.int64)
-    for i in range(len(sols)):
-        k = 0
-        a = sols[i]
-        while a >= 0:
-            k += 1
-            a = li[a, F_PARENT]
-        counts[i] = k
-    offsets = np.zeros(len(sols) + 1, np.int64)
-    offsets[1:] = np.cumsum(counts)
-    cells = np.empty((offsets[-1], 2), np.int64)
-    for i in range(len(sols)):
-        j = offsets[i + 1] - 1
-        a = sols[i]
-        while a >= 0:
-            cells[j, 0] = li[a, CELL] // w
-            cells[j, 1] = li[a, CELL] % w
-            j -= 1
-            a = li[a, F_PARENT]
-    return cells, offsets
+    """Cells of the solution paths, concatenated, and their offsets, where
+    each label's row holds its parent's row (BOA*, the apex search):
+    :func:`_trace_parents` with the rows' (CELL, F_PARENT) columns as the
+    parent table."""
+    return _trace_parents(li, li[:, CELL : F_PARENT + 1 : F_PARENT - CELL], sols, w)
 
 
 @numba.njit(cache=True, nogil=True)
 def _trace_parents(li, pc, sols, w):
-    """:func:`_trace` of :func:`_free_run`'s solutions: each solution's row,
-    then its parent entries in ``pc``."""
+    """Cells of the solution paths, concatenated, and their offsets: each
+    solution's row, then its chain of parents, ``pc[a]`` = (cell, parent)
+    (:func:`_free_run`'s parent table)."""
     counts = np.empty(len(sols), np.int64)
     for i in range(len(sols)):
         k = 1
