@@ -92,6 +92,10 @@ from gapath.planners._exact_kernels import (
     _trace,
 )
 
+# _boa_start calls _free_init: numba's on-disk cache of this file does not see a
+# change there (it is keyed on this file alone), so a change of the search state's
+# layout (N_ST = 11 since the parent table, twentieth session) comes with a change here
+
 #: Columns of the edge table: the label the edge enters, its parent (an
 #: expanded label) and the direction of the step.
 E_NODE, E_PARENT, E_DIR = range(3)

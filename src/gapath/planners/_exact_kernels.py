@@ -764,6 +764,7 @@ def _free_steps(
     pops0 = st[S_POPS]
     n_searches = st[S_SEARCHES]
     n_pc = st[S_PC]
+    gp = gr = 0.0  # MODE_HEADING: the popped label's P and third objective (_p_third)
 
     while size > 0:
         if steps == n_steps:
@@ -817,13 +818,11 @@ def _free_steps(
                 m = gmin[goal_base + min(bound, tmax)]
                 covered = m < np.inf and _le(m, v + hv[c])
         else:
-            covered = False
-            if c != goal:
-                s_x = c * N_SLOTS + _slot(li[x, F_HEAD])
-                covered = gmin[s_x] < li[x, TURNS]
-                if gmin[s_x] == li[x, TURNS]:  # a tie: the P and third objective decide
-                    gp, gr = _p_third(P, _g(li, lf, x, OBJ_LEN, cell_size), lf[x, F_VUL])
-                    covered = _tie_covered(gmin, s_x, gp, gr)
+            # x's P and third objective: its state's tie-break, its solution's, its expansion's
+            gp, gr = _p_third(P, _g(li, lf, x, OBJ_LEN, cell_size), lf[x, F_VUL])
+            covered = c != goal and _state_covered(
+                gmin, c * N_SLOTS + _slot(li[x, F_HEAD]), li[x, TURNS], gp, gr
+            )
             covered = covered or _goal_covered(
                 li, lf, x, P, Q, goal_min, goal_p, goal_r, cell_size, hs, hd, hv, ht
             )
@@ -838,7 +837,6 @@ def _free_steps(
                 _goal_insert(li, lf, gmin, goal_base, first, goal_state, x)
             else:
                 gq = _g(li, lf, x, Q, cell_size)
-                gp, gr = _p_third(P, _g(li, lf, x, OBJ_LEN, cell_size), lf[x, F_VUL])
                 if gq < goal_min:
                     goal_min, goal_p, goal_r = gq, gp, gr
                 elif gq == goal_min and gr < goal_r and _eq(gp, goal_p):
@@ -857,7 +855,6 @@ def _free_steps(
         if mode == MODE_THREE:
             _three_insert(sp, first, gmin, s, li[x, TURNS], lf[x, F_VUL])
         else:  # MODE_HEADING: charged g2_min, and the P and third objective at it
-            gp, gr = _p_third(P, _g(li, lf, x, OBJ_LEN, cell_size), lf[x, F_VUL])
             _state_expand(gmin, c, li[x, F_HEAD], li[x, TURNS], gp, gr)
         r, col = c // w, c % w
         head = li[x, F_HEAD]

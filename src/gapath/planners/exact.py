@@ -1097,8 +1097,7 @@ def _search_stats(st, seconds, total=None) -> dict:
     return {
         "expansions": done["expansions"] + int(st[S_EXPANDED]),
         "generated": done["generated"] + int(st[S_GENERATED]),
-        # (BOA*'s state has no parent table)
-        "labels": int(st[S_N] - st[S_N_FREE] + (st[S_PC] if len(st) > S_PC else 0)),
+        "labels": int(st[S_N] - st[S_N_FREE] + st[S_PC]),  # S_PC: 0 but in _free_run
         "open": int(st[S_SIZE]),
         "solutions": int(st[S_SOLS]),
         "seconds": seconds,
