@@ -294,14 +294,16 @@ class _Trace(Callback):
             algorithm.termination.force_termination = True
 
 
-def anytime(ws, F, pop, gen, seed, cap, progress=None, keep=5, save=None, reference="exact"):
+def anytime(ws, F, pop, gen, seed, cap, progress=None, keep=5, save=None, reference="exact", refine=None):
     """One GA run's trace against the front ``F`` (the exact front, or the
     best known one when ``reference`` says so; when None, against the run's
     own final front). ``save``: write the run's final front and the fronts
     kept every ``keep`` generations (with their trace rows) to this ``.npz``,
     to be measured against another front afterwards (``--score``)."""
     tracker = _Trace(F if save is None else None, cap, keep=keep, progress=progress, save=save)
-    res = solve(ws, objectives=OBJECTIVES, paths="free", pop_size=pop, n_gen=gen, seed=seed, callback=tracker)
+    res = solve(
+        ws, objectives=OBJECTIVES, paths="free", pop_size=pop, n_gen=gen, seed=seed, callback=tracker, refine=refine
+    )
     tr = tracker.trace
     arch = run_archive(res.pymoo_result.algorithm)
     retry = dict(
@@ -694,6 +696,12 @@ def main(argv=None):
     ap.add_argument("--instances", default="gen128-s1,berlin,gen256-s1")
     ap.add_argument("--pop", type=int, default=200)
     ap.add_argument("--gen", type=int, default=300)
+    ap.add_argument(
+        "--refine",
+        type=int,
+        default=None,
+        help="archived paths re-routed per generation (solve's refine, gapath solve --refine; default: auto)",
+    )
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--ga-cap", type=float, default=900.0, help="stop the GA after this many CPU seconds")
     ap.add_argument("--exact-cap", type=float, default=900.0, help="give up exact search after this many s")
@@ -817,7 +825,10 @@ def main(argv=None):
                 rec["threads"] = wanted_threads()  # GAPATH_THREADS: 1 serial
                 progress = f"{a.progress}.{name}" if a.progress else None
                 save = f"{a.save}.{name}.s{a.seed}.npz" if a.save else None
-                rec.update(anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress, a.keep, save, reference))
+                rec["refine"] = "auto" if a.refine is None else a.refine
+                rec.update(
+                    anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress, a.keep, save, reference, a.refine)
+                )
         emit(rec)
     if out:
         out.close()
