@@ -375,6 +375,33 @@ def test_label_budget_stops_cleanly_and_a_sufficient_one_changes_nothing():
     assert np.array_equal(again.F, whole.F)
 
 
+def test_labels_held_count_the_parent_entries():
+    """An expanded label is kept as a parent entry, not a row, to the end of
+    the search: the budget counts the entries, so a budget of half the
+    expansions stops the search (the open labels and solutions alone, the
+    rows in use, never reach it here)."""
+    ws = random_workspace((16, 16), 40, seed=2)
+    cm = _costmap(ws, 2)
+    names = ("length", "elevation_sum", "risk_sum", "smoothness")
+    whole = free_front(ws, names, costmap=cm)
+    with pytest.raises(LabelBudgetError):
+        free_front(ws, names, costmap=cm, max_labels=whole.stats["expansions"] // 2)
+
+
+def test_expanded_labels_leave_their_rows():
+    """An expanded label is needed only as its children's parent: it keeps a
+    cell and a parent entry (8 bytes), not its row (84 bytes for these four
+    objectives: 28 bytes of int32 columns, three sums, four f-values). On
+    this map (145,223 expansions) the search's arrays, the per-state sets
+    (most of them now) and the fixed ones included, then take 2.41 times 84
+    bytes per expansion; when every expanded label kept its row, 3.81 times."""
+    ws = random_workspace((28, 28), 80, seed=1)
+    cm = _costmap(ws, 1)
+    s = free_front(ws, ("length", "elevation_sum", "solar", "risk_sum"), costmap=cm).stats
+    assert s["expansions"] > 100_000
+    assert s["peak_bytes"] < 3 * 84 * s["expansions"]
+
+
 def test_progress_and_slices(monkeypatch):
     from gapath.planners import exact
 

@@ -23,6 +23,7 @@ import numpy as np
 from gapath.errors import ConfigError, NoPathError
 from gapath.grid import DC, DR, SQRT2, check_path
 from gapath.objectives import QUARTER_PI
+from gapath.planners._exact_kernels import _trace_parents
 from gapath.planners._multi_kernels import (
     DONE,
     K_CELL,
@@ -41,6 +42,7 @@ from gapath.planners._multi_kernels import (
     S_GOAL_TESTS,
     S_N,
     S_N_FREE,
+    S_PC,
     S_POPS,
     S_SIZE,
     S_SOLS,
@@ -53,7 +55,6 @@ from gapath.planners._multi_kernels import (
     _hops,
     _k_init,
     _k_run,
-    _k_trace,
     _step_to_go,
     _timed_solar_to_go,
 )
@@ -303,7 +304,7 @@ def multi_front(
         interrupt.check()
         t_heur = time.perf_counter() - t0
         sidx = np.zeros((n_cells + 1, 3), np.int64)  # per-state set blocks, the goal's last
-        li, lg, lf, hid, sols, st, sv, si, sfree, tdir = _k_init(
+        li, lg, lf, hid, sols, st, sv, si, sfree, tdir, pc, fs, fseq = _k_init(
             sr * w + sc, layers, okind, ocol, cs, hs, hd, ht, hfl, hop, psum, hsol, timed, n_float
         )
         fixed = sum(a.nbytes for a in (hs, hd, ht, hfl, layers, table, psum, hsol, hop, mask))
@@ -312,19 +313,20 @@ def multi_front(
         peak = 0
         while True:
             pops, t1 = st[S_POPS], time.perf_counter()
-            sidx, li, lg, lf, hid, sols, sv, si, tdir, status = _k_run(
+            sidx, li, lg, lf, hid, sols, sv, si, tdir, pc, fs, fseq, status = _k_run(
                 mask, w, goal, layers, table, okind, ocol, cs, hs, hd, ht, hfl, hop, psum,
                 hsol, timed, smooth, tie_break == "smoothest", sidx, li, lg, lf, hid, sols, st,
-                sv, si, sfree, tdir, slices.n, budget,
+                sv, si, sfree, tdir, pc, fs, fseq, slices.n, budget,
             )  # fmt: skip
             interrupt.check()
             now = time.perf_counter()
             slices.update(st[S_POPS] - pops, now - t1)
-            peak = max(peak, fixed + sum(a.nbytes for a in (sidx, li, lg, lf, hid, sols, sv, si, tdir)))
+            arrays = (sidx, li, lg, lf, hid, sols, sv, si, tdir, pc, fs, fseq)
+            peak = max(peak, fixed + sum(a.nbytes for a in arrays))
             stats = {
                 "expansions": int(st[S_EXPANDED]),
                 "generated": int(st[S_GENERATED]),
-                "labels": int(st[S_N] - st[S_N_FREE]),
+                "labels": int(st[S_N] - st[S_N_FREE] + st[S_PC]),  # rows in use and entries
                 "open": int(st[S_SIZE]),
                 "solutions": int(st[S_SOLS]),
                 "seconds": now - t0,
@@ -362,12 +364,13 @@ def multi_front(
     pick = np.lexsort((n_straight + SQRT2 * n_diag, turns))
     keep = _front_filter(np.ascontiguousarray(F), pick)
     keep = keep[np.lexsort(F[keep].T[::-1])]
-    cells, offsets = _k_trace(li, sols[keep], w)
+    cells, offsets = _trace_parents(li, pc, sols[keep], w)
     paths = [cells[offsets[i] : offsets[i + 1]] for i in range(len(keep))]
     stats = {
         "expansions": int(st[S_EXPANDED]),
         "generated": int(st[S_GENERATED]),
-        "labels": int(st[S_N]),
+        # rows used at the peak and the parent entries: an upper bound of the labels held
+        "labels": int(st[S_N] + st[S_PC]),
         "peak_bytes": int(peak),
         "solutions": int(st[S_SOLS]),
         "state_tests": int(st[S_STATE_TESTS]),

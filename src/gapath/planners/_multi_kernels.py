@@ -3,10 +3,12 @@
 
 A NAMOA*-dr / LTMOA*-style label-setting search over any number of additive
 objectives: labels leave a binary heap in lexicographic order of their
-f-vectors (all k components, then the label row); every state keeps the set
-of its expanded labels that no later expanded label made redundant, and the
-goal keeps the set of solutions. A label is tested against both sets when it
-is generated and again when it is popped (the sets grew meanwhile). The
+f-vectors (all k components, then the label's sequence number); every state
+keeps the set of its expanded labels that no later expanded label made
+redundant, and the goal keeps the set of solutions. A label is tested
+against both sets when it is generated and again when it is popped (the sets
+grew meanwhile). Only open labels and solutions hold label rows: an expanded
+label leaves its row for an entry of a parent table (:func:`_k_run`). The
 search is resumable like :func:`gapath.planners._exact_kernels._free_run`:
 its whole state lives in arrays owned by the caller, a call returns after a
 number of pops, when an array is full (the wrapper grows it) or when the
@@ -36,6 +38,11 @@ import numba
 import numpy as np
 
 from gapath.grid import DC, DR, FALSE, ONE, SQRT2, TRUE, ZERO, turn
+from gapath.planners import _exact_kernels
+from gapath.planners._exact_kernels import _grow, _grow1
+
+# _k_run calls _grow and _grow1: numba's on-disk cache of this file is keyed on this
+# file alone, so a change of their signatures comes with a change here
 
 #: Relative tolerance of SPEC "Duplicates and ties".
 TOL = 1e-9
@@ -45,11 +52,18 @@ K_LEN, K_TURN, K_CELL, K_SOLAR = range(4)
 #: take more steps than the solar table holds).
 DONE, PAUSED, OVER_BUDGET, NEED_ROOM, STEP_LIMIT = range(5)
 
-# int table of a label
-CELL, HEAD, PARENT, NS, ND, TURNS, NEXT = range(7)
+# int table of a label: CELL, HEAD (heading of the last step, -1 at the start),
+# NS/ND (straight/diagonal steps), TURNS (eighths); PARENT: the parent's entry of
+# the parent table ``pc`` (cell, parent entry), where a label goes when it is
+# expanded (its row is then recycled); SEQ: the label's sequence number, which
+# breaks exact ties of the open list (:func:`_less`)
+CELL, HEAD, PARENT, NS, ND, TURNS, SEQ = range(7)
 N_INT = 7
-# scalars of the search state
-S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_FREE, S_N_FREE, S_POPS, S_SPAN = range(10)
+# the solutions' paths are traced by _exact_kernels._trace_parents, which reads
+# the same two columns
+assert (CELL, PARENT) == (_exact_kernels.CELL, _exact_kernels.F_PARENT)
+# scalars of the search state (S_SEQ: the next new sequence number)
+S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_SEQ, S_N_FREE, S_POPS, S_SPAN = range(10)
 # pool rows in use, members tested by the state and the goal checks
 S_PTOP, S_STATE_TESTS, S_GOAL_TESTS = range(10, 13)
 # the tree directory: head of its free list, rows in use
@@ -57,7 +71,9 @@ S_TFREE, S_TTOP = range(13, 15)
 # tree nodes visited by the state and goal checks and by the insertions' drops,
 # members written by tree builds
 S_STATE_NODES, S_GOAL_NODES, S_DROP_NODES, S_BUILT = range(15, 19)
-N_ST = 19
+# entries of the parent table (the expanded labels), free sequence numbers
+S_PC, S_N_FREE_SEQ = range(19, 21)
+N_ST = 21
 
 
 @numba.njit(cache=True, inline="always")
@@ -254,22 +270,28 @@ def _timed_solar_to_go(table, mask, w, goal, hop, psum, n_rows):
 
 
 # -- open list: binary heap of label rows, lexicographic on lf rows -------------
+#
+# Exact ties of the f-vectors are broken by the labels' sequence numbers
+# (li[:, SEQ]). A new label takes the number last given up by a label dropped at
+# its pop, else the next new one: the row it had when every expanded label kept
+# its row, so the labels leave in that search's order (and that of the reference,
+# tests/_multi_reference*.py), whichever rows they hold now.
 
 
 @numba.njit(cache=True, inline="always")
-def _less(lf, a, b, k):
+def _less(lf, li, a, b, k):
     for j in range(k):
         if lf[a, j] != lf[b, j]:
             return lf[a, j] < lf[b, j]
-    return a < b
+    return li[a, SEQ] < li[b, SEQ]
 
 
 @numba.njit(cache=True, _nrt=False)
-def _push(hid, size, lf, k, x):
+def _push(hid, size, lf, li, k, x):
     i = size
     while i > 0:
         p = (i - 1) >> 1
-        if not _less(lf, x, hid[p], k):
+        if not _less(lf, li, x, hid[p], k):
             break
         hid[i] = hid[p]
         i = p
@@ -277,7 +299,7 @@ def _push(hid, size, lf, k, x):
 
 
 @numba.njit(cache=True, _nrt=False)
-def _pop(hid, size, lf, k):
+def _pop(hid, size, lf, li, k):
     """Remove the smallest entry; returns the new size."""
     size -= 1
     if size > 0:
@@ -287,9 +309,9 @@ def _pop(hid, size, lf, k):
             ch = 2 * i + 1
             if ch >= size:
                 break
-            if ch + 1 < size and _less(lf, hid[ch + 1], hid[ch], k):
+            if ch + 1 < size and _less(lf, li, hid[ch + 1], hid[ch], k):
                 ch += 1
-            if not _less(lf, hid[ch], x, k):
+            if not _less(lf, li, hid[ch], x, k):
                 break
             hid[i] = hid[ch]
             i = ch
@@ -729,7 +751,10 @@ def _gvec(li, lg, x, okind, ocol, cell_size, q, qr):
 @numba.njit(cache=True)
 def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, hsol, timed, n_float):
     """The state of a new search: the start label alone on the open list.
-    Returns ``(li, lg, lf, hid, sols, st, sv, si, sfree, tdir)``."""
+    Returns ``(li, lg, lf, hid, sols, st, sv, si, sfree, tdir, pc, fs, fseq)``:
+    label rows, open list, solution rows, scalars, per-state sets, then the
+    parent table, the stack of free rows and that of free sequence numbers
+    (:func:`_k_run`)."""
     k = okind.shape[0]
     li = np.empty((1024, N_INT), np.int32)
     lg = np.zeros((1024, max(n_float, 1)))
@@ -742,7 +767,7 @@ def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, h
     li[0, NS] = 0
     li[0, ND] = 0
     li[0, TURNS] = 0
-    li[0, NEXT] = -1
+    li[0, SEQ] = 0
     for j in range(k):  # the start cell counts for the cell sums
         if okind[j] == K_CELL:
             lg[0, ocol[j]] = layers[ocol[j], start]
@@ -752,14 +777,17 @@ def _k_init(start, layers, okind, ocol, cell_size, hs, hd, ht, hfl, hop, psum, h
     st[S_N] = 1
     st[S_SIZE] = 1
     st[S_GENERATED] = 1
-    st[S_FREE] = -1
+    st[S_SEQ] = 1
     st[S_SPAN] = 1
     st[S_TFREE] = -1
     sv = np.empty((1024, _width(k)))
     si = np.empty((1024, N_SI), np.int32)
     sfree = np.full(N_CLASS, -1, np.int64)
     tdir = np.empty((256, N_T), np.int64)
-    return li, lg, lf, hid, sols, st, sv, si, sfree, tdir
+    pc = np.empty((1024, 2), np.int32)
+    fs = np.empty(li.shape[0], np.int32)  # as long as li: every row may be free
+    fseq = np.empty(64, np.int32)
+    return li, lg, lf, hid, sols, st, sv, si, sfree, tdir, pc, fs, fseq
 
 
 @numba.njit(cache=True, _nrt=False)
@@ -817,13 +845,30 @@ def _k_run(
     si,
     sfree,
     tdir,
+    pc,
+    fs,
+    fseq,
     n_steps,
     max_labels,
 ):
     """Advance the search by at most ``n_steps`` pops. Returns ``(sidx, li,
-    lg, lf, hid, sols, sv, si, tdir, status)``, status DONE (open list empty),
-    PAUSED, OVER_BUDGET or STEP_LIMIT; the arrays may have been reallocated
-    (grown by doubling)."""
+    lg, lf, hid, sols, sv, si, tdir, pc, fs, fseq, status)``, status DONE (open
+    list empty), PAUSED, OVER_BUDGET or STEP_LIMIT; the arrays may have been
+    reallocated (grown by doubling).
+
+    Only open labels and solutions hold rows of ``li``/``lg``/``lf``. A label
+    dropped when it leaves the open list is referenced by nothing (no
+    children, in no set): its row goes on the stack of free rows ``fs`` (int32,
+    as long as ``li``; ``st[S_N_FREE]`` of them), from which new labels take
+    their rows first, and its sequence number on the stack ``fseq``
+    (``st[S_N_FREE_SEQ]``). An expanded label's values go into its state's
+    set; it is needed only as its children's parent, so its cell and parent
+    go to the next entry of ``pc`` (int32, 2 columns; ``st[S_PC]`` entries),
+    its children's PARENT is that entry, and its row is recycled too
+    (:func:`gapath.planners._exact_kernels._trace_parents` walks the entries).
+    Stops before a pop that could take the labels held (rows in use and
+    entries: the rows in use when every expanded label kept its row) beyond
+    ``max_labels``."""
     pops0 = st[S_POPS]
     n_cells = mask.shape[0]
     while True:
@@ -857,11 +902,14 @@ def _k_run(
             si,
             sfree,
             tdir,
+            pc,
+            fs,
+            fseq,
             n_steps - (st[S_POPS] - pops0),
             max_labels,
         )
         if status != NEED_ROOM:
-            return sidx, li, lg, lf, hid, sols, sv, si, tdir, status
+            return sidx, li, lg, lf, hid, sols, sv, si, tdir, pc, fs, fseq, status
         if st[S_N] + 8 > li.shape[0]:
             cap = 2 * li.shape[0]
             li2 = np.empty((cap, li.shape[1]), li.dtype)
@@ -871,6 +919,7 @@ def _k_run(
             lf2 = np.empty((cap, lf.shape[1]))
             lf2[: lf.shape[0]] = lf
             li, lg, lf = li2, lg2, lf2
+            fs = _grow1(fs, li.shape[0])
         if st[S_SIZE] + 8 > hid.shape[0]:
             hid2 = np.empty(2 * hid.shape[0], hid.dtype)
             hid2[: hid.shape[0]] = hid
@@ -879,6 +928,8 @@ def _k_run(
             sols2 = np.empty(2 * sols.shape[0], sols.dtype)
             sols2[: sols.shape[0]] = sols
             sols = sols2
+        pc = _grow(pc, st[S_PC] + 1)
+        fseq = _grow1(fseq, st[S_N_FREE_SEQ] + 1)
         need = st[S_PTOP] + _room(sidx[:, B_CNT].max())
         if need > sv.shape[0]:
             cap = 2 * sv.shape[0]
@@ -937,10 +988,15 @@ def _k_steps(
     si,
     sfree,
     tdir,
+    pc,
+    fs,
+    fseq,
     n_steps,
     max_labels,
 ):
-    """The search loop of :func:`_k_run`, in arrays it never reallocates."""
+    """The search loop of :func:`_k_run`, in arrays it never reallocates:
+    returns NEED_ROOM before a pop when one of them could overflow (the free
+    rows' stack ``fs`` is as long as ``li``)."""
     k = okind.shape[0]
     n_cells = mask.shape[0]
     n = st[S_N]
@@ -948,8 +1004,10 @@ def _k_steps(
     n_sols = st[S_SOLS]
     n_expanded = st[S_EXPANDED]
     n_generated = st[S_GENERATED]
-    free = st[S_FREE]
     n_free = st[S_N_FREE]
+    n_seq = st[S_SEQ]
+    n_free_seq = st[S_N_FREE_SEQ]
+    n_pc = st[S_PC]
     span = st[S_SPAN]
     n_table = table.shape[0]
     use_ht = ht.shape[0] > 1
@@ -967,10 +1025,13 @@ def _k_steps(
         if steps == n_steps:
             status = PAUSED
             break
-        if n - n_free + 8 > max_labels:  # an expansion adds up to 8 labels
+        if n - n_free + n_pc + 8 > max_labels:  # an expansion adds up to 8 labels
             status = OVER_BUDGET
             break
         if n + 8 > li.shape[0] or size + 8 > hid.shape[0] or n_sols + 1 > sols.shape[0]:
+            status = NEED_ROOM
+            break
+        if n_pc + 1 > pc.shape[0] or n_free_seq + 1 > fseq.shape[0]:
             status = NEED_ROOM
             break
         x = hid[0]
@@ -989,7 +1050,7 @@ def _k_steps(
             status = NEED_ROOM
             break
         steps += 1
-        size = _pop(hid, size, lf, k)
+        size = _pop(hid, size, lf, li, k)
         hx = np.int64(li[x, HEAD])  # int64, as every caller of _insert passes
         tx = np.int64(li[x, TURNS])
         _gvec(li, lg, x, okind, ocol, cell_size, gq, 0)
@@ -1011,10 +1072,11 @@ def _k_steps(
             )
             t_goal += nt
             v_goal += nv
-        if covered:
-            li[x, NEXT] = free  # nothing refers to x: recycle its row
-            free = x
+        if covered:  # nothing refers to x: recycle its row and its sequence number
+            fs[n_free] = x
             n_free += 1
+            fseq[n_free_seq] = li[x, SEQ]
+            n_free_seq += 1
             continue
         if c == goal:  # a solution: recorded, never expanded
             _insert(sv, si, sidx, sfree, tdir, st, gs, gq, ZERO, okind, tx, hx, TRUE, stk)
@@ -1022,8 +1084,13 @@ def _k_steps(
             n_sols += 1
             continue
 
+        # expand x: it joins its state's set, and leaves its row for a parent entry
         n_expanded += 1
         _insert(sv, si, sidx, sfree, tdir, st, s, gq, ZERO, okind, tx, hx, FALSE, stk)
+        pc[n_pc, 0] = c
+        pc[n_pc, 1] = li[x, PARENT]
+        parent = n_pc
+        n_pc += 1
         r, col = c // w, c % w
         mk = mask[c]
         for d in range(8):
@@ -1032,10 +1099,10 @@ def _k_steps(
             cell = (r + DR[d]) * w + col + DC[d]
             if hop[cell] < 0:  # the goal cannot be reached from there
                 continue
-            j = free if free >= 0 else n
+            j = fs[n_free - 1] if n_free > 0 else n  # the row recycled last, else a new one
             li[j, CELL] = cell
             li[j, HEAD] = d
-            li[j, PARENT] = x
+            li[j, PARENT] = parent
             li[j, NS] = li[x, NS] + (1 - d % 2)
             li[j, ND] = li[x, ND] + d % 2
             tj = tx + (turn(hx, d) if hx >= 0 else 0)
@@ -1066,52 +1133,35 @@ def _k_steps(
             v_goal += nv
             if cov:
                 continue
-            if j == free:
-                free = li[j, NEXT]
+            if n_free > 0:
                 n_free -= 1
             else:
                 n += 1
-            li[j, NEXT] = -1
-            _push(hid, size, lf, k, j)
+            if n_free_seq > 0:
+                n_free_seq -= 1
+                li[j, SEQ] = fseq[n_free_seq]
+            else:
+                li[j, SEQ] = n_seq
+                n_seq += 1
+            _push(hid, size, lf, li, k, j)
             size += 1
+        fs[n_free] = x  # x's values now live in its state's set and in pc
+        n_free += 1
     st[S_N] = n
     st[S_SIZE] = size
     st[S_SOLS] = n_sols
     st[S_EXPANDED] = n_expanded
     st[S_GENERATED] = n_generated
-    st[S_FREE] = free
     st[S_N_FREE] = n_free
+    st[S_SEQ] = n_seq
+    st[S_N_FREE_SEQ] = n_free_seq
+    st[S_PC] = n_pc
     st[S_POPS] = pops0 + steps
     st[S_STATE_TESTS] += t_state
     st[S_GOAL_TESTS] += t_goal
     st[S_STATE_NODES] += v_state
     st[S_GOAL_NODES] += v_goal
     return status
-
-
-@numba.njit(cache=True)
-def _k_trace(li, sols, w):
-    """Cells of the solution paths, concatenated, and their offsets."""
-    counts = np.empty(len(sols), np.int64)
-    for i in range(len(sols)):
-        m = 0
-        a = sols[i]
-        while a >= 0:
-            m += 1
-            a = li[a, PARENT]
-        counts[i] = m
-    offsets = np.zeros(len(sols) + 1, np.int64)
-    offsets[1:] = np.cumsum(counts)
-    cells = np.empty((offsets[-1], 2), np.int64)
-    for i in range(len(sols)):
-        j = offsets[i + 1] - 1
-        a = sols[i]
-        while a >= 0:
-            cells[j, 0] = li[a, CELL] // w
-            cells[j, 1] = li[a, CELL] % w
-            j -= 1
-            a = li[a, PARENT]
-    return cells, offsets
 
 
 # -- the final front: tolerant dominance and duplicates through a kd-tree -------------

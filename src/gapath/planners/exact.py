@@ -200,9 +200,9 @@ class ExactFront:
         objective.
     stats : dict
         How the search went: ``seconds``, ``labels`` (the free search: its
-        label rows at their peak, plus, with smoothness an objective, one
-        parent entry per expanded label; the rows of dropped labels, and
-        there of expanded ones, are recycled),
+        label rows at their peak, plus, with smoothness an objective and in
+        the k-objective search, one parent entry per expanded label; the
+        rows of dropped labels, and there of expanded ones, are recycled),
         ``peak_bytes`` (the largest memory its arrays held), and
         ``expansions``/``generated`` (free search) or ``columns`` (monotone
         DP). Not part of :meth:`to_dict`.
@@ -708,8 +708,10 @@ def free_front(
         labels are recycled, so this bounds the memory of the search: with
         smoothness an objective, 8 bytes per expanded label and about 72
         per open one, its row and open-list entry; for length and
-        vulnerability about 36 bytes a label plus 24 per open-list entry).
-        None: no budget.
+        vulnerability about 36 bytes a label plus 24 per open-list entry;
+        in the k-objective search, 8 bytes per expanded label, plus its
+        state's set member (8 (3k - 2) + 12 bytes until a later label
+        drops it), and about 36 + 16 k per open one). None: no budget.
     progress : callable, optional
         Called about ten times a second, and once at the end, with a dict
         ``phase="free"``, ``expansions``, ``generated``, ``labels``, ``open``
