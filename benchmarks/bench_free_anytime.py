@@ -302,7 +302,14 @@ def anytime(ws, F, pop, gen, seed, cap, progress=None, keep=5, save=None, refere
     to be measured against another front afterwards (``--score``)."""
     tracker = _Trace(F if save is None else None, cap, keep=keep, progress=progress, save=save)
     res = solve(
-        ws, objectives=OBJECTIVES, paths="free", pop_size=pop, n_gen=gen, seed=seed, callback=tracker, refine=refine
+        ws,
+        objectives=OBJECTIVES,
+        paths="free",
+        pop_size=pop,
+        n_gen=gen,
+        seed=seed,
+        callback=tracker,
+        refine=refine,
     )
     tr = tracker.trace
     arch = run_archive(res.pymoo_result.algorithm)
@@ -827,7 +834,9 @@ def main(argv=None):
                 save = f"{a.save}.{name}.s{a.seed}.npz" if a.save else None
                 rec["refine"] = "auto" if a.refine is None else a.refine
                 rec.update(
-                    anytime(ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress, a.keep, save, reference, a.refine)
+                    anytime(
+                        ws, F, a.pop, a.gen, a.seed, a.ga_cap, progress, a.keep, save, reference, a.refine
+                    )
                 )
         emit(rec)
     if out:
