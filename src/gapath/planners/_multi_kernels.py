@@ -38,7 +38,8 @@ import numba
 import numpy as np
 
 from gapath.grid import DC, DR, FALSE, ONE, SQRT2, TRUE, ZERO, turn
-from gapath.planners import _exact_kernels
+from gapath.planners._exact_kernels import CELL as _TRACE_CELL
+from gapath.planners._exact_kernels import F_PARENT as _TRACE_PARENT
 from gapath.planners._exact_kernels import _grow, _grow1
 
 # _k_run calls _grow and _grow1: numba's on-disk cache of this file is keyed on this
@@ -61,7 +62,7 @@ CELL, HEAD, PARENT, NS, ND, TURNS, SEQ = range(7)
 N_INT = 7
 # the solutions' paths are traced by _exact_kernels._trace_parents, which reads
 # the same two columns
-assert (CELL, PARENT) == (_exact_kernels.CELL, _exact_kernels.F_PARENT)
+assert (CELL, PARENT) == (_TRACE_CELL, _TRACE_PARENT)
 # scalars of the search state (S_SEQ: the next new sequence number)
 S_N, S_SIZE, S_SOLS, S_EXPANDED, S_GENERATED, S_GOAL_FIRST, S_SEQ, S_N_FREE, S_POPS, S_SPAN = range(10)
 # pool rows in use, members tested by the state and the goal checks
