@@ -8,7 +8,8 @@ through its ``progress`` hook and the instance is reported as "not finished")
 and a label budget (``--max-labels``), and cached as ``.npz`` in
 ``--cache``. Then one GA run as a user runs it: :func:`gapath.solver.solve`
 with ``paths="free"`` (FastNSGA2, field genome, weighted-sum seeds, the
-free-path archive with its default refinement), population ``--pop``,
+free-path archive with its default refinement, or ``--refine`` paths
+re-routed per generation), population ``--pop``,
 seed ``--seed``, for ``--gen`` generations or until ``--ga-cap`` CPU seconds,
 recording after every generation the HV ratio of the run's front (the
 archive's) against the exact front and the wall time since the call, minus
@@ -62,6 +63,7 @@ merge with ``--score OUT.npz --instances RUN.npz``; the lines then say
 Usage::
 
     python benchmarks/bench_free_anytime.py --instances gen128-s1,berlin [--gen 300]
+    python benchmarks/bench_free_anytime.py --instances 8room-q226 --pop 50 --refine 3200
     python benchmarks/bench_free_anytime.py --exact-only --instances gen256-s1
     python benchmarks/bench_free_anytime.py --throughput --instances random512 --pop 200
 """
