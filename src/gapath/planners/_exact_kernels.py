@@ -676,10 +676,8 @@ def _free_run(
         if status != NEED_ROOM:
             return li, lf, sols, hk, hid, sp, pc, fs, status
         li, lf, sols, hk, hid, sp = _make_room(li, lf, sols, hk, hid, sp, st, mode == MODE_THREE)
-        if st[S_PC] + 1 > pc.shape[0]:
-            pc = _grow(pc, st[S_PC] + 1)
-        if fs.shape[0] < li.shape[0]:
-            fs = _grow1(fs, li.shape[0])
+        pc = _grow(pc, st[S_PC] + 1)  # (each returns its table when it is large enough)
+        fs = _grow1(fs, li.shape[0])
 
 
 @numba.njit(cache=True)
