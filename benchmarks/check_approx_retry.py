@@ -2,11 +2,12 @@
 
 For each instance, the free-path archive's generation-1 searches as a run
 makes them (``FreePathArchive.add_faces`` with the defaults: the exact
-faces, the approximate three-objective search at e = 0.1 and, when its
-front projected on (length, vulnerability) scores below ``approx_retry``
-against that exact face, the search again at e = 0.03): one JSON line with
-``approx_shortfall`` (None where the first search did not run or finish)
-and ``retry`` (the second front's size and whether it finished, or None).
+faces, the approximate three-objective search at e = 0.1 and, when the
+exact (length, vulnerability) face cut to its ``eps_cover`` at 0.1 keeps
+less than ``approx_retry`` of its HV, the same search at
+``APPROX_RETRY_EPSILON``): one JSON line with ``approx_shortfall`` (that
+share; None where the face did not finish or the rule is off) and
+``retry`` (the finer front's size and whether it finished, or None).
 No timing. Instances: the anytime names of ``bench_free_anytime.py`` and
 ``three`` for the instances of ``bench_free_paths.py --set three``.
 

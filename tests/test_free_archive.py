@@ -20,7 +20,14 @@ from gapath.errors import ConfigError
 from gapath.front import path_front
 from gapath.metrics import hv_ratio, nondominated
 from gapath.objectives import evaluate_paths, pad_paths
-from gapath.operators.archive import APPROX_EPSILON, APPROX_RETRY_EPSILON, FreePathArchive, run_archive
+from gapath.operators.archive import (
+    APPROX_EPSILON,
+    APPROX_RETRY_BELOW,
+    APPROX_RETRY_EPSILON,
+    FreePathArchive,
+    eps_cover,
+    run_archive,
+)
 from gapath.operators.sampling.free_sampling import FreeSampling
 from gapath.planners.exact import free_front
 from gapath.problems import FreePathProblem, GridPathProblem
@@ -518,14 +525,23 @@ def test_approximate_search_follows_the_faces_within_its_own_budget(monkeypatch)
     stopped = free_front(ws, OBJ3, epsilon=APPROX_EPSILON, max_expansions=1)
     assert not stopped.stats["complete"] and len(stopped) < len(approx)
     assert over.face_sizes == archive.face_sizes[:3] + [(OBJ3, len(stopped), False)]
-    # not run when a face stopped short of its front
+    # not run when a face stopped short of its front; the (length,
+    # vulnerability) face is searched first (it decides approx_retry's rule)
+    # and recorded in face_pairs's order
     dropped = FreePathArchive(p, n_refine=0, extremes=0, faces=1e-6)
     minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=dropped)
-    k = len(free_front(ws, PAIRS[0], max_expansions=1))
-    assert dropped.face_sizes == [(PAIRS[0], k, False)] + [(pair, None, False) for pair in PAIRS[1:]] + [
+    k = len(free_front(ws, PAIRS[1], max_expansions=1))
+    assert dropped.face_sizes == [(PAIRS[0], None, False), (PAIRS[1], k, False), (PAIRS[2], None, False)] + [
         (OBJ3, None, False)
     ]
-    assert dropped.n_eval == k
+    assert dropped.n_eval == k and dropped.approx_shortfall is None
+    # without the rule, the faces' own order
+    plain = FreePathArchive(p, n_refine=0, extremes=0, faces=1e-6, approx_retry=0)
+    minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=plain)
+    k = len(free_front(ws, PAIRS[0], max_expansions=1))
+    assert plain.face_sizes == [(PAIRS[0], k, False)] + [(pair, None, False) for pair in PAIRS[1:]] + [
+        (OBJ3, None, False)
+    ]
     assert FreePathArchive(FreePathProblem(ws), n_refine=0).approx == 0
     assert (
         FreePathArchive(FreePathProblem(ws, ("length", "smoothness", "vulnerability")), n_refine=0).approx > 0
@@ -553,15 +569,17 @@ def _two_threads(monkeypatch, log=None) -> list:
     return started
 
 
-@pytest.mark.parametrize("faces", [None, 1e-6])
-def test_approximate_search_in_a_second_thread_gives_the_serial_archive(monkeypatch, faces):
-    """With two threads asked for (``GAPATH_THREADS``) the approximate
+@pytest.mark.parametrize("seed, faces", [(44, None), (44, 1e-6), (45, None)])
+def test_approximate_search_in_a_second_thread_gives_the_serial_archive(monkeypatch, seed, faces):
+    """With two threads asked for (``GAPATH_THREADS``) an approximate
     search runs in a second thread beside the faces: the archive gets the
-    same paths, points and records as serially. When a face stops short
-    the second thread's search is cancelled and dropped, as serially it is
-    not run; no thread is left behind."""
+    same paths, points and records as serially, whether approx_retry's
+    rule fires (room 45: the finer search in the second thread, the first
+    one in this thread after the faces) or not (room 44). When a face stops
+    short the second thread's search is cancelled and dropped, as serially
+    it is not run; no thread is left behind."""
 
-    ws = room(h=14, w=16, seed=44)
+    ws = room(h=14, w=16, seed=seed)
     p = FreePathProblem(ws, OBJ3)
 
     def run():
@@ -570,13 +588,16 @@ def test_approximate_search_in_a_second_thread_gives_the_serial_archive(monkeypa
         return a
 
     serial = run()
+    fired = serial.retry_size is not None
+    assert fired == (seed == 45)  # both cases are exercised
     started = _two_threads(monkeypatch)
     threaded = run()
-    # the approximate search, and the second one beside it (approx_retry's,
-    # cancelled here: this front is not coarse) unless a face stopped short
-    assert len(started) == (2 if faces is None else 1)
+    # the approximate search, replaced by the finer one when the rule fires
+    assert len(started) == (2 if fired else 1)
     assert not any(s._thread.is_alive() for s in started)
     assert threaded.face_sizes == serial.face_sizes
+    assert threaded.retry_size == serial.retry_size
+    assert threaded.approx_shortfall == serial.approx_shortfall
     assert (serial.face_sizes[-1][1] is None) == (faces is not None)  # both cases are exercised
     np.testing.assert_array_equal(threaded.F, serial.F)
     assert all(np.array_equal(a, b) for a, b in zip(threaded.paths(), serial.paths(), strict=True))
@@ -616,7 +637,8 @@ def test_search_started_before_sampling_gives_the_serial_run(monkeypatch):
 
     monkeypatch.setattr(FreePathProblem, "_evaluate", logged)
     threaded = solve(ws, objectives=OBJ3, paths="free", pop_size=10, n_gen=2, seed=3)
-    assert len(started) == 2  # the approximate search, and approx_retry's beside it
+    # the approximate search, then the finer one instead (room 45's face is coarse)
+    assert len(started) == 2 and started[0]._event.is_set()
     assert not any(s._thread.is_alive() for s in started)
     assert log[0] == "search" and "evaluate" in log  # before the first population
     np.testing.assert_array_equal(threaded.front.F, serial.front.F)
@@ -624,11 +646,12 @@ def test_search_started_before_sampling_gives_the_serial_run(monkeypatch):
     archive = FreePathArchive(p, n_refine=0, extremes=0)
     archive.start()
     archive.start()  # once
-    assert len(started) == 3
+    assert len(started) == 4
     archive.close()
-    assert started[2]._event.is_set() and not started[2]._thread.is_alive()
-    archive.add_faces()  # the approximate search again, and approx_retry's beside it
+    assert started[3]._event.is_set() and not started[3]._thread.is_alive()
+    archive.add_faces()  # the finer search again (the face searched by start() is kept)
     assert len(started) == 5 and archive.face_sizes[-1][0] == OBJ3 and archive.face_sizes[-1][1]
+    assert archive.retry_size is not None and archive.retry_size[1]
     archive.start()  # after the faces: nothing
     assert len(started) == 5
 
@@ -663,9 +686,9 @@ def test_second_thread_errors_and_interrupts_end_both_searches(monkeypatch):
     monkeypatch.setattr(A, "_budget_search", interrupted)
     with pytest.raises(KeyboardInterrupt):
         FreePathArchive(p, n_refine=0, extremes=0).add_faces()
-    # the failing run: the approximate search and approx_retry's beside it;
+    # the failing run: the approximate search (room 44's face is not coarse);
     # the interrupted one: the approximate search (the faces never ended)
-    assert len(started) == 3 and all(not b._thread.is_alive() for b in started)
+    assert len(started) == 2 and all(not b._thread.is_alive() for b in started)
 
 
 def test_second_thread_search_holds_a_thread_until_it_ends(monkeypatch):
@@ -708,6 +731,9 @@ def test_second_thread_search_holds_a_thread_until_it_ends(monkeypatch):
         ({"approx_budget": "x"}, "approx_budget"),
         ({"approx_retry": -0.5}, "approx_retry"),
         ({"approx_retry": "x"}, "approx_retry"),
+        ({"approx_retry_epsilon": 0}, "approx_retry_epsilon must be an epsilon > 0"),
+        ({"approx_retry_epsilon": -0.01}, "approx_retry_epsilon"),
+        ({"approx_retry_epsilon": "x"}, "approx_retry_epsilon"),
     ],
 )
 def test_bad_approx_settings(kwargs, match):
@@ -719,27 +745,26 @@ def test_bad_approx_settings(kwargs, match):
 
 
 @pytest.mark.parametrize("threads", [1, 2])
-def test_coarse_approximation_is_searched_again_at_a_smaller_epsilon(monkeypatch, threads):
-    """When the approximate front, projected on (length, vulnerability),
-    scores below ``approx_retry`` against that exact face, the search runs
-    again at APPROX_RETRY_EPSILON: the ratio is recorded as computed from
-    the two fronts, every point of the second front is matched in the
-    archive, the front stays valid, and two threads give the serial
-    archive. Above the bound (or with ``approx_retry=0``) nothing more runs
-    and the archive is the one without the rule. With two threads the
-    second search starts in its own thread while the first runs (never in
-    the main thread) and is cancelled when it is not wanted."""
+def test_coarse_face_adds_the_search_at_a_smaller_epsilon(monkeypatch, threads):
+    """When the exact (length, vulnerability) face, cut to its eps_cover at
+    ``approx``, keeps less than ``approx_retry`` of its HV, the search also
+    runs at ``approx_retry_epsilon``: the share is recorded as computed from
+    the face, every point of the finer front is matched in the archive, the
+    front stays valid, and two threads give the serial archive. Above the
+    bound (or with ``approx_retry=0``) nothing more runs and the archive is
+    the one without the rule. With two threads the finer search runs in the
+    second thread (never in the main one) and the first one in the main
+    thread after the faces."""
     from gapath.operators import archive as A
 
-    ws = room(h=14, w=16, seed=44)
+    ws = room(h=14, w=16, seed=45)
     p = FreePathProblem(ws, OBJ3)
-    lv = ("length", "vulnerability")
-    first = free_front(ws, OBJ3, epsilon=APPROX_EPSILON)
-    shortfall = hv_ratio(first.F[:, [0, 1]], free_front(ws, lv).F)
-    assert 0 < shortfall < 1  # the bounds below fall on both sides of it
+    face = free_front(ws, ("length", "vulnerability")).F
+    shortfall = hv_ratio(face[eps_cover(face, APPROX_EPSILON)], face)
+    assert 0 < shortfall < APPROX_RETRY_BELOW  # the default fires here; the bounds below fall on both sides
 
-    def run(bound):
-        a = FreePathArchive(p, n_refine=0, extremes=0, approx_retry=bound)
+    def run(bound, **kw):
+        a = FreePathArchive(p, n_refine=0, extremes=0, approx_retry=bound, **kw)
         minimize(p, FastNSGA2(10, sampling=FreeSampling("none")), ("n_gen", 1), seed=1, callback=a)
         return a
 
@@ -758,14 +783,15 @@ def test_coarse_approximation_is_searched_again_at_a_smaller_epsilon(monkeypatch
         monkeypatch.setattr(A, "_budget_search", spy)
     second = free_front(ws, OBJ3, epsilon=APPROX_RETRY_EPSILON)
     for bound, a in serial.items():
-        n = len(started)
+        n, m = len(started), len(in_main)
         b = run(bound) if threads == 2 else a
-        if threads == 2:  # the first search, and the second one beside it unless the rule is off
-            assert len(started) - n == (1 if bound == 0 else 2)
+        fired = bound > shortfall
+        if threads == 2:  # the first search, and the finer one instead of it when the rule fires
+            assert len(started) - n == (2 if fired else 1)
             assert not any(s._thread.is_alive() for s in started)
             assert APPROX_RETRY_EPSILON not in in_main
+            assert (APPROX_EPSILON in in_main[m:]) == fired
         assert b.approx_shortfall == (None if bound == 0 else pytest.approx(shortfall, abs=1e-12))
-        fired = bound > shortfall
         assert b.retry_size == ((len(second), True) if fired else None)
         assert all(_covers(b.F, [0, 1, 2], f) for f in second.F) or not fired
         _check_front(ws, p, b.front(), OBJ3)
@@ -773,3 +799,40 @@ def test_coarse_approximation_is_searched_again_at_a_smaller_epsilon(monkeypatch
         assert b.n_eval == a.n_eval
     np.testing.assert_array_equal(serial[0].F, serial[shortfall - 1e-6].F)
     assert serial[shortfall + 1e-6].n_eval == serial[0].n_eval + len(second)
+    # another epsilon for the finer search; one not below approx switches the rule off
+    other = run(shortfall + 1e-6, approx_retry_epsilon=0.05)
+    assert other.retry_size == (len(free_front(ws, OBJ3, epsilon=0.05)), True)
+    off = run(shortfall + 1e-6, approx_retry_epsilon=APPROX_EPSILON)
+    assert off.retry_size is None and off.approx_shortfall is None
+    np.testing.assert_array_equal(off.F, serial[0].F)
+
+
+def _covered_within(F, keep, eps) -> bool:
+    """Whether each row of ``F`` has a row of ``F[keep]`` within ``1 + eps`` in both objectives."""
+    C = F[keep]
+    return bool(((C[None, :, :] <= (1 + eps) * F[:, None, :] + 1e-12).all(axis=2).any(axis=1)).all())
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    st.lists(st.tuples(st.floats(0.0, 5.0), st.floats(0.0, 5.0)), min_size=1, max_size=9),
+    st.sampled_from([0.0, 0.01, 0.1, 0.5]),
+)
+def test_eps_cover_is_a_smallest_cover(steps, eps):
+    """eps_cover keeps increasing indices of a subset that covers every point
+    of a two-objective front within 1 + eps, and no smaller subset does
+    (every subset checked)."""
+    from itertools import combinations
+
+    d = np.asarray(steps) + 0.05
+    F = np.column_stack([np.cumsum(d[:, 0]), np.cumsum(d[::-1, 1])[::-1] - 0.05])  # a front, costs >= 0
+    perm = np.random.default_rng(len(F)).permutation(len(F))
+    F = F[perm]
+    keep = eps_cover(F, eps)
+    assert np.all(np.diff(keep) > 0) and _covered_within(F, keep, eps)
+    smaller = (
+        _covered_within(F, list(c), eps) for r in range(1, len(keep)) for c in combinations(range(len(F)), r)
+    )
+    assert not any(smaller)
+    if eps == 0.0:
+        assert len(keep) == len(F)

@@ -44,7 +44,11 @@ are followed by an *approximate* three-objective search
 budget of its own, ``approx_budget`` expansions per reachable cell, and
 only when every face search finished): its points lie across the inside
 of the front, which the faces bound but do not fill, and it misses the
-edges, which the faces hold.
+edges, which the faces hold. Where the (length, vulnerability) face is
+coarse for that epsilon (a few points within ``1 + approx`` of each other
+cover most of it: ``approx_retry``), the search runs at the finer
+``approx_retry_epsilon`` instead; the face is then searched first, and
+decides it.
 
 The archive is updated incrementally (each generation's ``k`` new paths
 against its ``n`` paths: ``O(k n)``) and capped (:data:`CAP` paths by
@@ -110,17 +114,52 @@ FACE_BUDGET = 200
 APPROX_EPSILON = 0.1
 #: Its budget in expansions per reachable cell (``approx_budget``'s default).
 APPROX_BUDGET = 200
-#: ``approx_retry``'s default: when the approximate front, projected on
-#: (length, vulnerability), scores an HV ratio below this against that exact
-#: face, the search runs again at :data:`APPROX_RETRY_EPSILON`
-#: (``docs/results/free_paths.md``). Measured: 0.73-0.86 on eight MovingAI
-#: 8room_000 queries, where generation 1 needs the second search; 0.92-0.95
-#: on seven 256 x 256 random fields, where it does not and would only delay
-#: generation 1. 0.85 (seventeenth session) missed a query at 0.863
-#: (8room_000's 151st longest); 0.9 since the twentieth session.
-APPROX_RETRY_BELOW = 0.9
-#: The ``epsilon`` of that second search.
-APPROX_RETRY_EPSILON = 0.03
+#: ``approx_retry``'s default: when the exact (length, vulnerability) face,
+#: cut to its :func:`eps_cover` at the approximate search's epsilon, keeps
+#: less than this share of its HV, the search runs at
+#: :data:`APPROX_RETRY_EPSILON` instead (``docs/results/free_paths.md``,
+#: twenty-second session). Measured on the instances of earlier sessions:
+#: 0.38-0.66 on nine MovingAI 8room_000 queries (one point covers the whole
+#: face there: lengths and vulnerabilities within 10 %), where generation 1
+#: needs the finer search; 0.77-0.84 on eleven 256 x 256 random fields and
+#: 0.81 on a 128 x 128 one, where it does not.
+APPROX_RETRY_BELOW = 0.72
+#: The ``epsilon`` of the finer search (``approx_retry_epsilon``'s default):
+#: 0.02 since the twenty-second session (0.03 before); on six 8room_000
+#: queries it reached HV 0.99 of the exact front at 10.7-13.6x the exact
+#: search's speed where 0.03 ranged 9.4-19.1x (one seed, exploration).
+APPROX_RETRY_EPSILON = 0.02
+#: The pair of objectives whose face decides the approximate search's epsilon.
+LV = frozenset(("length", "vulnerability"))
+
+
+def eps_cover(F, eps: float) -> np.ndarray:
+    """Indices (increasing) of a smallest subset of the two-objective front
+    ``F`` (minimised, non-negative, mutually non-dominated) that holds, for
+    every row ``q``, a row ``p`` with ``p <= (1 + eps) q`` in both
+    objectives. Greedy in the first objective's order: the first row not yet
+    covered is covered by the last row within ``1 + eps`` of it in the first
+    objective (the rows that cover a row are consecutive in that order, so
+    the greedy choice is optimal).
+
+    Examples
+    --------
+    >>> eps_cover([[10.0, 5.0], [10.5, 4.0], [11.5, 1.0], [12.0, 0.5]], 0.1).tolist()
+    [1, 3]
+    """
+    F = np.asarray(F, float)
+    order = np.lexsort((F[:, 1], F[:, 0]))
+    G = F[order]
+    keep = []
+    i, n = 0, len(G)
+    while i < n:
+        j = i + int(np.searchsorted(G[i:, 0], (1.0 + eps) * G[i, 0], side="right")) - 1
+        keep.append(j)
+        p = G[j]
+        i += 1
+        while i < n and p[0] <= (1.0 + eps) * G[i, 0] and p[1] <= (1.0 + eps) * G[i, 1]:
+            i += 1
+    return np.sort(order[keep])
 
 
 def dominated_by(B, A, tol: float = TOL) -> np.ndarray:
@@ -367,13 +406,16 @@ class FreePathArchive(PathArchive):
         (default :data:`APPROX_BUDGET`); it stops there and keeps what it
         found (deterministic, as the faces). It is not run when a face
         search stopped short: on such a map it costs more than the faces.
-    approx_retry : when that search finished and its front, projected on
-        (length, vulnerability), scores an HV ratio below this against the
-        exact (length, vulnerability) face, it runs again at
-        :data:`APPROX_RETRY_EPSILON` within the same budget (default
-        :data:`APPROX_RETRY_BELOW`; 0 switches it off). The ratio is in
-        ``approx_shortfall``, the second front's size and whether it
-        finished in ``retry_size``.
+    approx_retry : when the exact (length, vulnerability) face, cut to its
+        :func:`eps_cover` at ``approx``, keeps less than this share of its
+        HV, the approximate search runs at ``approx_retry_epsilon`` instead
+        of ``approx`` (default :data:`APPROX_RETRY_BELOW`; 0 switches it
+        off). The share is in ``approx_shortfall``; when the finer search
+        ran, its front's size and whether it finished are in
+        ``retry_size``.
+    approx_retry_epsilon : that finer search's ``epsilon`` (default
+        :data:`APPROX_RETRY_EPSILON`; must be > 0, and below ``approx`` for
+        the rule to apply).
     extremes : with smoothness as an objective, whole archived paths
         re-routed per generation under a heavy turn weight
         (``log10(c / a)`` in :data:`EXTREME_TURNS`) and a light cell cost
@@ -395,7 +437,8 @@ class FreePathArchive(PathArchive):
         On a problem that is not a free-path problem, a negative
         ``n_refine``, a bad ``segment``, ``lam_range``, ``shortcut``,
         ``sparse``, ``extremes``, ``exact_stretches``, ``faces``, ``approx``,
-        ``approx_budget`` or ``cap``.
+        ``approx_budget``, ``approx_retry``, ``approx_retry_epsilon`` or
+        ``cap``.
 
     Examples
     --------
@@ -427,6 +470,7 @@ class FreePathArchive(PathArchive):
         approx=None,
         approx_budget=APPROX_BUDGET,
         approx_retry=APPROX_RETRY_BELOW,
+        approx_retry_epsilon=APPROX_RETRY_EPSILON,
     ):
         super().__init__()
         if getattr(problem, "paths", None) != "free":
@@ -498,6 +542,13 @@ class FreePathArchive(PathArchive):
             )
         self.approx_budget = non_negative(approx_budget, "approx_budget", finite=False, what=per_cell)
         self.approx_retry = non_negative(approx_retry, "approx_retry", what=" (an HV ratio)")
+        self.approx_retry_epsilon = non_negative(
+            approx_retry_epsilon, "approx_retry_epsilon", what=" (an epsilon)"
+        )
+        if self.approx_retry_epsilon == 0:
+            raise ConfigError(
+                "approx_retry_epsilon must be an epsilon > 0, got 0 (approx_retry=0 switches the rule off)"
+            )
         self.approx_shortfall: float | None = None
         self.retry_size: tuple[int | None, bool] | None = None
         if extremes is None:  # the faces with smoothness hold the smooth end exactly
@@ -505,6 +556,8 @@ class FreePathArchive(PathArchive):
         self.extremes = _whole(extremes, "extremes")
         self._faces_done = False
         self._background: _Background | None = None
+        #: the (length, vulnerability) face when :meth:`start` searched it
+        self._lv: tuple | None = None
         #: the face searches, then the approximate one: ``(objectives, points kept or
         #: None when not run, whether it finished within the budget)``
         self.face_sizes: list[tuple[tuple[str, ...], int | None, bool]] = []
@@ -581,7 +634,13 @@ class FreePathArchive(PathArchive):
         more and :meth:`add_faces` will run it beside the faces (else
         nothing): :func:`gapath.solver.solve` calls it before the first
         population is sampled, so that the search overlaps the sampling
-        too. :meth:`add_faces` takes its result; :meth:`close` cancels it."""
+        too. With ``approx_retry`` on, the (length, vulnerability) face is
+        searched here, in this thread, while that search starts; when
+        :meth:`_search_epsilon` finds the face coarse, the second thread
+        turns to the finer search (the longer one) and :meth:`add_faces`
+        runs the first in this thread after the other faces.
+        :meth:`add_faces` takes the face and the results; :meth:`close`
+        cancels what was not taken."""
         from gapath.encodings.free import wanted_threads
 
         if self._background is not None or self.face_sizes:
@@ -591,7 +650,23 @@ class FreePathArchive(PathArchive):
             return
         ws = self.problem.workspace
         _ = ws.potential  # (computed here, not in both threads at once)
-        three, eps = tuple(self.problem.objectives), self.approx
+        three = tuple(self.problem.objectives)
+        lv_pair = self._lv_pair()
+        if lv_pair is not None and self._lv is None:
+            # the first search runs beside the face until the face has decided
+            self._background = _Background(
+                lambda cancel: _budget_search(ws, three, self.approx, budget, cancel)
+            )
+            try:
+                self._lv = _budget_search(ws, lv_pair, 0.0, self.faces * self.problem.encoding.n_reachable)
+            except BaseException:
+                self.close()
+                raise
+            if self._search_epsilon(self._lv) is None:
+                return
+            self.close()
+        fine = self._search_epsilon(self._lv) if self._lv is not None else None
+        eps = self.approx if fine is None else fine
         self._background = _Background(lambda cancel: _budget_search(ws, three, eps, budget, cancel))
 
     def _approx_expansions(self) -> float:
@@ -607,68 +682,86 @@ class FreePathArchive(PathArchive):
 
     def add_faces(self) -> None:
         """Archive the paths of the exact two-objective front of each pair
-        of the objectives among length, vulnerability and smoothness, the
-        (length, smoothness) pair first, while the searches stay within the
-        ``faces`` expansions per reachable cell they share; then, with
-        ``approx > 0``, those of the approximate three-objective front
-        within its own ``approx_budget``. A search stopped by its budget
-        gives the points it found (``free_front(..., max_expansions=)``).
+        of the objectives among length, vulnerability and smoothness while
+        the searches stay within the ``faces`` expansions per reachable cell
+        they share; then, with ``approx > 0``, those of the approximate
+        three-objective front within its own ``approx_budget``, and, when
+        :meth:`_search_epsilon` finds the (length, vulnerability) face
+        coarse, those of the same search at ``approx_retry_epsilon`` (within
+        the same budget). A search stopped by its budget gives the points it
+        found (``free_front(..., max_expansions=)``).
 
-        When ``GAPATH_THREADS`` asks for two threads or more
-        (:func:`gapath.encodings.free.wanted_threads`), the approximate
+        The faces are searched in :func:`face_pairs`'s order, except that
+        with ``approx_retry`` on the (length, vulnerability) face goes first
+        (it decides whether the finer search runs); their paths are archived
+        in :func:`face_pairs`'s order, then the approximate searches'. When
+        ``GAPATH_THREADS`` asks for two threads or more
+        (:func:`gapath.encodings.free.wanted_threads`), one approximate
         search runs in a second thread while the faces run in this one (the
-        kernels release the GIL), started here or already by :meth:`start`,
-        and is cancelled if a face stops short; the archive receives the
-        same paths in the same order either way. With ``approx_retry`` on,
-        a third thread runs the search at :data:`APPROX_RETRY_EPSILON`
-        beside the first one as soon as the faces are done (this thread
-        only waits then), and is cancelled when :meth:`_retry` does not
-        want it."""
+        kernels release the GIL), started here or already by :meth:`start`:
+        the finer one when it runs (the other then runs here after the
+        faces), and it is cancelled if a face stops short; the archive
+        receives the same paths in the same order either way."""
         from gapath.operators._archive_kernels import keyed
 
         enc = self.problem.encoding
         ws = self.problem.workspace
         w = ws.shape[1]
-        pairs = face_pairs(self.problem.objectives) if self.faces > 0 else []
+        order = face_pairs(self.problem.objectives) if self.faces > 0 else []
+        pairs = list(order)
+        lv_pair = self._lv_pair()
+        if lv_pair is not None:
+            pairs.remove(lv_pair)
+            pairs.insert(0, lv_pair)
         three = tuple(self.problem.objectives)
         self.start()
         background, self._background = self._background, None
-        ahead = None  # the second search, started before it is known to be needed
+        lv, self._lv = self._lv, None
         subs: list[np.ndarray] = []
         try:
             left = self.faces * enc.n_reachable
-            lv_face = None  # the exact (length, vulnerability) face, for _retry
+            sizes, found = {}, {}
             for pair in pairs:
-                paths, kept, done, used, F = _budget_search(ws, pair, 0.0, left) if left > 0 else _NOT_RUN
+                if pair == lv_pair and lv is not None:
+                    result = lv  # searched by start()
+                elif left > 0:
+                    result = _budget_search(ws, pair, 0.0, left)
+                else:
+                    result = _NOT_RUN
+                paths, kept, done, used, _ = result
                 left = left - used if done else 0
-                self.face_sizes.append((pair, kept, done))
-                if done and set(pair) == {"length", "vulnerability"}:
-                    lv_face = (pair, F)
-                subs += paths
+                sizes[pair], found[pair] = (pair, kept, done), paths
+                if pair == lv_pair:
+                    lv = result
+            self.face_sizes.extend(sizes[pair] for pair in order)
+            subs = [path for pair in order for path in found[pair]]
             if self.approx > 0:
                 # not run where a face stopped short: it costs more than the faces there
                 fit = all(done for _, _, done in self.face_sizes)
                 budget = self._approx_expansions()
-                if not fit or budget <= 0:
-                    paths, kept, done, _, F = _NOT_RUN
-                elif background is not None:
-                    if lv_face is not None and self._retries():
-                        # this thread would wait for the first search: start the
-                        # second one now, and cancel it if _retry does not want it
-                        ahead = _Background(
-                            lambda cancel: _budget_search(ws, three, APPROX_RETRY_EPSILON, budget, cancel)
-                        )
-                    paths, kept, done, _, F = background.result()
+                fine = self._search_epsilon(lv)  # recorded as start() records it
+                run = fit and budget > 0
+                first = second = _NOT_RUN
+                if not run:
+                    pass
+                elif background is not None and fine is None:
+                    first = background.result()
                 else:
-                    paths, kept, done, _, F = _budget_search(ws, three, self.approx, budget)
-                self.face_sizes.append((three, kept, done))
-                subs += paths
-                if done:
-                    subs += self._retry(F, lv_face, budget, ahead)
+                    first = _budget_search(ws, three, self.approx, budget)
+                    if fine is not None:
+                        second = (
+                            background.result()
+                            if background is not None
+                            else _budget_search(ws, three, fine, budget)
+                        )
+                self.face_sizes.append((three, first[1], first[2]))
+                subs += first[0]
+                if run and fine is not None:
+                    self.retry_size = (second[1], second[2])
+                    subs += second[0]
         finally:
-            for search in (background, ahead):
-                if search is not None:
-                    search.cancel()
+            if background is not None:
+                background.cancel()
         if not subs:
             return
         flat_paths = [p[:, 0].astype(np.int64) * w + p[:, 1] for p in subs]
@@ -678,39 +771,32 @@ class FreePathArchive(PathArchive):
         self.n_eval += k
         self._merge(flat, offsets, keys, np.full((k, self._X.shape[1]), np.nan), np.zeros(k, bool))
 
-    def _retries(self) -> bool:
-        """Whether :meth:`_retry` may run the search again at all."""
-        return self.approx_retry > 0 and self.approx > APPROX_RETRY_EPSILON
+    def _lv_pair(self) -> tuple[str, str] | None:
+        """The (length, vulnerability) face's pair when it decides the
+        approximate search's epsilon (``approx_retry`` on), else None."""
+        if not (self.faces > 0 and self.approx > 0 and self.approx_retry > 0):
+            return None
+        if not self.approx > self.approx_retry_epsilon:
+            return None
+        pairs = [pair for pair in face_pairs(self.problem.objectives) if set(pair) == LV]
+        return pairs[0] if pairs else None
 
-    def _retry(self, F, face, budget, ahead=None) -> list:
-        """The paths of the approximate search run again at
-        :data:`APPROX_RETRY_EPSILON` when its first front ``F``, projected on
-        the exact (length, vulnerability) face ``(pair, F)``, scores an HV
-        ratio below ``approx_retry`` (recorded in ``approx_shortfall``,
-        ``retry_size``): where the default epsilon leaves much of the front
-        uncovered. Decided from the fronts alone, so the same on any
-        machine and with any number of threads. ``ahead``: that search,
-        already started in a background thread (:meth:`add_faces`, with two
-        threads); its result is taken when it is wanted, else it is
-        cancelled."""
-        if face is None or F is None or not len(F) or not self._retries():
-            return []
-        pair, FF = face
-        if not len(FF):
-            return []
-        cols = [self.problem.objectives.index(o) for o in pair]
-        self.approx_shortfall = float(hv_ratio(F[:, cols], FF))
-        if self.approx_shortfall >= self.approx_retry:
-            return []
-        if ahead is not None:
-            paths, kept, done, _, _ = ahead.result()
-        else:
-            three = tuple(self.problem.objectives)
-            paths, kept, done, _, _ = _budget_search(
-                self.problem.workspace, three, APPROX_RETRY_EPSILON, budget
-            )
-        self.retry_size = (kept, done)
-        return paths
+    def _search_epsilon(self, lv) -> float | None:
+        """``approx_retry_epsilon`` when the finer search runs, else None:
+        when the exact (length, vulnerability) face ``lv`` (a
+        :func:`_budget_search` result) is coarse for ``approx``, that is
+        when its :func:`eps_cover` at ``approx`` keeps less than
+        ``approx_retry`` of its HV (recorded in ``approx_shortfall``): a
+        search at ``approx`` merges most of that trade-off into a few
+        points. Decided from the face alone: the same on any machine and
+        with any number of threads."""
+        if lv is None or self._lv_pair() is None:
+            return None
+        _, _, done, _, F = lv
+        if not done or F is None or not len(F):
+            return None
+        self.approx_shortfall = float(hv_ratio(F[eps_cover(F, self.approx)], F))
+        return self.approx_retry_epsilon if self.approx_shortfall < self.approx_retry else None
 
     def add(self, X) -> None:
         """Archive the decoded paths of genomes ``X`` (those non-dominated)."""
@@ -1063,6 +1149,7 @@ __all__ = [
     "crowding",
     "crowding_truncation",
     "dominated_by",
+    "eps_cover",
     "face_pairs",
     "offspring_genomes",
     "run_archive",
