@@ -29,7 +29,9 @@ With three or more objectives the first refinement also archives the exact
 vulnerability and smoothness, every path of the exact two-objective front
 (:func:`gapath.planners.exact.free_front`), within a budget of expansions
 per reachable cell that they share (``faces``; the (length, smoothness)
-search first, the cheapest on every map measured). A search that reaches
+search first, the cheapest on every map measured, except that the
+(length, vulnerability) one goes first when it decides the approximate
+search's epsilon, see below). A search that reaches
 what is left of the budget stops there and gives the points it has found,
 each on the exact front (``free_front(..., max_expansions=)``); the ones
 after it do not run. Each such
