@@ -653,21 +653,25 @@ class FreePathArchive(PathArchive):
         ws = self.problem.workspace
         _ = ws.potential  # (computed here, not in both threads at once)
         three = tuple(self.problem.objectives)
+        fine = None
         lv_pair = self._lv_pair()
-        if lv_pair is not None and self._lv is None:
-            # the first search runs beside the face until the face has decided
-            self._background = _Background(
-                lambda cancel: _budget_search(ws, three, self.approx, budget, cancel)
-            )
-            try:
-                self._lv = _budget_search(ws, lv_pair, 0.0, self.faces * self.problem.encoding.n_reachable)
-            except BaseException:
-                self.close()
-                raise
-            if self._search_epsilon(self._lv) is None:
-                return
+        if lv_pair is not None:
+            if self._lv is None:
+                # the first search runs beside the face until the face has decided
+                self._background = _Background(
+                    lambda cancel: _budget_search(ws, three, self.approx, budget, cancel)
+                )
+                try:
+                    self._lv = _budget_search(
+                        ws, lv_pair, 0.0, self.faces * self.problem.encoding.n_reachable
+                    )
+                except BaseException:
+                    self.close()
+                    raise
+            fine = self._search_epsilon(self._lv)
+            if fine is None and self._background is not None:
+                return  # the first search goes on
             self.close()
-        fine = self._search_epsilon(self._lv) if self._lv is not None else None
         eps = self.approx if fine is None else fine
         self._background = _Background(lambda cancel: _budget_search(ws, three, eps, budget, cancel))
 
